@@ -1,0 +1,1 @@
+"""Cubic-spline inertial path estimation (seed 002). Not yet built: see the issues."""

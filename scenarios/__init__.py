@@ -1,0 +1,1 @@
+"""Scenario files, their validation, the built-in library and the ``flightmode`` CLI."""

@@ -1,0 +1,109 @@
+"""Per-type speeds, flap schedules, geometry and gains: the one table the pilot flies from.
+
+Speeds are chosen inside OpenAP WRAP's real-traffic ranges for the type (FACTS.md) and the
+type's published figures; gains were tuned on these JSBSim models. Flap commands are
+``fcs/flap-cmd-norm`` values of the JSBSim model (737: detents 1,2,5,10,15,25,30,40 at
+1/8 steps; A320 and 787-8: degrees / full travel (40 and 35 deg); fokker100: degrees / 42).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from sim.errors import AircraftError, did_you_mean
+
+
+@dataclass(frozen=True, slots=True)
+class ApproachStep:
+    """At ``dist_nm`` to the threshold: select ``flaps_norm`` (and gear if ``gear_down``) and slow to ``speed_kt``."""
+
+    dist_nm: float
+    flaps_norm: float
+    speed_kt: float
+    gear_down: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class AircraftProfile:
+    model: str  # JSBSim aircraft directory
+    description: str
+    wrap_type: str  # OpenAP WRAP type used to check this model's kinematics
+    n_engines: int
+    length_m: float
+    wingspan_m: float
+    cg_height_m: float  # settled reference height on the gear (FACTS.md)
+    wheelbase_m: float
+    fuel_kg: float  # loaded at the gate, spread over the tanks in proportion to capacity
+    vr_kt: float
+    v2_kt: float
+    climb_ias_kt: float
+    descent_ias_kt: float
+    vapp_kt: float
+    rotate_pitch_deg: float
+    takeoff_flaps_norm: float
+    approach_steps: tuple[ApproachStep, ...]
+    flap_retract_kt: tuple[tuple[float, float], ...]  # (IAS above which, flaps_norm)
+    alpha_stall_deg: float
+    climb_throttle: float
+    taxi_throttle_max: float
+    reverse_throttle: float
+    flare_height_ft: float
+    flare_tau_s: float
+    touchdown_sink_fps: float  # the flare's commanded floor
+    # gains (see sim.pilot)
+    pitch_kp: float = 2.0
+    pitch_ki: float = 0.6
+    pitch_kq: float = 1.2
+    roll_kp: float = 1.5
+    roll_kp_p: float = 0.4
+    spd_kp: float = 0.05  # throttle per m/s of speed error
+    spd_ki: float = 0.005
+    turn_bank_deg: float = 25.0
+
+
+PROFILES: dict[str, AircraftProfile] = {
+    "737": AircraftProfile(
+        model="737",
+        description="Boeing 737 (JSBSim 737, CFM56)",
+        wrap_type="B737",
+        n_engines=2,
+        length_m=33.4,
+        wingspan_m=28.9,
+        cg_height_m=3.69 * 0.3048,
+        wheelbase_m=12.4,
+        fuel_kg=9000.0,
+        vr_kt=150.0,
+        v2_kt=158.0,
+        climb_ias_kt=280.0,
+        descent_ias_kt=280.0,
+        vapp_kt=138.0,
+        rotate_pitch_deg=9.0,
+        takeoff_flaps_norm=0.375,
+        approach_steps=(
+            ApproachStep(20.0, 0.125, 210.0),
+            ApproachStep(15.0, 0.375, 185.0),
+            ApproachStep(12.0, 0.625, 165.0),
+            ApproachStep(9.0, 0.625, 160.0, gear_down=True),
+            ApproachStep(7.5, 0.875, 138.0, gear_down=True),
+        ),
+        flap_retract_kt=((185.0, 0.125), (205.0, 0.0)),
+        alpha_stall_deg=16.0,
+        climb_throttle=0.92,
+        taxi_throttle_max=0.35,
+        reverse_throttle=0.6,
+        flare_height_ft=35.0,
+        flare_tau_s=2.5,
+        touchdown_sink_fps=2.5,
+    ),
+}
+
+
+def get_profile(model: str) -> AircraftProfile:
+    """The profile of a JSBSim model; an :class:`AircraftError` with a suggestion otherwise."""
+    try:
+        return PROFILES[model]
+    except KeyError:
+        raise AircraftError(
+            f"no flight profile for aircraft '{model}'{did_you_mean(model, PROFILES)}; "
+            f"profiled aircraft: {', '.join(sorted(PROFILES))}"
+        ) from None

@@ -1,0 +1,177 @@
+"""Fly a :class:`sim.plan.FlightPlan` gate to gate in JSBSim and return its :class:`FlightTrack`.
+
+The FDM runs at 120 Hz; every step's state is recorded (the FlightTrack rate); the pilot ticks at
+40 Hz (every third step). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type`` 3) seeded from
+the plan's seed, so the same plan and seed give a bit-identical track (FACTS.md: JSBSim seeds 0 and
+1 are the same generator state; flightmode therefore passes ``seed + 2`` to JSBSim).
+
+Severity mapping (documented, see :data:`sim.pilot.MILSPEC`): light = exceedance index 3 (1e-2)
+with 15 kt wind at 20 ft; moderate = index 4 (1e-3), 30 kt; severe = index 6 (1e-5), 45 kt.
+
+Terrain: JSBSim's terrain is one flat elevation. It is the origin's elevation on the ground and is
+switched to the destination's at the top of climb (the aircraft is then far above both).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from sim import geodesy
+from sim.aircraft_profiles import get_profile
+from sim.errors import FlightError
+from sim.jsbsim_adapter import FT_M, JSBSimAircraft
+from sim.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
+from sim.pilot import Pilot, RunwayFrame
+from sim.plan import FlightPlan
+from sim.taxi_route import gate_position_out
+from sim.track import Event, FlightTrack, euler_to_quat_wxyz
+
+FDM_HZ = 120.0
+CONTROL_EVERY = 3
+BLOCK = 120 * 600  # rows per preallocated block (10 simulated minutes)
+KG_LB = 2.20462262185
+
+
+def max_duration_s(plan: FlightPlan) -> float:
+    """A generous time limit: a flight slower than this is stuck, not slow."""
+    d = float(geodesy.great_circle_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg))
+    ground = plan.gate_wait_s + sum(plan.taxi_out.holds_s) + sum(plan.taxi_in.holds_s) + 2 * 3600.0
+    return ground + d / 120.0 + 3600.0
+
+
+def _load_fuel(ac: JSBSimAircraft, fuel_kg: float) -> None:
+    """Fill the model's (initially non-empty) tanks with ``fuel_kg`` in proportion to capacity."""
+    caps = []
+    i = 0
+    while ac._pm.hasNode(f"propulsion/tank[{i}]/contents-lbs"):
+        pct = ac.get(f"propulsion/tank[{i}]/pct-full")
+        caps.append(ac.get(f"propulsion/tank[{i}]/contents-lbs") * 100.0 / pct if pct > 0 else 0.0)
+        i += 1
+    total = sum(caps)
+    for i, cap in enumerate(caps):
+        ac.set(f"propulsion/tank[{i}]/contents-lbs", min(cap, fuel_kg * KG_LB * cap / total))
+
+
+def fly(
+    plan: FlightPlan,
+    *,
+    workdir: Path | None = None,
+    progress: Callable[[float, str], None] | None = None,
+) -> FlightTrack:
+    """Fly ``plan`` gate to gate; raise :class:`FlightError` if the flight fails.
+
+    ``progress(t_s, phase)`` is called about once per simulated minute.
+    """
+    prof = get_profile(plan.aircraft)
+    ac = JSBSimAircraft(plan.aircraft, 1.0 / FDM_HZ, prof.n_engines, workdir=workdir)
+    origin = RunwayFrame(plan.origin)
+    gx, gy, gh = gate_position_out(plan.taxi_out)
+    lat0, lon0 = origin.to_latlon(gx, gy)
+    ac.init_on_ground(lat0, lon0, plan.origin.elevation_m, (plan.origin.heading_deg + math.degrees(gh)) % 360.0)
+    _load_fuel(ac, prof.fuel_kg)
+    ac.set("simulation/randomseed", plan.seed + 2)
+    ac.set("atmosphere/turb-type", 0)
+    ac.set("propulsion/cutoff_cmd", 1)
+    pilot = Pilot(ac, plan, prof, CONTROL_EVERY / FDM_HZ)
+
+    nch = len(ac.channels)
+    blocks: list[np.ndarray] = []
+    codes: list[np.ndarray] = []
+    turb: list[np.ndarray] = []
+    limit_steps = int(max_duration_s(plan) * FDM_HZ)
+    step = 0
+    dest_terrain_set = False
+    next_progress = 0.0
+    while not pilot.done:
+        buf = np.empty((BLOCK, nch))
+        pc = np.empty(BLOCK, dtype=np.uint8)
+        tc = np.empty(BLOCK, dtype=np.uint8)
+        k = 0
+        while k < BLOCK and not pilot.done:
+            row = buf[k]
+            ac.sample_into(row)
+            t = step / FDM_HZ
+            if step % CONTROL_EVERY == 0:
+                pilot.tick(row, t)
+                if not dest_terrain_set and pilot.phase in ("cruise", "descent", "approach"):
+                    ac.set("position/terrain-elevation-asl-ft", plan.destination.elevation_m / FT_M)
+                    dest_terrain_set = True
+                if progress is not None and t >= next_progress:
+                    progress(t, pilot.phase)
+                    next_progress = t + 60.0
+            pc[k] = pilot.phase_code
+            tc[k] = pilot.severity_code
+            ac.step()
+            step += 1
+            k += 1
+            if step > limit_steps:
+                raise FlightError(
+                    f"the flight did not reach the stand within {limit_steps / FDM_HZ:.0f} s",
+                    phase=pilot.phase,
+                    t_s=t,
+                )
+        blocks.append(buf[:k])
+        codes.append(pc[:k])
+        turb.append(tc[:k])
+    x = np.concatenate(blocks)
+    events = tuple(Event(t, n, d) for t, n, d in pilot.events)
+    return _to_track(plan, ac, x, np.concatenate(codes), np.concatenate(turb), events)
+
+
+def _to_track(plan, ac, x, phase_code, turb_code, events) -> FlightTrack:
+    ix = ac.index
+    n = x.shape[0]
+    col = lambda name: x[:, ix[name]]  # noqa: E731
+    t = np.arange(n) / FDM_HZ
+    o = plan.origin
+    pos = geodesy.geodetic_to_ned(col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m)
+    vel = np.stack([col("v_north_mps"), col("v_east_mps"), col("v_down_mps")], axis=1)
+    euler = np.stack([col("phi_rad"), col("theta_rad"), col("psi_rad")], axis=1)
+    ne = get_profile(plan.aircraft).n_engines
+    t_push = next(e.t_s for e in events if e.name == "pushback")
+    t_off = next(e.t_s for e in events if e.name == "engines_off")
+    airborne_codes = np.array([PHASE_CODE[p] for p in AIRBORNE_PHASES])
+    return FlightTrack(
+        aircraft=plan.aircraft,
+        fs_hz=FDM_HZ,
+        origin_lat_deg=o.lat_deg,
+        origin_lon_deg=o.lon_deg,
+        origin_alt_m=o.elevation_m,
+        t_s=t,
+        lat_deg=col("lat_deg").copy(),
+        lon_deg=col("lon_deg").copy(),
+        alt_m=col("alt_m").copy(),
+        agl_m=col("agl_m").copy(),
+        pos_ned_m=pos,
+        vel_ned_mps=vel,
+        euler_rad=euler,
+        quat_wxyz=euler_to_quat_wxyz(euler),
+        rates_radps=np.stack([col("p_radps"), col("q_radps"), col("r_radps")], axis=1),
+        ang_acc_radps2=np.stack([col("pdot_radps2"), col("qdot_radps2"), col("rdot_radps2")], axis=1),
+        specific_force_body_mps2=np.stack([col("fx_mps2"), col("fy_mps2"), col("fz_mps2")], axis=1),
+        n1_pct=np.stack([col(f"n1_pct_{i}") for i in range(ne)], axis=1),
+        n2_pct=np.stack([col(f"n2_pct_{i}") for i in range(ne)], axis=1),
+        thrust_n=np.stack([col(f"thrust_n_{i}") for i in range(ne)], axis=1),
+        wow=col("wow") > 0.5,
+        flap_norm=col("flap_norm").copy(),
+        gear_norm=col("gear_norm").copy(),
+        speedbrake_norm=col("speedbrake_norm").copy(),
+        ias_mps=col("ias_mps").copy(),
+        tas_mps=col("tas_mps").copy(),
+        mach=col("mach").copy(),
+        alpha_rad=col("alpha_rad").copy(),
+        ground_speed_mps=np.hypot(vel[:, 0], vel[:, 1]),
+        vertical_speed_mps=-vel[:, 2],
+        phase_code=phase_code,
+        in_flight_window=(t >= t_push) & (t < t_off),
+        airborne=np.isin(phase_code, airborne_codes) & (col("wow") < 0.5),
+        turbulence_code=turb_code,
+        events=events,
+    )
+
+
+__all__ = ["fly", "FDM_HZ", "PHASES"]

@@ -1,0 +1,95 @@
+"""Geodesy: WGS-84 geodetic <-> ECEF <-> local NED, and great-circle navigation on a sphere.
+
+Vectorised over NumPy arrays. Angles in degrees at the boundary (``lat_deg``), radians inside.
+Great-circle formulas are the standard spherical ones (mean Earth radius), which is how route
+courses and distances to go are flown; truth positions use the WGS-84 ellipsoid.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+WGS84_A_M = 6378137.0
+WGS84_F = 1.0 / 298.257223563
+WGS84_E2 = WGS84_F * (2.0 - WGS84_F)
+EARTH_MEAN_RADIUS_M = 6371008.8
+
+
+def geodetic_to_ecef(lat_deg, lon_deg, alt_m):
+    """WGS-84 geodetic to Earth-centred Earth-fixed coordinates (m); arrays broadcast."""
+    lat = np.radians(lat_deg)
+    lon = np.radians(lon_deg)
+    sin_lat = np.sin(lat)
+    n = WGS84_A_M / np.sqrt(1.0 - WGS84_E2 * sin_lat**2)
+    x = (n + alt_m) * np.cos(lat) * np.cos(lon)
+    y = (n + alt_m) * np.cos(lat) * np.sin(lon)
+    z = (n * (1.0 - WGS84_E2) + alt_m) * sin_lat
+    return np.stack(np.broadcast_arrays(x, y, z), axis=-1)
+
+
+def ecef_to_ned_matrix(lat0_deg: float, lon0_deg: float) -> np.ndarray:
+    """Rotation matrix taking an ECEF vector to the local NED frame at (lat0, lon0)."""
+    lat, lon = np.radians(lat0_deg), np.radians(lon0_deg)
+    sl, cl, so, co = np.sin(lat), np.cos(lat), np.sin(lon), np.cos(lon)
+    return np.array(
+        [
+            [-sl * co, -sl * so, cl],
+            [-so, co, 0.0],
+            [-cl * co, -cl * so, -sl],
+        ]
+    )
+
+
+def geodetic_to_ned(lat_deg, lon_deg, alt_m, lat0_deg: float, lon0_deg: float, alt0_m: float):
+    """Position (N x 3, m) in the local NED frame whose origin is (lat0, lon0, alt0)."""
+    ecef = geodetic_to_ecef(lat_deg, lon_deg, alt_m)
+    ecef0 = geodetic_to_ecef(lat0_deg, lon0_deg, alt0_m)
+    return (ecef - ecef0) @ ecef_to_ned_matrix(lat0_deg, lon0_deg).T
+
+
+def ned_offset_to_geodetic(lat0_deg: float, lon0_deg: float, north_m, east_m):
+    """Latitude and longitude (deg) of a small horizontal offset from (lat0, lon0).
+
+    Uses the ellipsoid's meridian and prime-vertical radii of curvature: exact to well below a
+    centimetre for the few kilometres of an airport.
+    """
+    lat0 = np.radians(lat0_deg)
+    s = np.sin(lat0)
+    rn = WGS84_A_M / np.sqrt(1.0 - WGS84_E2 * s * s)
+    rm = rn * (1.0 - WGS84_E2) / (1.0 - WGS84_E2 * s * s)
+    lat = lat0_deg + np.degrees(np.asarray(north_m) / rm)
+    lon = lon0_deg + np.degrees(np.asarray(east_m) / (rn * np.cos(lat0)))
+    return lat, lon
+
+
+def great_circle_distance_m(lat1_deg, lon1_deg, lat2_deg, lon2_deg):
+    """Haversine distance on the mean-radius sphere (m)."""
+    p1, p2 = np.radians(lat1_deg), np.radians(lat2_deg)
+    dp = p2 - p1
+    dl = np.radians(np.asarray(lon2_deg) - np.asarray(lon1_deg))
+    h = np.sin(dp / 2) ** 2 + np.cos(p1) * np.cos(p2) * np.sin(dl / 2) ** 2
+    return 2.0 * EARTH_MEAN_RADIUS_M * np.arcsin(np.sqrt(np.clip(h, 0.0, 1.0)))
+
+
+def initial_course_deg(lat1_deg, lon1_deg, lat2_deg, lon2_deg):
+    """Initial great-circle course from point 1 to point 2, degrees true in [0, 360)."""
+    p1, p2 = np.radians(lat1_deg), np.radians(lat2_deg)
+    dl = np.radians(np.asarray(lon2_deg) - np.asarray(lon1_deg))
+    y = np.sin(dl) * np.cos(p2)
+    x = np.cos(p1) * np.sin(p2) - np.sin(p1) * np.cos(p2) * np.cos(dl)
+    return np.degrees(np.arctan2(y, x)) % 360.0
+
+
+def destination_point(lat_deg: float, lon_deg: float, course_deg: float, distance_m: float):
+    """Point reached from (lat, lon) along a great circle with the given initial course."""
+    p1, l1 = np.radians(lat_deg), np.radians(lon_deg)
+    c = np.radians(course_deg)
+    d = distance_m / EARTH_MEAN_RADIUS_M
+    p2 = np.arcsin(np.sin(p1) * np.cos(d) + np.cos(p1) * np.sin(d) * np.cos(c))
+    l2 = l1 + np.arctan2(np.sin(c) * np.sin(d) * np.cos(p1), np.cos(d) - np.sin(p1) * np.sin(p2))
+    return float(np.degrees(p2)), float((np.degrees(l2) + 540.0) % 360.0 - 180.0)
+
+
+def wrap_deg(angle_deg):
+    """Wrap an angle to (-180, 180]."""
+    return -((-np.asarray(angle_deg) + 180.0) % 360.0 - 180.0)

@@ -1,0 +1,243 @@
+"""The one JSBSim adapter: the only ``import jsbsim`` in flightmode (DESIGN.md, "Rooms").
+
+JSBSim speaks imperial units; this module converts them to SI exactly once, in the
+:data:`CHANNELS` table, and the rest of flightmode only sees SI arrays.
+
+Safety (FACTS.md, "JSBSim"): the stock 737 opens a telnet server and a UDP socket from its
+``<input>`` sections and some models write CSV files from ``<output>``. The model is therefore
+loaded from a *private copy* of its main XML in a temporary directory, with every top-level
+``<input>`` and ``<output>`` element removed, ``disable_input()``/``disable_output()`` called
+as well, and the temporary copy deleted as soon as JSBSim has parsed it. The copy also gives
+every model the same tug: a body-axis ``external_reactions`` force named ``pushback`` at the
+nose gear (the 787-8 and fokker100 already define one; the fokker100's own FlightGear-driven
+``pushback`` system is removed so that one tug controller, in :mod:`sim.pilot`, drives all).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import tempfile
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from sim.errors import AircraftError, did_you_mean
+
+FT_M = 0.3048
+KT_MPS = 1852.0 / 3600.0
+LBF_N = 4.4482216152605
+G0_MPS2 = 9.80665
+
+
+@dataclass(frozen=True, slots=True)
+class Channel:
+    """One JSBSim property read every step, with its SI name and scale."""
+
+    name: str
+    prop: str
+    scale: float = 1.0
+
+
+def _channels(n_engines: int) -> tuple[Channel, ...]:
+    base = [
+        Channel("lat_deg", "position/lat-geod-deg"),
+        Channel("lon_deg", "position/long-gc-deg"),
+        Channel("alt_m", "position/h-sl-ft", FT_M),
+        Channel("agl_m", "position/h-agl-ft", FT_M),
+        Channel("phi_rad", "attitude/phi-rad"),
+        Channel("theta_rad", "attitude/theta-rad"),
+        Channel("psi_rad", "attitude/psi-rad"),
+        Channel("p_radps", "velocities/p-rad_sec"),
+        Channel("q_radps", "velocities/q-rad_sec"),
+        Channel("r_radps", "velocities/r-rad_sec"),
+        Channel("pdot_radps2", "accelerations/pdot-rad_sec2"),
+        Channel("qdot_radps2", "accelerations/qdot-rad_sec2"),
+        Channel("rdot_radps2", "accelerations/rdot-rad_sec2"),
+        Channel("v_north_mps", "velocities/v-north-fps", FT_M),
+        Channel("v_east_mps", "velocities/v-east-fps", FT_M),
+        Channel("v_down_mps", "velocities/v-down-fps", FT_M),
+        # Specific force at the CG, body axes: JSBSim's load factors N = F_nongravity / W, so
+        # f = N * g0 (Nz is positive up in JSBSim's convention, hence the sign below).
+        Channel("fx_mps2", "accelerations/Nx", G0_MPS2),
+        Channel("fy_mps2", "accelerations/Ny", G0_MPS2),
+        Channel("fz_mps2", "accelerations/Nz", -G0_MPS2),
+        Channel("ias_mps", "velocities/vc-kts", KT_MPS),
+        Channel("tas_mps", "velocities/vtrue-kts", KT_MPS),
+        Channel("mach", "velocities/mach"),
+        Channel("alpha_rad", "aero/alpha-rad"),
+        Channel("wow", "gear/wow"),
+        Channel("flap_norm", "fcs/flap-pos-norm"),
+        Channel("gear_norm", "gear/gear-pos-norm"),
+        Channel("speedbrake_norm", "fcs/speedbrake-pos-norm"),
+    ]
+    for i in range(n_engines):
+        base += [
+            Channel(f"n1_pct_{i}", f"propulsion/engine[{i}]/n1"),
+            Channel(f"n2_pct_{i}", f"propulsion/engine[{i}]/n2"),
+            Channel(f"thrust_n_{i}", f"propulsion/engine[{i}]/thrust-lbs", LBF_N),
+        ]
+    return tuple(base)
+
+
+def available_models() -> list[str]:
+    """JSBSim aircraft directories shipped in the installed wheel."""
+    import jsbsim
+
+    root = Path(jsbsim.get_default_root_dir()) / "aircraft"
+    return sorted(p.name for p in root.iterdir() if (p / f"{p.name}.xml").is_file())
+
+
+def _private_model_copy(model: str, workdir: Path) -> Path:
+    """Write the sanitised copy of ``model``'s main XML below ``workdir``; return the aircraft path."""
+    import jsbsim
+
+    src_dir = Path(jsbsim.get_default_root_dir()) / "aircraft" / model
+    if not (src_dir / f"{model}.xml").is_file():
+        raise AircraftError(
+            f"unknown JSBSim aircraft model '{model}'{did_you_mean(model, available_models())}; "
+            f"installed models: {', '.join(available_models())}"
+        )
+    dst_dir = workdir / "aircraft" / model
+    dst_dir.mkdir(parents=True)
+    for entry in src_dir.iterdir():
+        if entry.name != f"{model}.xml":
+            os.symlink(entry, dst_dir / entry.name)
+    tree = ET.parse(src_dir / f"{model}.xml")
+    root = tree.getroot()
+    for tag in ("input", "output"):
+        for el in root.findall(tag):
+            root.remove(el)
+    for el in root.findall("system"):
+        if el.get("file") == "pushback":
+            root.remove(el)
+    if root.find("external_reactions") is None:
+        nose_x_in = _nose_gear_x_in(root)
+        ext = ET.Element("external_reactions")
+        force = ET.SubElement(ext, "force", name="pushback", frame="BODY")
+        loc = ET.SubElement(force, "location", unit="IN")
+        for axis, val in (("x", nose_x_in), ("y", 0.0), ("z", -60.0)):
+            ET.SubElement(loc, axis).text = f"{val:.3f}"
+        direc = ET.SubElement(force, "direction")
+        for axis, val in (("x", 1.0), ("y", 0.0), ("z", 0.0)):
+            ET.SubElement(direc, axis).text = f"{val:.1f}"
+        # external_reactions must come after ground_reactions in the document
+        children = list(root)
+        idx = next(
+            (i + 1 for i, c in enumerate(children) if c.tag == "ground_reactions"), len(children)
+        )
+        root.insert(idx, ext)
+    tree.write(dst_dir / f"{model}.xml", encoding="utf-8", xml_declaration=True)
+    return workdir / "aircraft"
+
+
+def _nose_gear_x_in(root: ET.Element) -> float:
+    """Structural x of the most forward BOGEY contact (the nose gear), inches."""
+    xs = []
+    gr = root.find("ground_reactions")
+    if gr is not None:
+        for contact in gr.findall("contact"):
+            if contact.get("type") == "BOGEY":
+                x = contact.find("location/x")
+                if x is not None and x.text:
+                    xs.append(float(x.text))
+    if not xs:
+        raise AircraftError("model has no BOGEY gear contact to attach the pushback tug to")
+    return min(xs)
+
+
+class JSBSimAircraft:
+    """A JSBSim FDM with flightmode's safety settings, SI channels and fast property access.
+
+    Parameters
+    ----------
+    model : JSBSim aircraft directory name (e.g. ``"A320"``).
+    dt_s : FDM time step (s).
+    n_engines : number of engines whose N1/N2/thrust are read every step.
+    workdir : where the temporary private model copy is made (a fresh subdirectory, deleted
+        after loading); the system temporary directory when ``None``.
+    """
+
+    def __init__(self, model: str, dt_s: float, n_engines: int, workdir: Path | None = None):
+        import jsbsim
+
+        self.model = model
+        self.dt_s = dt_s
+        self.channels = _channels(n_engines)
+        self.index = {c.name: i for i, c in enumerate(self.channels)}
+        tmp = Path(tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir))
+        try:
+            aircraft_path = _private_model_copy(model, tmp)
+            fdm = jsbsim.FGFDMExec(None)
+            fdm.set_debug_level(0)
+            fdm.disable_output()
+            fdm.set_aircraft_path(str(aircraft_path))
+            if not fdm.load_model(model, True):
+                raise AircraftError(f"JSBSim could not load aircraft model '{model}'")
+            fdm.disable_input()
+            fdm.disable_output()
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        fdm.set_dt(dt_s)
+        self.fdm = fdm
+        self._pm = fdm.get_property_manager()
+        self._read_nodes = [self._node(c.prop) for c in self.channels]
+        self._scales = np.array([c.scale for c in self.channels])
+        self._nodes: dict[str, object] = {}
+
+    def _node(self, prop: str):
+        node = self._pm.get_node(prop, False)
+        if node is None:
+            raise AircraftError(f"aircraft model '{self.model}' has no property '{prop}'")
+        return node
+
+    # ----------------------------------------------------------------------------------------
+    def set(self, prop: str, value: float) -> None:
+        """Write a JSBSim property (imperial, as JSBSim names it); cached node lookup."""
+        node = self._nodes.get(prop)
+        if node is None:
+            node = self._nodes[prop] = self._node(prop)
+        node.set_double_value(float(value))
+
+    def get(self, prop: str) -> float:
+        node = self._nodes.get(prop)
+        if node is None:
+            node = self._nodes[prop] = self._node(prop)
+        return node.get_double_value()
+
+    def sample_into(self, row: np.ndarray) -> None:
+        """Read every channel (SI) into ``row`` (length ``len(self.channels)``)."""
+        for i, node in enumerate(self._read_nodes):
+            row[i] = node.get_double_value()
+        row *= self._scales
+
+    def init_on_ground(
+        self, lat_deg: float, lon_deg: float, elevation_m: float, heading_deg: float
+    ) -> None:
+        """Place the aircraft at rest on flat ground (FACTS.md ground-start recipe)."""
+        fdm = self.fdm
+        fdm["ic/lat-geod-deg"] = lat_deg
+        fdm["ic/long-gc-deg"] = lon_deg
+        fdm["ic/terrain-elevation-ft"] = elevation_m / FT_M
+        fdm["ic/h-agl-ft"] = 20.0  # start a little high: AGL 0 buries the gear (FACTS.md)
+        fdm["ic/psi-true-deg"] = heading_deg
+        for p in ("ic/u-fps", "ic/v-fps", "ic/w-fps", "ic/p-rad_sec", "ic/q-rad_sec", "ic/r-rad_sec"):
+            fdm[p] = 0.0
+        if not fdm.run_ic():
+            raise AircraftError(f"JSBSim rejected the initial conditions of '{self.model}'")
+        fdm["gear/gear-cmd-norm"] = 1.0
+        fdm["fcs/left-brake-cmd-norm"] = 1.0
+        fdm["fcs/right-brake-cmd-norm"] = 1.0
+        fdm["simulation/do_simple_trim"] = 2  # ground trim
+        if not math.isfinite(fdm["position/h-agl-ft"]):
+            raise AircraftError(f"ground trim of '{self.model}' produced NaN")
+
+    def set_seed(self, seed: int) -> None:
+        """Seed JSBSim's turbulence generator (FACTS.md: seeds 0 and 1 are identical)."""
+        self.fdm["simulation/randomseed"] = int(seed)
+
+    def step(self) -> None:
+        self.fdm.run()

@@ -1,0 +1,34 @@
+"""The one label vocabulary every sample carries (DESIGN.md, "Labels every sample carries").
+
+Phases are stored as small integer codes into :data:`PHASES` inside arrays and as strings at
+the dataset edge. The flight phases come from :mod:`sim.pilot`; the bag's ground phases
+(terminal walk, boarding, ...) from the carrier timeline.
+"""
+
+from __future__ import annotations
+
+FLIGHT_PHASES = (
+    "gate",
+    "engine_start",
+    "pushback",
+    "taxi_out",
+    "takeoff_roll",
+    "initial_climb",
+    "climb",
+    "cruise",
+    "descent",
+    "approach",
+    "flare",
+    "rollout",
+    "taxi_in",
+    "shutdown",
+    "parked",
+)
+CARRIER_PHASES = ("terminal_walk", "terminal_rest", "boarding", "deplaning", "arrival_rest")
+PHASES = FLIGHT_PHASES + CARRIER_PHASES
+PHASE_CODE = {name: i for i, name in enumerate(PHASES)}
+
+AIRBORNE_PHASES = frozenset({"initial_climb", "climb", "cruise", "descent", "approach", "flare"})
+
+SEVERITIES = ("none", "light", "moderate", "severe")
+SEVERITY_CODE = {name: i for i, name in enumerate(SEVERITIES)}

@@ -1,0 +1,77 @@
+"""The flight plan: the plain, validated data :func:`sim.flight.fly` consumes.
+
+``scenarios/`` builds a :class:`FlightPlan` from a TOML file; sim never reads files itself.
+All units SI (or degrees where named), per DESIGN.md.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from sim.labels import SEVERITIES  # noqa: F401  (re-exported for validation)
+
+
+@dataclass(frozen=True, slots=True)
+class Runway:
+    """A runway threshold: where the landing aircraft crosses, and where takeoffs line up."""
+
+    icao: str
+    name: str
+    lat_deg: float
+    lon_deg: float
+    elevation_m: float
+    heading_deg: float
+    length_m: float
+    width_m: float = 45.0
+
+
+@dataclass(frozen=True, slots=True)
+class TaxiPlan:
+    """A generated taxi route (see :mod:`sim.taxi_route`).
+
+    ``length_m`` is the taxiway distance between the gate area and the runway; the route is a
+    pushback, a straight run along a parallel taxiway ``taxiway_offset_m`` from the centreline,
+    a connector, a hold short and a line-up (out), or a 45 degree exit, the taxiway and a
+    90 degree turn into the stand (in). ``holds_s`` are stops along the taxiway (e.g. for
+    crossing traffic), evenly spaced.
+    """
+
+    length_m: float
+    holds_s: tuple[float, ...] = ()
+    lineup_hold_s: float = 30.0
+    taxiway_offset_m: float = 180.0
+    apron_depth_m: float = 80.0
+
+
+@dataclass(frozen=True, slots=True)
+class TurbulenceSegment:
+    """Turbulence from ``start_s`` after liftoff for ``duration_s``, of a named severity."""
+
+    start_s: float
+    duration_s: float
+    severity: str
+
+
+@dataclass(frozen=True, slots=True)
+class FlightPlan:
+    name: str
+    aircraft: str
+    origin: Runway
+    destination: Runway
+    taxi_out: TaxiPlan
+    taxi_in: TaxiPlan
+    cruise_alt_m: float
+    cruise_mach: float
+    gate_wait_s: float = 120.0
+    takeoff_thrust_norm: float = 0.95
+    takeoff_flaps_norm: float | None = None  # None: the aircraft profile's value
+    landing_flaps_norm: float | None = None
+    waypoints: tuple[tuple[float, float], ...] = ()
+    turbulence: tuple[TurbulenceSegment, ...] = ()
+    descent_angle_deg: float = 2.8
+    glideslope_deg: float = 3.0
+    approach_fix_nm: float = 16.0
+    autobrake_decel_mps2: float = 1.5
+    post_shutdown_s: float = 30.0
+    seed: int = 1
+    extra: dict = field(default_factory=dict)
