@@ -38,7 +38,8 @@ class AircraftProfile:
     v2_kt: float
     climb_ias_kt: float
     descent_ias_kt: float
-    vapp_kt: float
+    vapp_kt: float  # final approach speed at ref_landing_mass_kg; scaled by sqrt(mass / ref)
+    ref_landing_mass_kg: float
     rotate_pitch_deg: float
     takeoff_flaps_norm: float
     approach_steps: tuple[ApproachStep, ...]
@@ -48,8 +49,7 @@ class AircraftProfile:
     taxi_throttle_max: float
     reverse_throttle: float
     flare_height_ft: float
-    flare_tau_s: float
-    touchdown_sink_fps: float  # the flare's commanded floor
+    touchdown_sink_fps: float  # the flare's commanded minimum sink rate
     # gains (see sim.pilot)
     pitch_kp: float = 2.0
     pitch_ki: float = 0.6
@@ -59,6 +59,7 @@ class AircraftProfile:
     spd_kp: float = 0.05  # throttle per m/s of speed error
     spd_ki: float = 0.005
     turn_bank_deg: float = 25.0
+    taxi_turn_kt: float = 10.0  # FACTS.md: about 10 kt in turns
 
 
 PROFILES: dict[str, AircraftProfile] = {
@@ -77,6 +78,7 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_ias_kt=280.0,
         descent_ias_kt=280.0,
         vapp_kt=138.0,
+        ref_landing_mass_kg=46000.0,
         rotate_pitch_deg=9.0,
         takeoff_flaps_norm=0.375,
         approach_steps=(
@@ -91,8 +93,109 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_throttle=0.92,
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
-        flare_height_ft=35.0,
-        flare_tau_s=2.5,
+        flare_height_ft=40.0,
+        touchdown_sink_fps=2.5,
+    ),
+    "A320": AircraftProfile(
+        model="A320",
+        description="Airbus A320 (JSBSim A320, CFM56-5)",
+        wrap_type="A320",
+        taxi_turn_kt=6.0,  # the JSBSim A320's nose wheel skids above ~7 kt at full steering
+        n_engines=2,
+        length_m=37.57,
+        wingspan_m=34.1,
+        cg_height_m=8.42 * 0.3048,
+        wheelbase_m=12.64,
+        fuel_kg=5500.0,
+        vr_kt=142.0,
+        v2_kt=150.0,
+        climb_ias_kt=290.0,
+        descent_ias_kt=280.0,
+        vapp_kt=145.0,
+        ref_landing_mass_kg=52500.0,
+        rotate_pitch_deg=9.0,
+        takeoff_flaps_norm=0.25,
+        # the JSBSim A320 needs nearly full nose-up elevator to trim with more than 25 deg of flap
+        # (measured by JSBSim trim: flaps 30 deg at 140 kt -> elevator -0.98), so it lands with 25
+        approach_steps=(
+            ApproachStep(20.0, 0.125, 210.0),
+            ApproachStep(15.0, 0.25, 190.0),
+            ApproachStep(12.0, 0.375, 170.0),
+            ApproachStep(9.0, 0.5, 160.0, gear_down=True),
+            ApproachStep(7.5, 0.625, 145.0, gear_down=True),
+        ),
+        flap_retract_kt=((185.0, 0.125), (205.0, 0.0)),
+        alpha_stall_deg=15.0,
+        climb_throttle=0.92,
+        taxi_throttle_max=0.35,
+        reverse_throttle=0.6,
+        flare_height_ft=40.0,
+        touchdown_sink_fps=2.5,
+    ),
+    "fokker100": AircraftProfile(
+        model="fokker100",
+        description="Fokker 100 (JSBSim fokker100, Rolls-Royce Tay): stand-in for seed 000's Avro RJ85",
+        wrap_type="E190",
+        n_engines=2,
+        length_m=35.5,
+        wingspan_m=28.08,
+        cg_height_m=7.35 * 0.3048,
+        wheelbase_m=14.0,
+        fuel_kg=9000.0,
+        vr_kt=140.0,
+        v2_kt=148.0,
+        climb_ias_kt=280.0,
+        descent_ias_kt=280.0,
+        vapp_kt=132.0,
+        ref_landing_mass_kg=33000.0,
+        rotate_pitch_deg=9.0,
+        takeoff_flaps_norm=8.0 / 42.0,
+        approach_steps=(
+            ApproachStep(20.0, 8.0 / 42.0, 200.0),
+            ApproachStep(15.0, 15.0 / 42.0, 180.0),
+            ApproachStep(12.0, 25.0 / 42.0, 165.0),
+            ApproachStep(9.0, 25.0 / 42.0, 155.0, gear_down=True),
+            ApproachStep(7.5, 1.0, 132.0, gear_down=True),
+        ),
+        flap_retract_kt=((175.0, 0.0),),
+        alpha_stall_deg=15.0,
+        climb_throttle=0.95,
+        taxi_throttle_max=0.4,
+        reverse_throttle=0.6,
+        flare_height_ft=40.0,
+        touchdown_sink_fps=2.5,
+    ),
+    "787-8": AircraftProfile(
+        model="787-8",
+        description="Boeing 787-8 (JSBSim 787-8, Trent 1000)",
+        wrap_type="B788",
+        n_engines=2,
+        length_m=56.7,
+        wingspan_m=60.1,
+        cg_height_m=13.78 * 0.3048,
+        wheelbase_m=22.8,
+        fuel_kg=50000.0,
+        vr_kt=150.0,
+        v2_kt=160.0,
+        climb_ias_kt=300.0,
+        descent_ias_kt=290.0,
+        vapp_kt=145.0,
+        ref_landing_mass_kg=150000.0,
+        rotate_pitch_deg=9.0,
+        takeoff_flaps_norm=15.0 / 35.0,
+        approach_steps=(
+            ApproachStep(24.0, 5.0 / 35.0, 220.0),
+            ApproachStep(18.0, 15.0 / 35.0, 190.0),
+            ApproachStep(14.0, 20.0 / 35.0, 170.0),
+            ApproachStep(11.0, 20.0 / 35.0, 165.0, gear_down=True),
+            ApproachStep(9.0, 30.0 / 35.0, 145.0, gear_down=True),
+        ),
+        flap_retract_kt=((190.0, 5.0 / 35.0), (215.0, 0.0)),
+        alpha_stall_deg=15.0,
+        climb_throttle=0.95,
+        taxi_throttle_max=0.35,
+        reverse_throttle=0.6,
+        flare_height_ft=45.0,
         touchdown_sink_fps=2.5,
     ),
 }

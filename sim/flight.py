@@ -25,7 +25,8 @@ from sim.aircraft_profiles import get_profile
 from sim.errors import FlightError
 from sim.jsbsim_adapter import FT_M, JSBSimAircraft
 from sim.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
-from sim.pilot import Pilot, RunwayFrame
+from sim.geodesy import RunwayFrame
+from sim.pilot import Pilot
 from sim.plan import FlightPlan
 from sim.taxi_route import gate_position_out
 from sim.track import Event, FlightTrack, euler_to_quat_wxyz

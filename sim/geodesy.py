@@ -7,7 +7,13 @@ courses and distances to go are flown; truth positions use the WGS-84 ellipsoid.
 
 from __future__ import annotations
 
+import math
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    from sim.plan import Runway
 
 WGS84_A_M = 6378137.0
 WGS84_F = 1.0 / 298.257223563
@@ -93,3 +99,31 @@ def destination_point(lat_deg: float, lon_deg: float, course_deg: float, distanc
 def wrap_deg(angle_deg):
     """Wrap an angle to (-180, 180]."""
     return -((-np.asarray(angle_deg) + 180.0) % 360.0 - 180.0)
+
+
+class RunwayFrame:
+    """Local flat frame at a runway threshold: x along the runway heading, y right (m)."""
+
+    def __init__(self, rwy: Runway):
+        self.rwy = rwy
+        lat0 = math.radians(rwy.lat_deg)
+        s = math.sin(lat0)
+        rn = WGS84_A_M / math.sqrt(1.0 - WGS84_E2 * s * s)
+        self._m_per_deg_n = math.radians(1.0) * rn * (1.0 - WGS84_E2) / (1.0 - WGS84_E2 * s * s)
+        self._m_per_deg_e = math.radians(1.0) * rn * math.cos(lat0)
+        h = math.radians(rwy.heading_deg)
+        self._ch, self._sh = math.cos(h), math.sin(h)
+        self.heading_rad = h
+
+    def to_xy(self, lat_deg: float, lon_deg: float) -> tuple[float, float]:
+        n = (lat_deg - self.rwy.lat_deg) * self._m_per_deg_n
+        e = (lon_deg - self.rwy.lon_deg) * self._m_per_deg_e
+        return n * self._ch + e * self._sh, -n * self._sh + e * self._ch
+
+    def to_latlon(self, x: float, y: float) -> tuple[float, float]:
+        n = x * self._ch - y * self._sh
+        e = x * self._sh + y * self._ch
+        return self.rwy.lat_deg + n / self._m_per_deg_n, self.rwy.lon_deg + e / self._m_per_deg_e
+
+    def heading_in_frame(self, psi_rad: float) -> float:
+        return psi_rad - self.heading_rad

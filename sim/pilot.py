@@ -25,46 +25,19 @@ from sim.control import PID, clamp, rate_limit
 from sim.errors import FlightError
 from sim.jsbsim_adapter import FT_M, KT_MPS
 from sim.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITY_CODE
-from sim.plan import FlightPlan, Runway
+from sim.geodesy import RunwayFrame
+from sim.plan import FlightPlan
 from sim.taxi_route import Path2D, gate_position_out, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
 
 NM_M = 1852.0
 LBF_N = 4.4482216152605
-TAXI_STRAIGHT_MPS = 20.0 * KT_MPS  # FACTS.md: about 20 kt straight, 10 kt in turns (A319 manual)
-TAXI_TURN_MPS = 10.0 * KT_MPS
+TAXI_STRAIGHT_MPS = 20.0 * KT_MPS  # FACTS.md: about 20 kt straight (A319 manual); turns: the profile
 TAXI_DECEL_MPS2 = 0.5
 PUSHBACK_MPS = 1.2
 MAX_BANK_DEG = 45.0
 MAX_SINK_FPS = 10.0
+FLARE_HB_FT = 10.0  # exponential-flare bias height: touchdown sink about FLARE_HB_FT / tau
 TOUCHDOWN_AIM_M = 300.0  # glideslope origin past the threshold (50 ft crossing height at 3 deg)
-
-
-class RunwayFrame:
-    """Local flat frame at a runway threshold: x along the runway heading, y right (m)."""
-
-    def __init__(self, rwy: Runway):
-        self.rwy = rwy
-        lat0 = math.radians(rwy.lat_deg)
-        s = math.sin(lat0)
-        rn = geodesy.WGS84_A_M / math.sqrt(1.0 - geodesy.WGS84_E2 * s * s)
-        self._m_per_deg_n = math.radians(1.0) * rn * (1.0 - geodesy.WGS84_E2) / (1.0 - geodesy.WGS84_E2 * s * s)
-        self._m_per_deg_e = math.radians(1.0) * rn * math.cos(lat0)
-        h = math.radians(rwy.heading_deg)
-        self._ch, self._sh = math.cos(h), math.sin(h)
-        self.heading_rad = h
-
-    def to_xy(self, lat_deg: float, lon_deg: float) -> tuple[float, float]:
-        n = (lat_deg - self.rwy.lat_deg) * self._m_per_deg_n
-        e = (lon_deg - self.rwy.lon_deg) * self._m_per_deg_e
-        return n * self._ch + e * self._sh, -n * self._sh + e * self._ch
-
-    def to_latlon(self, x: float, y: float) -> tuple[float, float]:
-        n = x * self._ch - y * self._sh
-        e = x * self._sh + y * self._ch
-        return self.rwy.lat_deg + n / self._m_per_deg_n, self.rwy.lon_deg + e / self._m_per_deg_e
-
-    def heading_in_frame(self, psi_rad: float) -> float:
-        return psi_rad - self.heading_rad
 
 
 class Pilot:
@@ -112,6 +85,8 @@ class Pilot:
         self._turb_active = 0
         self._push_heading0 = 0.0
         self._push_turning = False
+        self._diff_brake = 0.0
+        self._flare_tau = None
         self._max_alt_m = -math.inf
 
     # ------------------------------------------------------------------ helpers
@@ -298,14 +273,26 @@ class Pilot:
         s, cross = self.path.project(rx, ry)
         target = self.path.point_at(s + lookahead_m)
         hdg = frame.heading_in_frame(x[ix["psi_rad"]])
-        steer, _ = pure_pursuit_steer_rad(rx, ry, hdg, target, self.prof.wheelbase_m)
+        steer, alpha = pure_pursuit_steer_rad(rx, ry, hdg, target, self.prof.wheelbase_m)
+        # yaw-rate feedback around the kinematic pure-pursuit angle: the gear's yaw response lags
+        # (badly on the A320 model), and without it the turns overshoot
+        gs = self._gs(x)
+        ld = max(math.hypot(target[0] - rx, target[1] - ry), 1.0)
+        r_des = gs * 2.0 * math.sin(alpha) / ld
+        r_err = r_des - x[ix["r_radps"]]
+        steer += 1.5 * r_err
+        # differential braking where the nose wheel alone cannot hold the turn rate (as pilots do)
+        self._diff_brake = clamp(4.0 * r_err, -0.4, 0.4) if gs > 1.0 else 0.0
         lim = math.radians(max_steer_deg)
         self._steer(clamp(steer, -lim, lim))
         v_t = v_max
+        if abs(steer) > math.radians(15.0):  # hard steering: no faster than a turn
+            v_t = self.prof.taxi_turn_kt * KT_MPS
         for sc in self.path.corners_s:
             if sc > s - 15.0:
                 d = max(0.0, sc - s - 10.0)
-                v_t = min(v_t, math.sqrt(TAXI_TURN_MPS**2 + 2 * TAXI_DECEL_MPS2 * d))
+                v_turn = self.prof.taxi_turn_kt * KT_MPS
+                v_t = min(v_t, math.sqrt(v_turn**2 + 2 * TAXI_DECEL_MPS2 * d))
         return s, cross, v_t
 
     def _taxi(self, x, frame: RunwayFrame, at_end) -> None:
@@ -347,7 +334,9 @@ class Pilot:
         brake = 0.0
         if err < -0.8 or v_t < 0.05:
             brake = clamp(-0.3 * err, 0.15 if v_t < 0.05 else 0.0, 1.0)
-        self._brakes(brake)
+        d = self._diff_brake
+        self.ac.set("fcs/left-brake-cmd-norm", clamp(brake + max(0.0, -d), 0.0, 1.0))
+        self.ac.set("fcs/right-brake-cmd-norm", clamp(brake + max(0.0, d), 0.0, 1.0))
 
     def _ph_taxi_out(self, x) -> None:
         if self._hold_until is None and self.flaps == 0.0:
@@ -371,9 +360,14 @@ class Pilot:
         hdg = frame.heading_in_frame(x[ix["psi_rad"]])
         hdg = (hdg + math.pi) % (2 * math.pi) - math.pi
         psi_err = -math.atan2(ry, 150.0) - hdg
-        steer_lim = math.radians(max(2.0, 20.0 * (1.0 - ias / 40.0)))
-        self._steer(clamp(2.0 * psi_err, -steer_lim, steer_lim))
-        self.ac.set("fcs/rudder-cmd-norm", clamp(3.0 * psi_err - 1.0 * x[ix["r_radps"]], -1.0, 1.0))
+        r = x[ix["r_radps"]]
+        # the JSBSim airliners are directionally unstable on their gear: keep nose-wheel authority
+        # (fading from 30 to 6 deg with speed) and damp the yaw rate with wheel and rudder alike
+        steer_lim = math.radians(max(6.0, 30.0 * (1.0 - ias / 40.0)))
+        self._steer(clamp(2.0 * psi_err - 1.0 * r, -steer_lim, steer_lim))
+        # JSBSim convention: positive rudder command yaws the nose left (checked in flight for all
+        # four models), the opposite of the nose wheel's positive-right steering angle
+        self.ac.set("fcs/rudder-cmd-norm", clamp(-(4.0 * psi_err - 3.0 * r), -1.0, 1.0))
 
     def _ph_takeoff_roll(self, x) -> None:
         ix = self.ix
@@ -465,8 +459,15 @@ class Pilot:
         v = min(v, ias / mach * self.plan.cruise_mach)  # Mach limit above the crossover
         for step in p.approach_steps:
             if d_m < step.dist_nm * NM_M and self.phase in ("descent", "approach", "cruise"):
-                v = min(v, step.speed_kt * KT_MPS)
+                final = step is p.approach_steps[-1]
+                v = min(v, self._vapp_mps() if final else step.speed_kt * KT_MPS)
         return v
+
+    def _vapp_mps(self) -> float:
+        """Final approach speed for the current mass (stall speed scales with sqrt(mass))."""
+        mass_kg = self.ac.get("inertia/weight-lbs") * 0.45359237
+        k = clamp(math.sqrt(mass_kg / self.prof.ref_landing_mass_kg), 0.9, 1.1)
+        return self.prof.vapp_kt * k * KT_MPS
 
     def _configure_approach(self, d_m: float) -> None:
         for step in self.prof.approach_steps:
@@ -509,15 +510,17 @@ class Pilot:
         self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(2.0) * self.dt)
         self._pitch_to(x, self.theta_cmd)
 
-    def _path_to(self, x, vs_cmd: float, lo_deg: float, hi_deg: float) -> None:
+    def _path_to(
+        self, x, vs_cmd: float, lo_deg: float, hi_deg: float, rate_dps: float = 3.0, boost: float = 0.0
+    ) -> None:
         """Vertical speed -> flight-path angle error -> pitch (PI; the integrator is trim pitch)."""
         ix = self.ix
         tas = max(x[ix["tas_mps"]], 30.0)
         gamma_cmd = math.asin(clamp(vs_cmd / tas, -0.3, 0.3))
         gamma = math.asin(clamp(-x[ix["v_down_mps"]] / tas, -0.5, 0.5))
-        theta = self.gamma_pid(gamma_cmd - gamma, self.dt)
+        theta = self.gamma_pid(gamma_cmd - gamma, self.dt) + boost * (gamma_cmd - gamma)
         theta = clamp(theta, math.radians(lo_deg), math.radians(hi_deg))
-        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(3.0) * self.dt)
+        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(rate_dps) * self.dt)
         self._pitch_to(x, self.theta_cmd)
 
     def _set_throttle_smooth(self, u: float) -> None:
@@ -582,12 +585,18 @@ class Pilot:
     _ph_approach = _air
 
     def _ph_flare(self, x) -> None:
+        """Exponential flare: sink rate commanded as (h + h_b) / tau, continuous at flare entry, so
+        the touchdown sink rate tends to h_b / tau (h: main-gear height)."""
         ix = self.ix
         p = self.prof
         mg_ft = (x[ix["agl_m"]] - p.cg_height_m) / FT_M
-        vs_cmd = -max(p.touchdown_sink_fps, mg_ft / p.flare_tau_s) * FT_M
-        self._path_to(x, vs_cmd, -2.0, 10.0)
-        self._set_throttle_smooth(0.0 if mg_ft < 20.0 else self.spd_pid(self.prof.vapp_kt * KT_MPS - x[ix["ias_mps"]], self.dt))
+        if self._flare_tau is None:
+            sink0_fps = max(x[ix["v_down_mps"]] / FT_M, 5.0)
+            self._flare_tau = (mg_ft + FLARE_HB_FT) / sink0_fps
+        vs_cmd = -max(p.touchdown_sink_fps, (mg_ft + FLARE_HB_FT) / self._flare_tau) * FT_M
+        vs_cmd = min(vs_cmd, -p.touchdown_sink_fps * FT_M)
+        self._path_to(x, vs_cmd, -3.0, 12.0, rate_dps=5.0, boost=2.0)
+        self._set_throttle_smooth(0.0 if mg_ft < 20.0 else self.spd_pid(self._vapp_mps() - x[ix["ias_mps"]], self.dt))
         rx, ry = self.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         crs = self.dest.heading_rad - math.atan2(ry, 1500.0)
         self._heading_to(x, crs, 5.0)
@@ -611,7 +620,7 @@ class Pilot:
         ix = self.ix
         p = self.prof
         self._runway_track(x, self.dest)
-        self._bank_to(x, 0.0)
+        self.ac.set("fcs/aileron-cmd-norm", 0.0)
         self.theta_cmd = rate_limit(self.theta_cmd, math.radians(-1.0), math.radians(2.0) * self.dt)
         if x[ix["theta_rad"]] > math.radians(0.5):
             self._pitch_to(x, self.theta_cmd)

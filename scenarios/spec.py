@@ -1,0 +1,294 @@
+"""Scenario files (TOML): their specification, validation and conversion to a :class:`FlightPlan`.
+
+Every key is declared in :data:`SPEC` with its type, bounds, default and meaning; ``flightmode
+scenarios --spec`` prints it. Validation is strict: unknown sections or keys, wrong types, values out
+of range, an aircraft with no profile, and airports too close for the cruise asked all raise a
+:class:`ScenarioError` whose one-line message names the file, the key path, the value, what is
+allowed and, for a misspelt name, the nearest valid one.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from sim.aircraft_profiles import PROFILES
+from sim.errors import FlightmodeError, did_you_mean
+from sim.geodesy import great_circle_distance_m
+from sim.plan import SEVERITIES, FlightPlan, Runway, TaxiPlan, TurbulenceSegment
+
+NM_M = 1852.0
+
+
+class ScenarioError(FlightmodeError):
+    """A scenario file that cannot be flown as written."""
+
+
+@dataclass(frozen=True, slots=True)
+class Key:
+    type: type | tuple[type, ...]
+    doc: str
+    default: Any = None  # None: required
+    lo: float | None = None
+    hi: float | None = None
+    choices: tuple[str, ...] | None = None
+    optional: bool = False  # may be absent with no default
+
+
+def _runway_keys(role: str) -> dict[str, Key]:
+    return {
+        "icao": Key(str, f"ICAO code of the {role} airport"),
+        "runway": Key(str, "runway designator, e.g. '23' or '27L'"),
+        "threshold_lat_deg": Key(float, "latitude of the runway threshold (WGS-84)", lo=-90, hi=90),
+        "threshold_lon_deg": Key(float, "longitude of the runway threshold (WGS-84)", lo=-180, hi=180),
+        "elevation_m": Key(float, "threshold elevation above mean sea level", lo=-500, hi=5000),
+        "heading_deg": Key(float, "runway true heading", lo=0, hi=360),
+        "length_m": Key(float, "runway length", lo=1200, hi=6000),
+        "width_m": Key(float, "runway width", 45.0, lo=20, hi=100),
+    }
+
+
+def _taxi_keys() -> dict[str, Key]:
+    return {
+        "length_m": Key(float, "taxi distance between stand area and runway", lo=300, hi=15000),
+        "holds_s": Key(list, "stops along the taxiway (s each), evenly spaced", []),
+        "lineup_hold_s": Key(float, "line-up-and-wait time on the runway (taxi out only)", 30.0, lo=0, hi=3600),
+        "taxiway_offset_m": Key(float, "distance of the parallel taxiway from the centreline", 180.0, lo=100, hi=1000),
+        "apron_depth_m": Key(float, "distance from the taxiway to the stand", 80.0, lo=40, hi=500),
+    }
+
+
+SPEC: dict[str, dict[str, Key]] = {
+    "scenario": {
+        "name": Key(str, "scenario name (also the run folder prefix)"),
+        "description": Key(str, "one line shown by `flightmode scenarios`"),
+        "aircraft": Key(str, "JSBSim aircraft model with a flightmode profile", choices=tuple(sorted(PROFILES))),
+        "seed": Key(int, "random seed (turbulence, sensor noise)", 1, lo=0, hi=2**31 - 3),
+        "gate_wait_s": Key(float, "time parked at the gate, engines off, before engine start", 120.0, lo=0, hi=86400),
+    },
+    "origin": _runway_keys("departure"),
+    "destination": _runway_keys("arrival"),
+    "taxi_out": _taxi_keys(),
+    "taxi_in": _taxi_keys(),
+    "takeoff": {
+        "thrust_norm": Key(float, "takeoff throttle (1 = maximum)", 0.95, lo=0.7, hi=1.0),
+        "flaps_norm": Key(float, "takeoff flap command; absent: the type's default", optional=True, lo=0, hi=1),
+    },
+    "cruise": {
+        "altitude_m": Key(float, "cruise altitude above mean sea level", lo=300, hi=13500),
+        "mach": Key(float, "cruise Mach number", lo=0.3, hi=0.9),
+    },
+    "route": {
+        "waypoints": Key(list, "[[lat_deg, lon_deg], ...] flown before the approach fix", []),
+    },
+    "turbulence": {
+        "start_s": Key(float, "start, seconds after liftoff", lo=0, hi=86400),
+        "duration_s": Key(float, "duration", lo=1, hi=86400),
+        "severity": Key(str, "intensity (MIL-F-8785C via JSBSim Milspec)", choices=SEVERITIES[1:]),
+    },
+    "descent": {
+        "angle_deg": Key(float, "descent path angle from cruise to the glideslope", 2.8, lo=1.5, hi=4.0),
+    },
+    "approach": {
+        "glideslope_deg": Key(float, "ILS glideslope angle", 3.0, lo=2.5, hi=4.0),
+        "fix_nm": Key(float, "approach fix on the extended centreline, nm before the threshold", 16.0, lo=6, hi=40),
+        "landing_flaps_norm": Key(float, "landing flap command; absent: the type's default", optional=True, lo=0, hi=1),
+    },
+    "landing": {
+        "autobrake_decel_mps2": Key(float, "autobrake deceleration target", 1.5, lo=0.5, hi=3.5),
+    },
+    "shutdown": {
+        "post_shutdown_s": Key(float, "time recorded after engines off", 30.0, lo=0, hi=86400),
+    },
+}
+ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables
+OPTIONAL_SECTIONS = {"takeoff", "route", "turbulence", "descent", "approach", "landing", "shutdown"}
+
+
+def _fail(source: str, path: str, value: Any, allowed: str, hint: str = "") -> ScenarioError:
+    return ScenarioError(f"{source}: {path} = {value!r}: {allowed}{hint}")
+
+
+def _check_value(source: str, path: str, key: Key, value: Any) -> Any:
+    want = key.type
+    if want is float and isinstance(value, int) and not isinstance(value, bool):
+        value = float(value)
+    if want is int and isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if not isinstance(value, want) or isinstance(value, bool):
+        name = want.__name__ if isinstance(want, type) else "/".join(t.__name__ for t in want)
+        raise _fail(source, path, value, f"must be a {name} ({key.doc})")
+    if isinstance(value, float) and not math.isfinite(value):
+        raise _fail(source, path, value, "must be finite")
+    if key.choices is not None and value not in key.choices:
+        raise _fail(source, path, value, f"must be one of {', '.join(key.choices)}", did_you_mean(value, key.choices))
+    if key.lo is not None and value < key.lo:
+        raise _fail(source, path, value, f"must be >= {key.lo:g} ({key.doc})")
+    if key.hi is not None and value > key.hi:
+        raise _fail(source, path, value, f"must be <= {key.hi:g} ({key.doc})")
+    return value
+
+
+def _section(source: str, name: str, table: Any) -> dict[str, Any]:
+    keys = SPEC[name]
+    if not isinstance(table, dict):
+        raise _fail(source, f"[{name}]", table, "must be a table of keys")
+    for k in table:
+        if k not in keys:
+            raise _fail(
+                source, f"[{name}].{k}", table[k], f"unknown key; allowed: {', '.join(keys)}", did_you_mean(k, keys)
+            )
+    out = {}
+    for k, key in keys.items():
+        path = f"[{name}].{k}"
+        if k in table:
+            out[k] = _check_value(source, path, key, table[k])
+        elif key.default is not None:
+            out[k] = key.default
+        elif key.optional:
+            out[k] = None
+        else:
+            raise ScenarioError(f"{source}: {path} is missing: required ({key.doc})")
+    return out
+
+
+def parse_scenario(doc: dict[str, Any], source: str = "<scenario>") -> tuple[FlightPlan, str]:
+    """Validate a parsed TOML document; return the flight plan and the description."""
+    for sec in doc:
+        if sec not in SPEC:
+            raise _fail(source, f"[{sec}]", "...", f"unknown section; allowed: {', '.join(SPEC)}", did_you_mean(sec, SPEC))
+    for sec in SPEC:
+        if sec not in doc and sec not in OPTIONAL_SECTIONS:
+            raise ScenarioError(f"{source}: section [{sec}] is missing: required")
+    v = {sec: _section(source, sec, doc.get(sec, {})) for sec in SPEC if sec not in ARRAY_SECTIONS}
+
+    turb_tables = doc.get("turbulence", [])
+    if not isinstance(turb_tables, list):
+        raise _fail(source, "[turbulence]", "...", "must be an array of tables: write [[turbulence]]")
+    turbulence = []
+    for i, t in enumerate(turb_tables):
+        tv = _section(source, "turbulence", t)
+        turbulence.append(TurbulenceSegment(tv["start_s"], tv["duration_s"], tv["severity"]))
+
+    for side in ("taxi_out", "taxi_in"):
+        for j, h in enumerate(v[side]["holds_s"]):
+            _check_value(source, f"[{side}].holds_s[{j}]", Key(float, "a hold time in seconds", lo=0, hi=86400), h)
+    waypoints = []
+    for j, wp in enumerate(v["route"]["waypoints"]):
+        if not (isinstance(wp, list) and len(wp) == 2):
+            raise _fail(source, f"[route].waypoints[{j}]", wp, "must be [lat_deg, lon_deg]")
+        lat = _check_value(source, f"[route].waypoints[{j}][0]", Key(float, "latitude", lo=-90, hi=90), wp[0])
+        lon = _check_value(source, f"[route].waypoints[{j}][1]", Key(float, "longitude", lo=-180, hi=180), wp[1])
+        waypoints.append((lat, lon))
+
+    def runway(sec: str) -> Runway:
+        r = v[sec]
+        return Runway(r["icao"], r["runway"], r["threshold_lat_deg"], r["threshold_lon_deg"], r["elevation_m"],
+                      r["heading_deg"], r["length_m"], r["width_m"])
+
+    def taxi(sec: str) -> TaxiPlan:
+        t = v[sec]
+        return TaxiPlan(t["length_m"], tuple(float(h) for h in t["holds_s"]), t["lineup_hold_s"],
+                        t["taxiway_offset_m"], t["apron_depth_m"])
+
+    s = v["scenario"]
+    plan = FlightPlan(
+        name=s["name"],
+        aircraft=s["aircraft"],
+        origin=runway("origin"),
+        destination=runway("destination"),
+        taxi_out=taxi("taxi_out"),
+        taxi_in=taxi("taxi_in"),
+        cruise_alt_m=v["cruise"]["altitude_m"],
+        cruise_mach=v["cruise"]["mach"],
+        gate_wait_s=s["gate_wait_s"],
+        takeoff_thrust_norm=v["takeoff"]["thrust_norm"],
+        takeoff_flaps_norm=v["takeoff"]["flaps_norm"],
+        landing_flaps_norm=v["approach"]["landing_flaps_norm"],
+        waypoints=tuple(waypoints),
+        turbulence=tuple(turbulence),
+        descent_angle_deg=v["descent"]["angle_deg"],
+        glideslope_deg=v["approach"]["glideslope_deg"],
+        approach_fix_nm=v["approach"]["fix_nm"],
+        autobrake_decel_mps2=v["landing"]["autobrake_decel_mps2"],
+        post_shutdown_s=v["shutdown"]["post_shutdown_s"],
+        seed=s["seed"],
+    )
+    _check_distance(source, plan)
+    return plan, s["description"]
+
+
+CLIMB_GRADIENT = 0.06  # a typical airliner climb gradient (6 %, about 1800 ft/min at 300 kt)
+
+
+def route_length_m(plan: FlightPlan) -> float:
+    """Origin threshold -> waypoints -> approach fix -> destination threshold, along great circles."""
+    from sim.geodesy import destination_point
+
+    d = plan.destination
+    fix = destination_point(d.lat_deg, d.lon_deg, (d.heading_deg + 180.0) % 360.0, plan.approach_fix_nm * NM_M)
+    pts = [(plan.origin.lat_deg, plan.origin.lon_deg), *plan.waypoints, fix]
+    total = sum(float(great_circle_distance_m(*a, *b)) for a, b in zip(pts, pts[1:]))
+    return total + plan.approach_fix_nm * NM_M
+
+
+def _check_distance(source: str, plan: FlightPlan) -> None:
+    """The route must be long enough to climb to the cruise altitude and descend from it."""
+    climb = (plan.cruise_alt_m - plan.origin.elevation_m) / CLIMB_GRADIENT
+    gs = math.tan(math.radians(plan.glideslope_deg))
+    h_gs = 10.0 * NM_M * gs
+    descent = 10.0 * NM_M + max(0.0, plan.cruise_alt_m - plan.destination.elevation_m - h_gs) / math.tan(
+        math.radians(plan.descent_angle_deg)
+    )
+    need = climb + descent
+    have = route_length_m(plan)
+    if plan.cruise_alt_m <= max(plan.origin.elevation_m, plan.destination.elevation_m) + 300.0:
+        raise _fail(source, "[cruise].altitude_m", plan.cruise_alt_m, "must be at least 300 m above both airports")
+    if have < need:
+        max_alt = plan.origin.elevation_m + (have - 10.0 * NM_M) / (
+            1.0 / CLIMB_GRADIENT + 1.0 / math.tan(math.radians(plan.descent_angle_deg))
+        )
+        raise _fail(
+            source,
+            "[cruise].altitude_m",
+            plan.cruise_alt_m,
+            f"airports too close for this cruise: the route is {have / 1000:.0f} km but climbing to it and "
+            f"descending from it needs {need / 1000:.0f} km; lower the cruise to at most {max_alt:.0f} m "
+            "or add [route].waypoints",
+        )
+
+
+def load_scenario(path: Path) -> tuple[FlightPlan, str]:
+    """Read and validate a scenario file."""
+    path = Path(path)
+    source = str(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ScenarioError(f"{source}: no such scenario file") from None
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise ScenarioError(f"{source}: TOML syntax error: {e}") from None
+    return parse_scenario(doc, source)
+
+
+def spec_text() -> str:
+    """Human-readable specification of every section and key."""
+    lines = []
+    for sec, keys in SPEC.items():
+        head = f"[[{sec}]]" if sec in ARRAY_SECTIONS else f"[{sec}]"
+        lines.append(head + ("  (optional)" if sec in OPTIONAL_SECTIONS else ""))
+        for k, key in keys.items():
+            t = key.type.__name__ if isinstance(key.type, type) else str(key.type)
+            rng = ""
+            if key.lo is not None or key.hi is not None:
+                rng = f" [{key.lo if key.lo is not None else ''}..{key.hi if key.hi is not None else ''}]"
+            if key.choices:
+                rng = f" one of {', '.join(key.choices)}"
+            dflt = " (required)" if key.default is None and not key.optional else f" (default {key.default!r})"
+            lines.append(f"  {k}: {t}{rng}{dflt} - {key.doc}")
+    return "\n".join(lines)
