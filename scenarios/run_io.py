@@ -88,7 +88,16 @@ def track_table(track: FlightTrack):
     cols["in_flight_window"] = track.in_flight_window
     cols["airborne"] = track.airborne
     cols["turbulence_severity"] = _dict_column(track.turbulence_code, SEVERITIES)
-    return pa.table({k: (v if isinstance(v, pa.Array) else pa.array(v)) for k, v in cols.items()})
+    out = {}
+    for k, v in cols.items():
+        if isinstance(v, np.ndarray) and v.dtype == np.float64 and k not in FLOAT64_COLUMNS:
+            v = v.astype(np.float32)  # 7 significant digits: far below any sensor resolution
+        out[k] = v if isinstance(v, pa.Array) else pa.array(v)
+    return pa.table(out)
+
+
+# time and position keep double precision (float32 would quantise a 5000 km position to 0.5 m)
+FLOAT64_COLUMNS = frozenset({"t_s", "lat_deg", "lon_deg", "alt_m", "pos_n_m", "pos_e_m", "pos_d_m"})
 
 
 def package_versions() -> dict[str, str]:

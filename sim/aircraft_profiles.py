@@ -60,6 +60,7 @@ class AircraftProfile:
     spd_ki: float = 0.005
     turn_bank_deg: float = 25.0
     taxi_turn_kt: float = 10.0  # FACTS.md: about 10 kt in turns
+    rotate_elevator: float = 0.3  # nose-up elevator bias during rotation (fraction of full travel)
 
 
 PROFILES: dict[str, AircraftProfile] = {
@@ -101,20 +102,21 @@ PROFILES: dict[str, AircraftProfile] = {
         description="Airbus A320 (JSBSim A320, CFM56-5)",
         wrap_type="A320",
         taxi_turn_kt=6.0,  # the JSBSim A320's nose wheel skids above ~7 kt at full steering
+        rotate_elevator=0.6,
         n_engines=2,
         length_m=37.57,
         wingspan_m=34.1,
         cg_height_m=8.42 * 0.3048,
         wheelbase_m=12.64,
         fuel_kg=5500.0,
-        vr_kt=142.0,
-        v2_kt=150.0,
+        vr_kt=138.0,
+        v2_kt=148.0,
         climb_ias_kt=290.0,
         descent_ias_kt=280.0,
         vapp_kt=145.0,
         ref_landing_mass_kg=52500.0,
-        rotate_pitch_deg=9.0,
-        takeoff_flaps_norm=0.25,
+        rotate_pitch_deg=10.0,
+        takeoff_flaps_norm=0.375,
         # the JSBSim A320 needs nearly full nose-up elevator to trim with more than 25 deg of flap
         # (measured by JSBSim trim: flaps 30 deg at 140 kt -> elevator -0.98), so it lands with 25
         approach_steps=(
@@ -146,16 +148,18 @@ PROFILES: dict[str, AircraftProfile] = {
         v2_kt=148.0,
         climb_ias_kt=280.0,
         descent_ias_kt=280.0,
-        vapp_kt=132.0,
-        ref_landing_mass_kg=33000.0,
+        vapp_kt=145.0,
+        ref_landing_mass_kg=29000.0,
         rotate_pitch_deg=9.0,
         takeoff_flaps_norm=8.0 / 42.0,
+        # the JSBSim fokker100's flap lift table has no rows below zero angle of attack, so with
+        # flaps out it cannot shed lift by pitching down: it lands with 15 deg at a speed that keeps
+        # alpha positive (JSBSim trim: 15 deg at 160 kt -> alpha 0.8 deg)
         approach_steps=(
             ApproachStep(20.0, 8.0 / 42.0, 200.0),
-            ApproachStep(15.0, 15.0 / 42.0, 180.0),
-            ApproachStep(12.0, 25.0 / 42.0, 165.0),
-            ApproachStep(9.0, 25.0 / 42.0, 155.0, gear_down=True),
-            ApproachStep(7.5, 1.0, 132.0, gear_down=True),
+            ApproachStep(14.0, 8.0 / 42.0, 180.0),
+            ApproachStep(10.0, 15.0 / 42.0, 165.0, gear_down=True),
+            ApproachStep(8.0, 15.0 / 42.0, 145.0, gear_down=True),
         ),
         flap_retract_kt=((175.0, 0.0),),
         alpha_stall_deg=15.0,

@@ -102,28 +102,56 @@ def wrap_deg(angle_deg):
 
 
 class RunwayFrame:
-    """Local flat frame at a runway threshold: x along the runway heading, y right (m)."""
+    """The tangent plane at a runway threshold, rotated to the runway: x along the runway heading,
+    y to the right (m). Exact WGS-84 ECEF -> NED of the point taken at the threshold elevation
+    (scalar math: the pilot calls it every tick; an aircraft's height only scales the horizontal
+    distance by 1 + h/R, i.e. along the approach path, not across it)."""
 
     def __init__(self, rwy: Runway):
         self.rwy = rwy
-        lat0 = math.radians(rwy.lat_deg)
-        s = math.sin(lat0)
+        lat0, lon0 = math.radians(rwy.lat_deg), math.radians(rwy.lon_deg)
+        self._h = rwy.elevation_m  # points are taken at the threshold elevation
+        self._ecef0 = self._ecef(lat0, lon0, self._h)
+        sl, cl, so, co = math.sin(lat0), math.cos(lat0), math.sin(lon0), math.cos(lon0)
+        h = math.radians(rwy.heading_deg)
+        ch, sh = math.cos(h), math.sin(h)
+        # rows: runway x = N cos h + E sin h; runway y = -N sin h + E cos h
+        n_row = (-sl * co, -sl * so, cl)
+        e_row = (-so, co, 0.0)
+        self._rx = tuple(ch * a + sh * b for a, b in zip(n_row, e_row))
+        self._ry = tuple(-sh * a + ch * b for a, b in zip(n_row, e_row))
+        s = sl
         rn = WGS84_A_M / math.sqrt(1.0 - WGS84_E2 * s * s)
         self._m_per_deg_n = math.radians(1.0) * rn * (1.0 - WGS84_E2) / (1.0 - WGS84_E2 * s * s)
-        self._m_per_deg_e = math.radians(1.0) * rn * math.cos(lat0)
-        h = math.radians(rwy.heading_deg)
-        self._ch, self._sh = math.cos(h), math.sin(h)
+        self._m_per_deg_e = math.radians(1.0) * rn * cl
+        self._ch, self._sh = ch, sh
         self.heading_rad = h
 
+    @staticmethod
+    def _ecef(lat: float, lon: float, h: float) -> tuple[float, float, float]:
+        s, c = math.sin(lat), math.cos(lat)
+        n = WGS84_A_M / math.sqrt(1.0 - WGS84_E2 * s * s)
+        return (n + h) * c * math.cos(lon), (n + h) * c * math.sin(lon), (n * (1.0 - WGS84_E2) + h) * s
+
     def to_xy(self, lat_deg: float, lon_deg: float) -> tuple[float, float]:
-        n = (lat_deg - self.rwy.lat_deg) * self._m_per_deg_n
-        e = (lon_deg - self.rwy.lon_deg) * self._m_per_deg_e
-        return n * self._ch + e * self._sh, -n * self._sh + e * self._ch
+        px, py, pz = self._ecef(math.radians(lat_deg), math.radians(lon_deg), self._h)
+        dx, dy, dz = px - self._ecef0[0], py - self._ecef0[1], pz - self._ecef0[2]
+        rx, ry = self._rx, self._ry
+        return rx[0] * dx + rx[1] * dy + rx[2] * dz, ry[0] * dx + ry[1] * dy + ry[2] * dz
 
     def to_latlon(self, x: float, y: float) -> tuple[float, float]:
-        n = x * self._ch - y * self._sh
-        e = x * self._sh + y * self._ch
-        return self.rwy.lat_deg + n / self._m_per_deg_n, self.rwy.lon_deg + e / self._m_per_deg_e
+        """Inverse of :meth:`to_xy` (fixed-point iteration from the flat guess; sub-millimetre)."""
+        lat, lon = self.rwy.lat_deg, self.rwy.lon_deg
+        tx, ty = x, y
+        for _ in range(6):
+            n = tx * self._ch - ty * self._sh
+            e = tx * self._sh + ty * self._ch
+            lat, lon = lat + n / self._m_per_deg_n, lon + e / self._m_per_deg_e
+            gx, gy = self.to_xy(lat, lon)
+            tx, ty = x - gx, y - gy
+            if abs(tx) + abs(ty) < 1e-6:
+                break
+        return lat, lon
 
     def heading_in_frame(self, psi_rad: float) -> float:
         return psi_rad - self.heading_rad

@@ -171,6 +171,7 @@ class JSBSimAircraft:
         tmp = Path(tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir))
         try:
             aircraft_path = _private_model_copy(model, tmp)
+            jsbsim.FGJSBBase().debug_lvl = 0  # no start-up banner on stdout
             fdm = jsbsim.FGFDMExec(None)
             fdm.set_debug_level(0)
             fdm.disable_output()

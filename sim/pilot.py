@@ -126,9 +126,9 @@ class Pilot:
             self.ac.set("fcs/flap-cmd-norm", norm)
             self._event("flaps", f"{norm:.3f}")
 
-    def _pitch_to(self, x, theta_cmd: float) -> None:
+    def _pitch_to(self, x, theta_cmd: float, bias: float = 0.0) -> None:
         e = theta_cmd - x[self.ix["theta_rad"]]
-        u = self.pitch_pid(e, self.dt, ff=-self.prof.pitch_kq * x[self.ix["q_radps"]])
+        u = self.pitch_pid(e, self.dt, ff=bias - self.prof.pitch_kq * x[self.ix["q_radps"]])
         self.ac.set("fcs/elevator-cmd-norm", -u)
 
     def _bank_to(self, x, phi_cmd: float) -> None:
@@ -377,8 +377,9 @@ class Pilot:
         if ias >= self.prof.vr_kt * KT_MPS:
             if "rotate" not in (e[1] for e in self.events):
                 self._event("rotate", f"{ias / KT_MPS:.0f} kt")
-            self.theta_cmd = rate_limit(self.theta_cmd, math.radians(self.prof.rotate_pitch_deg), math.radians(2.5) * self.dt)
-            self._pitch_to(x, self.theta_cmd)
+            self.theta_cmd = rate_limit(self.theta_cmd, math.radians(self.prof.rotate_pitch_deg), math.radians(3.0) * self.dt)
+            # nose-up elevator bias while the mains still carry the aircraft (rotation)
+            self._pitch_to(x, self.theta_cmd, bias=self.prof.rotate_elevator)
         else:
             self.ac.set("fcs/elevator-cmd-norm", 0.0)
         if x[ix["wow"]] < 0.5 and x[ix["agl_m"]] > self.prof.cg_height_m + 1.0:
@@ -389,6 +390,8 @@ class Pilot:
             self.summary["takeoff_roll_s"] = self._t - self._t_phase
             self._steer(0.0)
             self.ac.set("fcs/rudder-cmd-norm", 0.0)
+            # hand the rotation bias over to the pitch integrator so the elevator does not jump
+            self.pitch_pid.integral += self.prof.rotate_elevator / self.pitch_pid.ki
             self.climb_spd_pid.reset(integral=x[ix["theta_rad"]] / self.climb_spd_pid.ki)
             self._set_phase("initial_climb")
 
@@ -490,8 +493,8 @@ class Pilot:
             self._event("gear_up")
         if "climb_rate_mps" not in self.summary and agl > 500 * FT_M:
             self.summary["climb_rate_mps"] = -x[ix["v_down_mps"]]
-        target = (p.v2_kt + 15.0) * KT_MPS if agl < 1000 * FT_M else 250.0 * KT_MPS
-        self._speed_on_pitch(x, target, lo_deg=5.0, hi_deg=18.0)
+        target = (p.v2_kt + 20.0) * KT_MPS if agl < 1000 * FT_M else 250.0 * KT_MPS
+        self._speed_on_pitch(x, target, lo_deg=5.0, hi_deg=15.0)
         if agl > 1000 * FT_M:
             self._throttle(p.climb_throttle)
         for v_kt, fl in p.flap_retract_kt:

@@ -1,0 +1,160 @@
+"""The ``flightmode`` command line (Typer + Rich).
+
+    flightmode scenarios [--spec]                 list the built-in scenarios (or the file spec)
+    flightmode fly [SCENARIO] [--seed N] [--out DIR]   fly one gate to gate; default gva-lhr-a320
+
+Errors that flightmode raises on purpose (bad scenario, unknown aircraft, failed flight) print one
+line on stderr and exit with status 2, with no traceback.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import sys
+import time
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
+from scenarios.spec import load_scenario, route_length_m, spec_text
+from sim.errors import FlightmodeError
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=False,
+    help="Physics-simulated accelerometer data for a package in an airliner, and its flight-mode detector.",
+)
+console = Console()
+err_console = Console(stderr=True)
+
+
+def _die(e: Exception) -> None:
+    err_console.print(f"[bold red]error:[/] {e}", highlight=False, soft_wrap=True)
+    raise typer.Exit(code=2)
+
+
+@app.command("scenarios")
+def scenarios_cmd(
+    spec: Annotated[bool, typer.Option("--spec", help="Print every section and key a scenario file may hold.")] = False,
+) -> None:
+    """List the built-in scenarios with a one-line description each."""
+    if spec:
+        console.print(spec_text(), highlight=False)
+        return
+    table = Table(title="built-in scenarios", show_lines=False)
+    table.add_column("name", style="bold")
+    table.add_column("aircraft")
+    table.add_column("description")
+    for name in builtin_names():
+        try:
+            plan, desc = load_scenario(builtin_path(name))
+        except FlightmodeError as e:  # a broken built-in must not hide the others
+            table.add_row(name, "?", f"[red]{e}[/]")
+            continue
+        marker = " (default)" if name == DEFAULT_SCENARIO else ""
+        table.add_row(name + marker, plan.aircraft, desc)
+    console.print(table)
+
+
+def _estimate_duration_s(plan) -> float:
+    """Rough gate-to-gate duration, only for the progress bar's scale."""
+    ground = plan.gate_wait_s + 120.0 + plan.taxi_out.length_m / 8.0 + sum(plan.taxi_out.holds_s)
+    ground += plan.taxi_out.lineup_hold_s + plan.taxi_in.length_m / 8.0 + sum(plan.taxi_in.holds_s)
+    return ground + route_length_m(plan) / 190.0 + 300.0 + plan.post_shutdown_s
+
+
+@app.command("fly")
+def fly_cmd(
+    scenario: Annotated[str, typer.Argument(help="Built-in scenario name or path to a .toml file.")] = DEFAULT_SCENARIO,
+    seed: Annotated[Optional[int], typer.Option("--seed", help="Override the scenario's seed.")] = None,
+    out: Annotated[Path, typer.Option("--out", help="Output folder; the run goes to OUT/<scenario>-s<seed>/.")] = Path(
+        "runs"
+    ),
+) -> None:
+    """Fly a scenario gate to gate in JSBSim; write truth.parquet and run.json."""
+    from scenarios import run_io
+    from sim.flight import fly
+    from sim.flight_metrics import flight_metrics
+
+    try:
+        plan, desc, path = resolve(scenario)
+        if seed is not None:
+            if not 0 <= seed <= 2**31 - 3:
+                raise FlightmodeError(f"--seed {seed}: must be between 0 and {2**31 - 3}")
+            plan = dataclasses.replace(plan, seed=seed)
+        rid = run_io.run_id(plan)
+        console.print(f"[bold]{plan.name}[/] seed {plan.seed}: {desc}", highlight=False)
+        total = _estimate_duration_s(plan)
+        t0 = time.perf_counter()
+        with run_io.staged_run_dir(out, rid) as stage:
+            with Progress(
+                TextColumn("[progress.description]{task.description}"),
+                BarColumn(),
+                TextColumn("{task.fields[sim]}"),
+                TimeElapsedColumn(),
+                console=console,
+                transient=False,
+            ) as progress:
+                task = progress.add_task("flying", total=total, sim="")
+
+                def on_progress(t_s: float, phase: str) -> None:
+                    progress.update(
+                        task,
+                        completed=min(t_s, total * 0.99),
+                        description=f"{phase:>13}",
+                        sim=f"{t_s / 60:6.1f} sim-min",
+                    )
+
+                track = fly(plan, workdir=stage, progress=on_progress)
+                progress.update(task, completed=total, description="parked", sim=f"{track.duration_s / 60:6.1f} sim-min")
+            wall = time.perf_counter() - t0
+            metrics = flight_metrics(track, plan)
+            run_io.write_truth(stage, track)
+            info = run_io.run_info(plan, desc, str(path), track, metrics)
+            info["wall_time_s"] = wall
+            run_io.write_run_json(stage, info)
+        _print_summary(plan, track, metrics, wall)
+        console.print(f"wrote [bold]{Path(out) / rid}[/] (truth.parquet, run.json)", highlight=False)
+    except FlightmodeError as e:
+        _die(e)
+
+
+def _print_summary(plan, track, m: dict, wall_s: float) -> None:
+    kt = 1.0 / 0.514444
+    t = Table(title=f"{plan.name}: {plan.aircraft}, {plan.origin.icao} {plan.origin.name} -> "
+              f"{plan.destination.icao} {plan.destination.name}", show_header=False)
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    rows = [
+        ("gate to gate", f"{m['gate_to_gate_s'] / 60:.1f} min  ({track.n:,} samples at {track.fs_hz:.0f} Hz)"),
+        ("taxi-out (pushback to brake release)", f"{m['taxi_out_s'] / 60:.1f} min"),
+        ("liftoff speed", f"{m['liftoff_ias_mps'] * kt:.0f} kt IAS"),
+        ("mean takeoff acceleration", f"{m['takeoff_accel_mps2']:.2f} m/s^2"),
+        ("initial climb rate (to 1500 ft)", f"{m['initial_climb_vs_mps']:.1f} m/s"),
+        ("cruise altitude", f"{m['cruise_alt_m']:.0f} m"),
+        ("final approach vertical rate", f"{m['final_approach_vs_mps']:.2f} m/s"),
+        ("touchdown sink rate", f"{m['touchdown_sink_mps'] / 0.3048 * 60:.0f} ft/min"),
+        ("touchdown speed", f"{m['touchdown_ias_mps'] * kt:.0f} kt IAS, {m['touchdown_gs_mps']:.1f} m/s ground"),
+        ("touchdown point", f"{m['touchdown_past_threshold_m']:.0f} m past threshold, "
+                            f"{m['touchdown_centreline_offset_m']:+.1f} m from centreline"),
+        ("rollout deceleration", f"{m['rollout_decel_mps2']:.2f} m/s^2 over {m['rollout_distance_m']:.0f} m"),
+        ("taxi-in", f"{m['taxi_in_s'] / 60:.1f} min"),
+        ("in-flight window (pushback to engines off)", f"{track.in_flight_window.sum() / track.fs_hz / 60:.1f} min"),
+        ("wall time", f"{wall_s:.1f} s ({track.duration_s / wall_s:.0f}x real time)"),
+    ]
+    for k, v in rows:
+        t.add_row(k, v)
+    console.print(t)
+
+
+def main() -> None:  # pragma: no cover - console entry point alias
+    app()
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(app())
