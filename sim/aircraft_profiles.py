@@ -199,7 +199,7 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_throttle=0.95,
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
-        flare_height_ft=45.0,
+        flare_height_ft=50.0,
         touchdown_sink_fps=2.5,
     ),
 }

@@ -51,7 +51,7 @@ class Pilot:
         self.ix = ac.index
         self.origin = RunwayFrame(plan.origin)
         self.dest = RunwayFrame(plan.destination)
-        self.events: list[tuple[float, str, str]] = []  # (t_s, name, detail)
+        self.events: list[tuple[float, str, str]] = [(0.0, "gate", "phase")]  # (t_s, name, detail)
         self.summary: dict[str, float] = {}
         self.phase = "gate"
         self.phase_code = PHASE_CODE["gate"]
@@ -87,6 +87,7 @@ class Pilot:
         self._push_turning = False
         self._diff_brake = 0.0
         self._flare_tau = None
+        self._theta_final = None
         self._max_alt_m = -math.inf
 
     # ------------------------------------------------------------------ helpers
@@ -567,7 +568,14 @@ class Pilot:
         else:
             vs_cmd = clamp(vs_ff + 0.05 * (h_tgt - h), -15.0, 10.0)
         vs = -x[ix["v_down_mps"]]
-        self._path_to(x, vs_cmd, -8.0, 15.0)
+        lo_deg = -8.0
+        mg = x[ix["agl_m"]] - p.cg_height_m
+        if self._loc_mode and mg < 200 * FT_M:
+            # short final: hold the stabilised attitude (no diving into ground effect)
+            if self._theta_final is None:
+                self._theta_final = math.degrees(x[ix["theta_rad"]])
+            lo_deg = self._theta_final - 1.0
+        self._path_to(x, vs_cmd, lo_deg, 15.0)
         # speed: throttle, speedbrake when idle is not enough
         err = v_tgt - x[ix["ias_mps"]]
         thr = self.spd_pid(err, self.dt)
@@ -598,7 +606,8 @@ class Pilot:
             self._flare_tau = (mg_ft + FLARE_HB_FT) / sink0_fps
         vs_cmd = -max(p.touchdown_sink_fps, (mg_ft + FLARE_HB_FT) / self._flare_tau) * FT_M
         vs_cmd = min(vs_cmd, -p.touchdown_sink_fps * FT_M)
-        self._path_to(x, vs_cmd, -3.0, 12.0, rate_dps=5.0, boost=2.0)
+        lo_deg = -3.0 if self._theta_final is None else self._theta_final - 1.0
+        self._path_to(x, vs_cmd, lo_deg, 12.0, rate_dps=5.0, boost=2.0)
         self._set_throttle_smooth(0.0 if mg_ft < 20.0 else self.spd_pid(self._vapp_mps() - x[ix["ias_mps"]], self.dt))
         rx, ry = self.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         crs = self.dest.heading_rad - math.atan2(ry, 1500.0)

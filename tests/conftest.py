@@ -1,0 +1,32 @@
+"""Shared fixtures: flights are expensive, so each (scenario, seed) is flown once per session."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import pytest
+
+SHARED = Path(__file__).resolve().parents[2] / "shared"
+
+
+@pytest.fixture(scope="session")
+def fly_cached():
+    """fly_cached(name, seed=None, **plan_changes) -> (plan, track), memoised for the session."""
+    from scenarios.registry import resolve
+    from sim.flight import fly
+
+    cache: dict = {}
+
+    def _fly(name: str, seed: int | None = None, **changes):
+        key = (name, seed, tuple(sorted(changes.items())))
+        if key not in cache:
+            plan, _, _ = resolve(name)
+            if seed is not None:
+                plan = dataclasses.replace(plan, seed=seed)
+            if changes:
+                plan = dataclasses.replace(plan, **changes)
+            cache[key] = (plan, fly(plan))
+        return cache[key]
+
+    return _fly

@@ -1,0 +1,105 @@
+"""The fast `pattern` flight (about 3 s of wall time): a whole gate-to-gate cycle, determinism,
+labels, turbulence seeding and failure handling."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from sim.errors import FlightError
+from sim.labels import PHASE_CODE
+from sim.plan import TurbulenceSegment
+
+
+def test_pattern_flies_gate_to_gate(fly_cached):
+    plan, tr = fly_cached("pattern")
+    names = [e.name for e in tr.events]
+    order = ["gate", "engine_start", "pushback", "taxi_out", "takeoff_roll", "initial_climb",
+             "approach", "flare", "rollout", "taxi_in", "shutdown", "engines_off", "parked"]
+    positions = [names.index(n) for n in order]
+    assert positions == sorted(positions), "phases out of order"
+    # under 15 simulated minutes from brake release to touchdown (the circuit), whole cycle < 20 min
+    assert tr.event_time("touchdown") - tr.event_time("takeoff_roll") < 15 * 60
+    assert tr.duration_s < 20 * 60
+    # it ends parked, engines off, at rest, back on the ground
+    assert tr.phase[-1] == "parked"
+    assert np.all(tr.n2_pct[-1] < 5.0)
+    assert tr.ground_speed_mps[-1] < 0.05
+    assert tr.wow[-1]
+    # the whole track is finite
+    for name in ("lat_deg", "lon_deg", "alt_m", "pos_ned_m", "specific_force_body_mps2", "quat_wxyz"):
+        assert np.isfinite(getattr(tr, name)).all(), name
+
+
+def test_labels_follow_the_events(fly_cached):
+    _, tr = fly_cached("pattern")
+    t_push, t_off = tr.event_time("pushback"), tr.event_time("engines_off")
+    win = np.flatnonzero(tr.in_flight_window)
+    dt = 1.0 / tr.fs_hz
+    # the window starts at pushback and ends at engines off, to one sample
+    assert abs(tr.t_s[win[0]] - t_push) <= dt and abs(tr.t_s[win[-1]] + dt - t_off) <= dt
+    assert np.all(np.diff(win) == 1)  # one contiguous window
+    # airborne only between liftoff and touchdown, and never on the gear
+    air = tr.airborne
+    assert not np.any(air & tr.wow)
+    assert tr.t_s[air][0] >= tr.event_time("liftoff") - dt
+    assert tr.t_s[air][-1] <= tr.event_time("touchdown")
+    # every airborne sample is inside the in-flight window
+    assert np.all(tr.in_flight_window[air])
+    # a parked aircraft at the gate is not in the window
+    assert not tr.in_flight_window[tr.phase_code == PHASE_CODE["gate"]].any()
+
+
+def test_same_seed_is_bit_identical_in_process_and_across_processes(fly_cached):
+    from scenarios.registry import resolve
+    from sim.flight import fly
+
+    plan, tr = fly_cached("pattern")
+    again = fly(plan)
+    assert again.digest() == tr.digest()
+    code = (
+        "from scenarios.registry import resolve; from sim.flight import fly; "
+        "plan,_,_ = resolve('pattern'); print(fly(plan).digest())"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip().splitlines()[-1] == tr.digest()
+    del resolve
+
+
+def _turbulent(fly_cached, seed):
+    seg = (TurbulenceSegment(start_s=120.0, duration_s=120.0, severity="moderate"),)
+    return fly_cached("pattern", seed=seed, turbulence=seg)
+
+
+def test_another_seed_gives_different_turbulence_only(fly_cached):
+    p1, a = _turbulent(fly_cached, 1)
+    p2, b = _turbulent(fly_cached, 2)
+    t0 = a.event_time("liftoff") + 120.0
+    n = min(a.n, b.n)
+    before = a.t_s[:n] < t0
+    # identical until the turbulence starts (the seed only feeds JSBSim's turbulence generator)
+    np.testing.assert_array_equal(a.specific_force_body_mps2[:n][before], b.specific_force_body_mps2[:n][before])
+    seg = (a.t_s[:n] >= t0) & (a.t_s[:n] < t0 + 120.0)
+    diff = np.abs(a.specific_force_body_mps2[:n][seg, 2] - b.specific_force_body_mps2[:n][seg, 2])
+    assert diff.max() > 0.5  # m/s^2: different gust histories, not a rounding difference
+    assert (a.turbulence_code[seg] == 2).all()
+
+
+def test_exceeding_a_limit_raises_flight_error_naming_phase_time_and_cause(monkeypatch):
+    import sim.aircraft_profiles as ap
+    from scenarios.registry import resolve
+    from sim.flight import fly
+
+    # a pilot allowed 60 degrees of bank breaks the 45-degree limit in the first turn
+    monkeypatch.setitem(ap.PROFILES, "737", dataclasses.replace(ap.PROFILES["737"], turn_bank_deg=60.0))
+    plan, _, _ = resolve("pattern")
+    with pytest.raises(FlightError) as ei:
+        fly(plan)
+    e = ei.value
+    assert "bank angle" in e.cause and "exceeds 45" in e.cause
+    assert e.phase in ("initial_climb", "climb", "cruise", "descent", "approach")
+    assert e.t_s > 0 and f"{e.t_s:.2f}" in str(e)
