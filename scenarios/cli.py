@@ -19,6 +19,7 @@ import typer
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
+from rich.text import Text
 
 from scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
 from scenarios.spec import load_scenario, route_length_m, spec_text
@@ -34,7 +35,10 @@ err_console = Console(stderr=True)
 
 
 def _die(e: Exception) -> None:
-    err_console.print(f"[bold red]error:[/] {e}", highlight=False, soft_wrap=True)
+    from rich.text import Text
+
+    # user text (scenario paths, [section].key names) must not be read as Rich markup
+    err_console.print(Text.assemble(("error:", "bold red"), " ", str(e)), highlight=False, soft_wrap=True)
     raise typer.Exit(code=2)
 
 
@@ -44,7 +48,7 @@ def scenarios_cmd(
 ) -> None:
     """List the built-in scenarios with a one-line description each."""
     if spec:
-        console.print(spec_text(), highlight=False)
+        console.print(spec_text(), highlight=False, markup=False)
         return
     table = Table(title="built-in scenarios", show_lines=False)
     table.add_column("name", style="bold")
@@ -54,10 +58,10 @@ def scenarios_cmd(
         try:
             plan, desc = load_scenario(builtin_path(name))
         except FlightmodeError as e:  # a broken built-in must not hide the others
-            table.add_row(name, "?", f"[red]{e}[/]")
+            table.add_row(name, "?", Text(str(e), style="red"))
             continue
         marker = " (default)" if name == DEFAULT_SCENARIO else ""
-        table.add_row(name + marker, plan.aircraft, desc)
+        table.add_row(name + marker, plan.aircraft, Text(desc))
     console.print(table)
 
 
@@ -88,7 +92,7 @@ def fly_cmd(
                 raise FlightmodeError(f"--seed {seed}: must be between 0 and {2**31 - 3}")
             plan = dataclasses.replace(plan, seed=seed)
         rid = run_io.run_id(plan)
-        console.print(f"[bold]{plan.name}[/] seed {plan.seed}: {desc}", highlight=False)
+        console.print(Text.assemble((plan.name, "bold"), f" seed {plan.seed}: {desc}"), highlight=False)
         total = _estimate_duration_s(plan)
         t0 = time.perf_counter()
         with run_io.staged_run_dir(out, rid) as stage:
@@ -119,7 +123,7 @@ def fly_cmd(
             info["wall_time_s"] = wall
             run_io.write_run_json(stage, info)
         _print_summary(plan, track, metrics, wall)
-        console.print(f"wrote [bold]{Path(out) / rid}[/] (truth.parquet, run.json)", highlight=False)
+        console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), " (truth.parquet, run.json)"))
     except FlightmodeError as e:
         _die(e)
 

@@ -1,7 +1,7 @@
 """Fly a :class:`sim.plan.FlightPlan` gate to gate in JSBSim and return its :class:`FlightTrack`.
 
 The FDM runs at 120 Hz; every step's state is recorded (the FlightTrack rate); the pilot ticks at
-40 Hz (every third step). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type`` 3) seeded from
+40 Hz near the ground and 10 Hz en route (:attr:`sim.pilot.Pilot.control_every`). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type`` 3) seeded from
 the plan's seed, so the same plan and seed give a bit-identical track (FACTS.md: JSBSim seeds 0 and
 1 are the same generator state; flightmode therefore passes ``seed + 2`` to JSBSim).
 
@@ -32,7 +32,6 @@ from sim.taxi_route import gate_position_out
 from sim.track import Event, FlightTrack, euler_to_quat_wxyz
 
 FDM_HZ = 120.0
-CONTROL_EVERY = 3
 BLOCK = 120 * 600  # rows per preallocated block (10 simulated minutes)
 KG_LB = 2.20462262185
 
@@ -77,50 +76,55 @@ def fly(
     ac.set("simulation/randomseed", plan.seed + 2)
     ac.set("atmosphere/turb-type", 0)
     ac.set("propulsion/cutoff_cmd", 1)
-    pilot = Pilot(ac, plan, prof, CONTROL_EVERY / FDM_HZ)
+    pilot = Pilot(ac, plan, prof, 3.0 / FDM_HZ)
 
     nch = len(ac.channels)
+    scales = ac.scales
+    read = ac.raw_reader()
+    run = ac.fdm.run
     blocks: list[np.ndarray] = []
-    codes: list[np.ndarray] = []
-    turb: list[np.ndarray] = []
+    changes: list[tuple[int, int, int]] = [(0, pilot.phase_code, pilot.severity_code)]
     limit_steps = int(max_duration_s(plan) * FDM_HZ)
     step = 0
+    next_tick = 0
     dest_terrain_set = False
     next_progress = 0.0
     while not pilot.done:
         buf = np.empty((BLOCK, nch))
-        pc = np.empty(BLOCK, dtype=np.uint8)
-        tc = np.empty(BLOCK, dtype=np.uint8)
         k = 0
         while k < BLOCK and not pilot.done:
-            row = buf[k]
-            ac.sample_into(row)
-            t = step / FDM_HZ
-            if step % CONTROL_EVERY == 0:
-                pilot.tick(row, t)
+            buf[k] = read()
+            if step == next_tick:
+                t = step / FDM_HZ
+                codes = (pilot.phase_code, pilot.severity_code)
+                pilot.tick((buf[k] * scales).tolist(), t)  # floats, not NumPy scalars: faster
+                next_tick = step + pilot.control_every
+                if (pilot.phase_code, pilot.severity_code) != codes:
+                    # labels change at the sample whose state made the pilot change phase
+                    changes.append((step, pilot.phase_code, pilot.severity_code))
                 if not dest_terrain_set and pilot.phase in ("cruise", "descent", "approach"):
                     ac.set("position/terrain-elevation-asl-ft", plan.destination.elevation_m / FT_M)
                     dest_terrain_set = True
                 if progress is not None and t >= next_progress:
                     progress(t, pilot.phase)
                     next_progress = t + 60.0
-            pc[k] = pilot.phase_code
-            tc[k] = pilot.severity_code
-            ac.step()
+            run()
             step += 1
             k += 1
             if step > limit_steps:
                 raise FlightError(
                     f"the flight did not reach the stand within {limit_steps / FDM_HZ:.0f} s",
                     phase=pilot.phase,
-                    t_s=t,
+                    t_s=step / FDM_HZ,
                 )
         blocks.append(buf[:k])
-        codes.append(pc[:k])
-        turb.append(tc[:k])
-    x = np.concatenate(blocks)
+    x = np.concatenate(blocks) * scales
+    starts = np.array([c[0] for c in changes] + [step])
+    reps = np.diff(starts)
+    phase_code = np.repeat(np.array([c[1] for c in changes], dtype=np.uint8), reps)
+    turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
-    return _to_track(plan, ac, x, np.concatenate(codes), np.concatenate(turb), events)
+    return _to_track(plan, ac, x, phase_code, turb_code, events)
 
 
 def _to_track(plan, ac, x, phase_code, turb_code, events) -> FlightTrack:

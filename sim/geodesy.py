@@ -86,6 +86,20 @@ def initial_course_deg(lat1_deg, lon1_deg, lat2_deg, lon2_deg):
     return np.degrees(np.arctan2(y, x)) % 360.0
 
 
+def gc_distance_m(lat1_deg: float, lon1_deg: float, lat2_deg: float, lon2_deg: float) -> float:
+    """Scalar :func:`great_circle_distance_m` (plain math: the pilot calls it every tick)."""
+    p1, p2 = math.radians(lat1_deg), math.radians(lat2_deg)
+    h = math.sin((p2 - p1) / 2) ** 2 + math.cos(p1) * math.cos(p2) * math.sin(math.radians(lon2_deg - lon1_deg) / 2) ** 2
+    return 2.0 * EARTH_MEAN_RADIUS_M * math.asin(math.sqrt(min(1.0, max(0.0, h))))
+
+
+def gc_course_rad(lat1_deg: float, lon1_deg: float, lat2_deg: float, lon2_deg: float) -> float:
+    """Scalar initial great-circle course (rad, -pi..pi) from point 1 to point 2."""
+    p1, p2 = math.radians(lat1_deg), math.radians(lat2_deg)
+    dl = math.radians(lon2_deg - lon1_deg)
+    return math.atan2(math.sin(dl) * math.cos(p2), math.cos(p1) * math.sin(p2) - math.sin(p1) * math.cos(p2) * math.cos(dl))
+
+
 def destination_point(lat_deg: float, lon_deg: float, course_deg: float, distance_m: float):
     """Point reached from (lat, lon) along a great circle with the given initial course."""
     p1, l1 = np.radians(lat_deg), np.radians(lon_deg)

@@ -168,7 +168,7 @@ class JSBSimAircraft:
         self.dt_s = dt_s
         self.channels = _channels(n_engines)
         self.index = {c.name: i for i, c in enumerate(self.channels)}
-        tmp = Path(tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir))
+        tmp = Path(tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir)).resolve()  # JSBSim needs absolute paths
         try:
             aircraft_path = _private_model_copy(model, tmp)
             jsbsim.FGJSBBase().debug_lvl = 0  # no start-up banner on stdout
@@ -209,10 +209,20 @@ class JSBSimAircraft:
             node = self._nodes[prop] = self._node(prop)
         return node.get_double_value()
 
+    @property
+    def scales(self) -> np.ndarray:
+        """Per-channel factors from JSBSim's units to SI (multiply a raw row by them)."""
+        return self._scales
+
+    def raw_reader(self):
+        """A function returning every channel's raw (JSBSim-unit) value as a list, fast."""
+        get = type(self._read_nodes[0]).get_double_value
+        nodes = self._read_nodes
+        return lambda: list(map(get, nodes))
+
     def sample_into(self, row: np.ndarray) -> None:
         """Read every channel (SI) into ``row`` (length ``len(self.channels)``)."""
-        for i, node in enumerate(self._read_nodes):
-            row[i] = node.get_double_value()
+        row[:] = self.raw_reader()()
         row *= self._scales
 
     def init_on_ground(

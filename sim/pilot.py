@@ -76,6 +76,9 @@ class Pilot:
         self._hold_until = None
         self._waypoints = list(plan.waypoints) + [self._approach_fix()]
         self._wp = 0
+        # distance from each waypoint to the threshold along the remaining legs (constant)
+        legs = [geodesy.gc_distance_m(*a, *b) for a, b in zip(self._waypoints, self._waypoints[1:])]
+        self._legs_after_m = [sum(legs[i:]) + plan.approach_fix_nm * NM_M for i in range(len(self._waypoints))]
         self._loc_mode = False
         self._gs_prev = 0.0
         self._decel_f = 0.0
@@ -88,6 +91,8 @@ class Pilot:
         self._diff_brake = 0.0
         self._flare_tau = None
         self._theta_final = None
+        self._t_last = None
+        self._en_route = False
         self._max_alt_m = -math.inf
 
     # ------------------------------------------------------------------ helpers
@@ -150,7 +155,18 @@ class Pilot:
         return x[self.ix["v_north_mps"]] * math.cos(psi) + x[self.ix["v_east_mps"]] * math.sin(psi)
 
     # ------------------------------------------------------------------ tick
+    @property
+    def control_every(self) -> int:
+        """FDM steps between ticks: 40 Hz near the ground, 10 Hz en route (the loops' bandwidths
+        are well below 1 Hz there, and the pilot is most of flightmode's cost per step)."""
+        if self.phase in ("gate", "parked") or self._hold_until is not None:
+            return 30  # standing still on the brakes: 4 Hz
+        return 12 if self._en_route or self.phase == "engine_start" else 3
+
     def tick(self, x, t: float) -> None:
+        if self._t_last is not None:
+            self.dt = t - self._t_last
+        self._t_last = t
         self._t = t
         self._check_limits(x)
         gs = self._gs(x)
@@ -160,10 +176,14 @@ class Pilot:
         self._turbulence()
 
     def _check_limits(self, x) -> None:
-        for v in x:
-            if v != v:  # NaN
-                self._fail("NaN in the flight state: JSBSim diverged")
+        if not math.isfinite(sum(x)):
+            self._fail("NaN in the flight state: JSBSim diverged")
         ix = self.ix
+        self._en_route = (
+            self.phase in ("climb", "cruise", "descent")
+            and x[ix["agl_m"]] > 3000 * FT_M
+            and not self._loc_mode
+        )
         if abs(math.degrees(x[ix["phi_rad"]])) > MAX_BANK_DEG:
             self._fail(f"bank angle {math.degrees(x[ix['phi_rad']]):.1f} deg exceeds {MAX_BANK_DEG:.0f} deg")
         if self.phase in AIRBORNE_PHASES and x[ix["wow"]] < 0.5:
@@ -401,11 +421,8 @@ class Pilot:
         if self._loc_mode:
             rx, _ = self.dest.to_xy(lat, lon)
             return -rx
-        wps = self._waypoints[self._wp :]
-        d = float(geodesy.great_circle_distance_m(lat, lon, *wps[0]))
-        for a, b in zip(wps, wps[1:]):
-            d += float(geodesy.great_circle_distance_m(*a, *b))
-        return d + self.plan.approach_fix_nm * NM_M
+        wp = self._waypoints[self._wp]
+        return geodesy.gc_distance_m(lat, lon, *wp) + self._legs_after_m[self._wp]
 
     def _path_alt_m(self, d_m: float) -> float:
         """The vertical profile: glideslope inside 10 nm, the descent path beyond."""
@@ -426,7 +443,7 @@ class Pilot:
             return
         if not self._loc_mode:
             wp = self._waypoints[self._wp]
-            d = float(geodesy.great_circle_distance_m(lat, lon, *wp))
+            d = geodesy.gc_distance_m(lat, lon, *wp)
             if self._wp == len(self._waypoints) - 1:
                 # approach fix: engage the localizer once close, or once abeam inside the cone
                 rx, ry = self.dest.to_xy(lat, lon)
@@ -440,7 +457,7 @@ class Pilot:
                 self._wp += 1
                 self._event("waypoint", f"{self._wp}")
             if not self._loc_mode:
-                crs = math.radians(float(geodesy.initial_course_deg(lat, lon, *wp)))
+                crs = geodesy.gc_course_rad(lat, lon, *wp)
                 self._heading_to(x, crs, self.prof.turn_bank_deg)
                 return
         rx, ry = self.dest.to_xy(lat, lon)

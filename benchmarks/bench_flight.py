@@ -1,0 +1,53 @@
+"""Benchmark: the whole `fly` of the default scenario against bare JSBSim stepping, same run.
+
+    python benchmarks/bench_flight.py [SCENARIO]
+
+Baseline: the same JSBSim model (loaded through flightmode's adapter, so the same private copy and
+settings) stepped with bare ``fdm.run()`` for exactly as many steps as the flight took, with no
+property reads and no pilot. Reported: both wall times and their ratio (goal <= 1.5).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+
+def main(name: str = "gva-lhr-a320") -> dict:
+    from scenarios.registry import resolve
+    from sim.aircraft_profiles import get_profile
+    from sim.flight import FDM_HZ, fly
+    from sim.jsbsim_adapter import JSBSimAircraft
+
+    plan, _, _ = resolve(name)
+    t0 = time.perf_counter()
+    track = fly(plan)
+    t_fly = time.perf_counter() - t0
+    n = track.n
+
+    prof = get_profile(plan.aircraft)
+    ac = JSBSimAircraft(plan.aircraft, 1.0 / FDM_HZ, prof.n_engines)
+    ac.init_on_ground(plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg)
+    run = ac.fdm.run
+    t0 = time.perf_counter()
+    for _ in range(n):
+        run()
+    t_bare = time.perf_counter() - t0
+    res = {
+        "scenario": name,
+        "steps": n,
+        "simulated_s": track.duration_s,
+        "fly_wall_s": t_fly,
+        "bare_run_wall_s": t_bare,
+        "ratio": t_fly / t_bare,
+        "fly_steps_per_s": n / t_fly,
+        "bare_steps_per_s": n / t_bare,
+    }
+    for k, v in res.items():
+        print(f"{k:>18}: {v:,.3f}" if isinstance(v, float) else f"{k:>18}: {v}")
+    print(f"goal: ratio <= 1.5 -> {'met' if res['ratio'] <= 1.5 else 'NOT met'}")
+    return res
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:2])

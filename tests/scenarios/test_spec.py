@@ -1,0 +1,145 @@
+"""Scenario files: every built-in validates; each class of bad input gets a one-line error naming
+the file, key path, value, what is allowed and (for misspellings) the nearest valid name."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
+from scenarios.spec import ScenarioError, load_scenario, parse_scenario
+
+REQUIRED_BUILTINS = {"gva-lhr-a320", "hel-zrh-f100", "ist-osl-737", "lhr-jfk-787", "pattern"}
+
+
+def test_builtin_library_is_complete_and_valid():
+    names = set(builtin_names())
+    assert REQUIRED_BUILTINS <= names
+    assert DEFAULT_SCENARIO == "gva-lhr-a320"
+    for name in names:
+        plan, desc, path = resolve(name)
+        assert plan.name == name == path.stem
+        assert desc and "\n" not in desc
+
+
+def _doc(name="pattern"):
+    return tomllib.loads(builtin_path(name).read_text())
+
+
+def _write(tmp_path: Path, text: str) -> Path:
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    return p
+
+
+def test_toml_syntax_error_names_file_and_position(tmp_path):
+    p = _write(tmp_path, builtin_path("pattern").read_text().replace('name = "pattern"', 'name = "pattern'))
+    with pytest.raises(ScenarioError) as ei:
+        load_scenario(p)
+    msg = str(ei.value)
+    assert str(p) in msg and "TOML syntax error" in msg and "line" in msg
+    assert "\n" not in msg
+
+
+def test_unknown_key_suggests_the_nearest():
+    doc = _doc()
+    doc["cruise"]["altitude_ft"] = doc["cruise"].pop("altitude_m")
+    with pytest.raises(ScenarioError) as ei:
+        parse_scenario(doc, "x.toml")
+    msg = str(ei.value)
+    assert "x.toml: [cruise].altitude_ft" in msg and 'did you mean "altitude_m"' in msg
+
+
+def test_unknown_section_suggests_the_nearest():
+    doc = _doc()
+    doc["turbulance"] = [{"start_s": 1, "duration_s": 2, "severity": "light"}]
+    with pytest.raises(ScenarioError, match=r'\[turbulance\].*did you mean "turbulence"'):
+        parse_scenario(doc, "x.toml")
+
+
+def test_wrong_type():
+    doc = _doc()
+    doc["cruise"]["mach"] = "fast"
+    with pytest.raises(ScenarioError, match=r"\[cruise\]\.mach = 'fast': must be a float"):
+        parse_scenario(doc, "x.toml")
+
+
+def test_negative_duration():
+    doc = _doc()
+    doc["scenario"]["gate_wait_s"] = -5
+    with pytest.raises(ScenarioError, match=r"\[scenario\]\.gate_wait_s = -5.0: must be >= 0"):
+        parse_scenario(doc, "x.toml")
+
+
+def test_negative_hold_in_a_list():
+    doc = _doc()
+    doc["taxi_out"]["holds_s"] = [30, -1]
+    with pytest.raises(ScenarioError, match=r"\[taxi_out\]\.holds_s\[1\] = -1"):
+        parse_scenario(doc, "x.toml")
+
+
+def test_unknown_aircraft_suggests_the_nearest():
+    doc = _doc()
+    doc["scenario"]["aircraft"] = "A321"
+    with pytest.raises(ScenarioError) as ei:
+        parse_scenario(doc, "x.toml")
+    msg = str(ei.value)
+    assert "[scenario].aircraft = 'A321'" in msg and 'did you mean "A320"' in msg and "737" in msg
+
+
+def test_missing_required_key():
+    doc = _doc()
+    del doc["origin"]["heading_deg"]
+    with pytest.raises(ScenarioError, match=r"\[origin\]\.heading_deg is missing"):
+        parse_scenario(doc, "x.toml")
+
+
+def test_airports_too_close_for_the_cruise_asked():
+    doc = _doc("gva-lhr-a320")
+    doc["destination"] = dict(_doc("hel-zrh-f100")["destination"])  # Geneva -> Zurich, 225 km
+    doc["route"]["waypoints"] = []
+    with pytest.raises(ScenarioError) as ei:
+        parse_scenario(doc, "x.toml")
+    msg = str(ei.value)
+    assert "airports too close" in msg and "lower the cruise to at most" in msg
+    # and the suggested altitude is accepted
+    max_alt = float(msg.split("at most ")[1].split(" m")[0])
+    doc["cruise"]["altitude_m"] = max_alt - 10.0
+    parse_scenario(doc, "x.toml")
+
+
+def test_unknown_builtin_name_suggests_the_nearest():
+    with pytest.raises(ScenarioError, match=r"unknown scenario 'gva-lhr-a32'.*did you mean \"gva-lhr-a320\""):
+        resolve("gva-lhr-a32")
+
+
+@pytest.mark.parametrize(
+    "edit, expected",
+    [
+        (lambda t: t.replace("[cruise]", "[cruise]\nspeed_kt = 300"), "[cruise].speed_kt"),
+        (lambda t: t.replace('aircraft = "737"', 'aircraft = "B737"'), 'did you mean "737"'),
+    ],
+)
+def test_cli_fly_bad_file_exits_nonzero_with_one_line_and_no_traceback(tmp_path, edit, expected):
+    p = _write(tmp_path, edit(builtin_path("pattern").read_text()))
+    r = subprocess.run(
+        [sys.executable, "-m", "scenarios.cli", "fly", str(p), "--out", str(tmp_path / "out")],
+        capture_output=True, text=True, cwd=tmp_path,
+    )
+    assert r.returncode == 2
+    err = " ".join(r.stderr.split())
+    assert err.startswith("error:") and expected in err
+    assert "Traceback" not in r.stderr + r.stdout
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+def test_spec_lists_every_section():
+    from scenarios.spec import SPEC, spec_text
+
+    text = spec_text()
+    for sec in SPEC:
+        assert sec in text
