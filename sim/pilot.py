@@ -487,7 +487,7 @@ class Pilot:
     def _vapp_mps(self) -> float:
         """Final approach speed for the current mass (stall speed scales with sqrt(mass))."""
         mass_kg = self.ac.get("inertia/weight-lbs") * 0.45359237
-        k = clamp(math.sqrt(mass_kg / self.prof.ref_landing_mass_kg), 0.9, 1.1)
+        k = clamp(math.sqrt(mass_kg / self.prof.ref_landing_mass_kg), 0.95, 1.1)
         return self.prof.vapp_kt * k * KT_MPS
 
     def _configure_approach(self, d_m: float) -> None:
@@ -539,6 +539,9 @@ class Pilot:
         tas = max(x[ix["tas_mps"]], 30.0)
         gamma_cmd = math.asin(clamp(vs_cmd / tas, -0.3, 0.3))
         gamma = math.asin(clamp(-x[ix["v_down_mps"]] / tas, -0.5, 0.5))
+        # the pitch limits are the PID's own output limits, so its integrator cannot wind up
+        # against them (it did, holding attitude on short final, and then the flare was late)
+        self.gamma_pid.lo, self.gamma_pid.hi = math.radians(lo_deg), math.radians(hi_deg)
         theta = self.gamma_pid(gamma_cmd - gamma, self.dt) + boost * (gamma_cmd - gamma)
         theta = clamp(theta, math.radians(lo_deg), math.radians(hi_deg))
         self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(rate_dps) * self.dt)
@@ -621,6 +624,7 @@ class Pilot:
         if self._flare_tau is None:
             sink0_fps = max(x[ix["v_down_mps"]] / FT_M, 5.0)
             self._flare_tau = (mg_ft + FLARE_HB_FT) / sink0_fps
+            self.gamma_pid.reset(integral=x[ix["theta_rad"]] / self.gamma_pid.ki)  # bumpless
         vs_cmd = -max(p.touchdown_sink_fps, (mg_ft + FLARE_HB_FT) / self._flare_tau) * FT_M
         vs_cmd = min(vs_cmd, -p.touchdown_sink_fps * FT_M)
         lo_deg = -3.0 if self._theta_final is None else self._theta_final - 1.0
