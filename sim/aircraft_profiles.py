@@ -95,7 +95,7 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
         flare_height_ft=40.0,
-        touchdown_sink_fps=2.5,
+        touchdown_sink_fps=3.0,
     ),
     "A320": AircraftProfile(
         model="A320",
@@ -131,8 +131,8 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_throttle=0.92,
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
-        flare_height_ft=40.0,
-        touchdown_sink_fps=2.5,
+        flare_height_ft=70.0,  # little nose-up elevator left in landing trim: start early
+        touchdown_sink_fps=3.0,
     ),
     "fokker100": AircraftProfile(
         model="fokker100",
@@ -167,7 +167,7 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.4,
         reverse_throttle=0.6,
         flare_height_ft=40.0,
-        touchdown_sink_fps=2.5,
+        touchdown_sink_fps=3.0,
     ),
     "787-8": AircraftProfile(
         model="787-8",
@@ -200,7 +200,7 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
         flare_height_ft=50.0,
-        touchdown_sink_fps=2.5,
+        touchdown_sink_fps=3.0,
     ),
 }
 

@@ -36,7 +36,8 @@ TAXI_DECEL_MPS2 = 0.5
 PUSHBACK_MPS = 1.2
 MAX_BANK_DEG = 45.0
 MAX_SINK_FPS = 10.0
-FLARE_HB_FT = 10.0  # exponential-flare bias height: touchdown sink about FLARE_HB_FT / tau
+ACCEL_HEIGHT_FT = 1500.0  # thrust reduction and acceleration height after takeoff
+FLARE_HB_FT = 15.0  # exponential-flare bias height: touchdown sink about FLARE_HB_FT / tau
 TOUCHDOWN_AIM_M = 300.0  # glideslope origin past the threshold (50 ft crossing height at 3 deg)
 
 
@@ -92,6 +93,7 @@ class Pilot:
         self._flare_tau = None
         self._theta_final = None
         self._t_last = None
+        self._t_accel = None
         self._en_route = False
         self._max_alt_m = -math.inf
 
@@ -511,12 +513,18 @@ class Pilot:
             self._event("gear_up")
         if "climb_rate_mps" not in self.summary and agl > 500 * FT_M:
             self.summary["climb_rate_mps"] = -x[ix["v_down_mps"]]
-        target = (p.v2_kt + 20.0) * KT_MPS if agl < 1000 * FT_M else 250.0 * KT_MPS
+        # V2 + 20 kt to the acceleration height (1500 ft), then accelerate while still climbing:
+        # the speed target ramps up at 1.5 kt/s (no level-off), thrust back to climb thrust
+        target = (p.v2_kt + 20.0) * KT_MPS
+        if agl > ACCEL_HEIGHT_FT * FT_M:
+            if self._t_accel is None:
+                self._t_accel = self._t
+                self._throttle(p.climb_throttle)
+                self._event("acceleration_height")
+            target = min(250.0, p.v2_kt + 20.0 + 1.5 * (self._t - self._t_accel)) * KT_MPS
         self._speed_on_pitch(x, target, lo_deg=5.0, hi_deg=15.0)
-        if agl > 1000 * FT_M:
-            self._throttle(p.climb_throttle)
         for v_kt, fl in p.flap_retract_kt:
-            if ias > v_kt * KT_MPS and fl < self.flaps and agl > 1000 * FT_M:
+            if ias > v_kt * KT_MPS and fl < self.flaps and agl > ACCEL_HEIGHT_FT * FT_M:
                 self._flaps(fl)
         self._lateral(x)
         if agl > 3000 * FT_M or (x[ix["alt_m"]] > self.plan.cruise_alt_m - 150.0):
@@ -708,5 +716,9 @@ class Pilot:
 
 
 # MIL-F-8785C probability-of-exceedance index (JSBSim milspec severity) and 20 ft wind (kt) per
-# severity code: light 1e-2 / 15 kt, moderate 1e-3 / 30 kt, severe 1e-5 / 45 kt.
-MILSPEC = {1: (3, 15.0), 2: (4, 30.0), 3: (6, 45.0)}
+# severity code: light 1e-3 / 15 kt, moderate 1e-5 / 30 kt, severe 1e-6 / 45 kt. Chosen so that the
+# A320 at FL360 meets the ICAO/FAA intensity definitions (FACTS.md) at its centre of gravity: peak
+# load-factor change in a 4-minute segment 0.25 g (light, < 0.5 g), 0.79 g (moderate, 0.5-1.0 g),
+# 1.14 g (severe, > 1.0 g). The handbook's own 1e-2 / 1e-3 / 1e-5 gave only 0.02 / 0.22 / 0.73 g
+# at cruise altitude (its 1e-2 curve vanishes above about 30,000 ft).
+MILSPEC = {1: (4, 15.0), 2: (6, 30.0), 3: (7, 45.0)}
