@@ -59,6 +59,22 @@ class AircraftProfile:
     spd_kp: float = 0.05  # throttle per m/s of speed error
     spd_ki: float = 0.005
     turn_bank_deg: float = 25.0
+    cabin_half_width_m: float = 1.8
+
+    @property
+    def locations_m(self) -> dict[str, tuple[float, float, float]]:
+        """Typical bag positions as lever arms from the CG in body axes (x forward, y right, z down;
+        m), for FlightTrack.specific_force_at: rough cabin and hold geometry scaled from the type's
+        length (the CG sits near 45 % of the fuselage). An assumption, not a seating chart."""
+        length, half = self.length_m, self.cabin_half_width_m
+        return {
+            "cabin_seat_front": (0.30 * length, -half * 0.6, 0.6),
+            "cabin_seat_mid": (0.0, half * 0.6, 0.6),
+            "cabin_seat_rear": (-0.30 * length, -half * 0.6, 0.6),
+            "overhead_bin_mid": (0.0, half * 0.85, -1.0),
+            "forward_hold": (0.22 * length, 0.0, 1.8),
+            "aft_hold": (-0.20 * length, 0.0, 1.8),
+        }
     taxi_turn_kt: float = 10.0  # FACTS.md: about 10 kt in turns
     rotate_elevator: float = 0.3  # nose-up elevator bias during rotation (fraction of full travel)
 
@@ -144,8 +160,8 @@ PROFILES: dict[str, AircraftProfile] = {
         cg_height_m=7.35 * 0.3048,
         wheelbase_m=14.0,
         fuel_kg=9000.0,
-        vr_kt=140.0,
-        v2_kt=148.0,
+        vr_kt=146.0,
+        v2_kt=152.0,
         climb_ias_kt=280.0,
         descent_ias_kt=280.0,
         vapp_kt=145.0,
@@ -173,6 +189,7 @@ PROFILES: dict[str, AircraftProfile] = {
         model="787-8",
         description="Boeing 787-8 (JSBSim 787-8, Trent 1000)",
         wrap_type="B788",
+        cabin_half_width_m=2.9,
         n_engines=2,
         length_m=56.7,
         wingspan_m=60.1,

@@ -94,6 +94,7 @@ class Pilot:
         self._theta_final = None
         self._t_last = None
         self._t_accel = None
+        self._t_alpha_high = None
         self._en_route = False
         self._max_alt_m = -math.inf
 
@@ -188,12 +189,18 @@ class Pilot:
         )
         if abs(math.degrees(x[ix["phi_rad"]])) > MAX_BANK_DEG:
             self._fail(f"bank angle {math.degrees(x[ix['phi_rad']]):.1f} deg exceeds {MAX_BANK_DEG:.0f} deg")
-        if self.phase in AIRBORNE_PHASES and x[ix["wow"]] < 0.5:
-            if math.degrees(x[ix["alpha_rad"]]) > self.prof.alpha_stall_deg:
+        # stall: angle of attack above the type's stall angle for a whole second (gusts in
+        # turbulence spike alpha for a fraction of a second without stalling the wing)
+        if self.phase in AIRBORNE_PHASES and x[ix["wow"]] < 0.5 and math.degrees(x[ix["alpha_rad"]]) > self.prof.alpha_stall_deg:
+            if self._t_alpha_high is None:
+                self._t_alpha_high = self._t
+            if self._t - self._t_alpha_high >= 1.0:
                 self._fail(
                     f"stall: angle of attack {math.degrees(x[ix['alpha_rad']]):.1f} deg above "
-                    f"{self.prof.alpha_stall_deg:.0f} deg at IAS {x[ix['ias_mps']] / KT_MPS:.0f} kt"
+                    f"{self.prof.alpha_stall_deg:.0f} deg for 1 s at IAS {x[ix['ias_mps']] / KT_MPS:.0f} kt"
                 )
+        else:
+            self._t_alpha_high = None
         if x[ix["agl_m"]] < -2.0:
             self._fail(f"below the ground: height above ground {x[ix['agl_m']]:.1f} m")
         if x[ix["alt_m"]] > 16000.0 or x[ix["mach"]] > 0.95:
@@ -654,6 +661,7 @@ class Pilot:
             self.ac.set("fcs/speedbrake-cmd-norm", 1.0)
             self.ac.set("fcs/spoiler-cmd-norm", 1.0)
             self._rollout_v0 = self._gs(x)
+            self._rev_thr = p.reverse_throttle
             self._rollout_t0 = self._t
             self.brake_pid.reset()
 
@@ -672,9 +680,12 @@ class Pilot:
         rev = nose_down and gs > 70.0 * KT_MPS
         for i in range(p.n_engines):
             self.ac.set(f"propulsion/engine[{i}]/reverser-angle-rad", math.pi if rev else 0.0)
-        self._throttle(p.reverse_throttle if rev else 0.0)
+        # reverse thrust is trimmed down when it alone decelerates harder than the autobrake target
+        target = self.plan.autobrake_decel_mps2
+        self._rev_thr = clamp(self._rev_thr + 0.5 * self.dt * (target - self._decel_f), 0.0, p.reverse_throttle)
+        self._throttle(self._rev_thr if rev else 0.0)
         if nose_down:
-            u = self.brake_pid(self.plan.autobrake_decel_mps2 - self._decel_f, self.dt)
+            u = self.brake_pid(target - self._decel_f, self.dt)
             self._brakes(u)
         if gs < 20.0 * KT_MPS:
             self.summary["rollout_decel_mps2"] = (self._rollout_v0 - gs) / (self._t - self._rollout_t0)

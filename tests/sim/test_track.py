@@ -46,3 +46,14 @@ def test_euler_quaternion_matches_scipy():
     ref_wxyz = ref[:, [3, 0, 1, 2]]
     sign = np.sign(np.sum(q * ref_wxyz, axis=1))[:, None]
     np.testing.assert_allclose(q, ref_wxyz * sign, atol=1e-12)
+
+
+def test_named_bag_locations_exist_for_every_profile():
+    from sim.aircraft_profiles import PROFILES
+
+    for prof in PROFILES.values():
+        loc = prof.locations_m
+        assert {"cabin_seat_mid", "overhead_bin_mid", "forward_hold", "aft_hold"} <= set(loc)
+        # holds are below the cabin floor (z down), bins above the seats, all inside the fuselage
+        assert loc["forward_hold"][2] > loc["cabin_seat_mid"][2] > loc["overhead_bin_mid"][2]
+        assert all(abs(v[0]) < prof.length_m / 2 for v in loc.values())
