@@ -181,7 +181,7 @@ PROFILES: dict[str, AircraftProfile] = {
         alpha_stall_deg=15.0,
         climb_throttle=0.95,
         taxi_throttle_max=0.4,
-        reverse_throttle=0.6,
+        reverse_throttle=0.4,
         flare_height_ft=40.0,
         touchdown_sink_fps=3.0,
     ),
