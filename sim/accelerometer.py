@@ -1,0 +1,270 @@
+"""Accelerometer models: named presets (frozen, vary them with ``dataclasses.replace``), per-unit
+draws within the datasheet tolerances, and the measurement chain from specific force to counts.
+
+Sources: LIS302DL datasheet figures and the flightmode assumptions in FACTS.md ("LIS302DL");
+seed 000 Table 1 (2.23 mg noise) and section 2 (a 100 Hz stream stored with 16-bit resolution);
+seed 003 (e-obs tags) sections 4, 6, 9 and 10.
+
+Chain, per axis, on a specific-force stream in the sensor frame sampled at an internal rate that is
+an integer multiple of the output data rate (ODR):
+
+1. per-unit cross-axis coupling and zero-g offset: ``a' = (I + C) a + o`` (C off-diagonal);
+2. (the per-unit sensitivity ``lsb (1 + s)`` enters at quantisation, step 6);
+3. the part's anti-alias low-pass (``bandwidth_hz``; a 2nd-order Butterworth, ``sosfilt``), or none
+   (e-obs: seed 003 section 1 says it has no anti-alias filter, so vibration aliases);
+4. sampling at the ODR (every k-th internal sample: whatever the filter let through aliases);
+5. white output noise, sigma ``noise_g`` per axis;
+6. quantisation to counts (``round(a / lsb)``, plus the zero-g count for offset-binary ADCs) and
+   saturation at the part's range (counts clip at the representable extremes).
+
+``acc_g`` is the counts converted back with the unit's *calibrated* sensitivity (as a logger
+would after calibration, seed 003 section 7), so the gain tolerance shows in the raw counts, and
+the offsets in both.
+
+The 8-bit LIS302DL: an 18 mg step is eight times the 2.23 mg noise, so a truly static part outputs
+an almost constant count and its variance is far below (2.23 mg)^2 (FACTS.md, "tension"). The
+preset ``lis302dl-logged16`` models seed 000's logger: the same part, stored at 16 bits over the
++-2.3 g range (0.07 mg steps), so the white noise survives and the static variance is 5.0e-6 g^2.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from sim.errors import FlightmodeError, did_you_mean
+
+
+class SensorError(FlightmodeError):
+    """A sensor preset, parameter or input stream that cannot be sensed as asked."""
+
+
+@dataclass(frozen=True, slots=True)
+class AccelerometerPreset:
+    name: str
+    description: str
+    odr_hz: float
+    allowed_odr_hz: tuple[float, ...]
+    range_g: float  # reading saturates at +-range_g
+    lsb_g: float | None  # quantisation step of the stored value; None: float output
+    bits: int | None  # width of the stored count
+    zero_count: int  # count at 0 g (0: two's complement; 2048: e-obs offset binary)
+    noise_g: float  # output white noise, 1 sigma per axis
+    bandwidth_hz: float | None  # anti-alias low-pass cut-off; None: no filter before sampling
+    offset_tol_g: float  # per-unit zero-g offset drawn uniformly in +-tol
+    sensitivity_tol: float  # per-unit relative gain error drawn uniformly in +-tol
+    cross_axis_tol: float  # per-unit cross-axis coupling drawn uniformly in +-tol
+    burst_interval_s: float | None = None  # e-obs: a burst every ACC interval
+    burst_samples: int | None = None  # e-obs: samples per axis in a burst
+
+    def validate(self) -> None:
+        if self.odr_hz not in self.allowed_odr_hz:
+            raise SensorError(
+                f"sensor '{self.name}': output data rate {self.odr_hz:g} Hz is not one the part has; "
+                f"allowed: {', '.join(f'{f:g}' for f in self.allowed_odr_hz)} Hz"
+            )
+        if self.noise_g < 0 or self.range_g <= 0:
+            raise SensorError(f"sensor '{self.name}': noise must be >= 0 and range > 0")
+        if self.lsb_g is not None and (self.bits is None or self.lsb_g <= 0):
+            raise SensorError(f"sensor '{self.name}': a quantised output needs bits and lsb_g > 0")
+        if (self.burst_interval_s is None) != (self.burst_samples is None):
+            raise SensorError(f"sensor '{self.name}': bursts need both burst_interval_s and burst_samples")
+        if self.burst_interval_s is not None and self.burst_samples / self.odr_hz > self.burst_interval_s:
+            raise SensorError(
+                f"sensor '{self.name}': a burst of {self.burst_samples} samples at {self.odr_hz:g} Hz is "
+                f"longer than the {self.burst_interval_s:g} s interval between bursts"
+            )
+
+    @property
+    def count_range(self) -> tuple[int, int]:
+        """Smallest and largest count the output can hold."""
+        if self.bits is None:
+            return (-(2**31), 2**31 - 1)
+        if self.zero_count == 0:
+            return (-(2 ** (self.bits - 1)), 2 ** (self.bits - 1) - 1)
+        return (0, 2**self.bits - 1)
+
+
+# LIS302DL, +-2 g: 8-bit two's complement, 18 mg/digit typ. (16.2-19.8), reads to about +-2.3 g,
+# ODR 100 or 400 Hz, bandwidth ODR/2, noise 2.23 mg (seed 000 Table 1). Offsets +-40 mg, cross-axis
+# +-2 %: FACTS.md assumptions. Sensitivity tolerance +-10 % is the datasheet's 16.2-19.8 mg/digit.
+_LIS_COMMON = dict(
+    allowed_odr_hz=(100.0, 400.0),
+    noise_g=2.23e-3,
+    offset_tol_g=0.040,
+    sensitivity_tol=0.10,
+    cross_axis_tol=0.02,
+    zero_count=0,
+)
+
+PRESETS: dict[str, AccelerometerPreset] = {
+    "lis302dl": AccelerometerPreset(
+        name="lis302dl",
+        description="ST LIS302DL, +-2 g, native 8-bit output (18 mg/digit), ODR 100 Hz",
+        odr_hz=100.0,
+        range_g=2.3,
+        lsb_g=0.018,
+        bits=8,
+        bandwidth_hz=50.0,
+        **_LIS_COMMON,
+    ),
+    "lis302dl-8g": AccelerometerPreset(
+        name="lis302dl-8g",
+        description="ST LIS302DL, +-8 g, native 8-bit output (72 mg/digit), ODR 100 Hz",
+        odr_hz=100.0,
+        range_g=9.2,
+        lsb_g=0.072,
+        bits=8,
+        bandwidth_hz=50.0,
+        **{**_LIS_COMMON, "offset_tol_g": 0.060},
+    ),
+    "lis302dl-logged16": AccelerometerPreset(
+        name="lis302dl-logged16",
+        description="LIS302DL as seed 000 logged it: 100 Hz stored at 16 bits over +-2.3 g (0.07 mg steps)",
+        odr_hz=100.0,
+        range_g=2.3,
+        lsb_g=4.6 / 2**16,
+        bits=16,
+        bandwidth_hz=50.0,
+        **_LIS_COMMON,
+    ),
+    # e-obs GPS-acceleration tag (seed 003): 12-bit ADC 0..4095, zero-g about 2048 per axis,
+    # a = (n - n0) * 0.0022 g for tags numbered > 2241 (section 6), so the range is about +-4.5 g;
+    # no anti-alias filter (section 1); sampling frequency is per axis. The calibration spread of
+    # the zero-g count (+-40 counts, i.e. +-88 mg) and the gain (+-5 %) is our assumption, to be
+    # replaced by the six-orientation calibration of section 7. Bursts: 3.3 s of 3 axes at 10 Hz
+    # every 60 s here; set burst_interval_s / burst_samples from the tag's ACC settings (sec. 9).
+    "eobs": AccelerometerPreset(
+        name="eobs",
+        description="e-obs tag accelerometer: 12-bit ADC (0.0022 g/count, zero-g 2048), no anti-alias filter",
+        odr_hz=10.0,
+        allowed_odr_hz=(1.0, 2.0, 5.0, 10.0, 20.0, 25.0, 33.33, 50.0, 100.0),
+        range_g=2048 * 0.0022,
+        lsb_g=0.0022,
+        bits=12,
+        zero_count=2048,
+        noise_g=1.0e-3,
+        bandwidth_hz=None,
+        offset_tol_g=40 * 0.0022,
+        sensitivity_tol=0.05,
+        cross_axis_tol=0.01,
+        burst_interval_s=60.0,
+        burst_samples=33,
+    ),
+    "ideal": AccelerometerPreset(
+        name="ideal",
+        description="ideal float accelerometer: no noise, offsets, quantisation or filter; 100 Hz",
+        odr_hz=100.0,
+        allowed_odr_hz=(100.0, 400.0),
+        range_g=1.0e6,
+        lsb_g=None,
+        bits=None,
+        zero_count=0,
+        noise_g=0.0,
+        bandwidth_hz=None,
+        offset_tol_g=0.0,
+        sensitivity_tol=0.0,
+        cross_axis_tol=0.0,
+    ),
+}
+
+
+def get_preset(name: str) -> AccelerometerPreset:
+    try:
+        return PRESETS[name]
+    except KeyError:
+        raise SensorError(
+            f"unknown sensor preset '{name}'{did_you_mean(name, PRESETS)}; presets: {', '.join(PRESETS)}"
+        ) from None
+
+
+@dataclass(frozen=True, slots=True)
+class UnitDraw:
+    """One physical unit's deviations from nominal, drawn once per unit."""
+
+    offset_g: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    sensitivity_err: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    cross_axis: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
+
+    def as_dict(self) -> dict:
+        return {
+            "offset_g": self.offset_g.tolist(),
+            "sensitivity_err": self.sensitivity_err.tolist(),
+            "cross_axis": self.cross_axis.tolist(),
+        }
+
+
+def draw_unit(preset: AccelerometerPreset, rng: np.random.Generator) -> UnitDraw:
+    """Draw a unit within the preset's tolerances (uniform: datasheets give bounds, not spreads)."""
+    off = rng.uniform(-preset.offset_tol_g, preset.offset_tol_g, 3)
+    sens = rng.uniform(-preset.sensitivity_tol, preset.sensitivity_tol, 3)
+    cross = rng.uniform(-preset.cross_axis_tol, preset.cross_axis_tol, (3, 3))
+    np.fill_diagonal(cross, 0.0)
+    return UnitDraw(off, sens, cross)
+
+
+@dataclass(frozen=True, slots=True)
+class Measurement:
+    t_s: np.ndarray  # (M,) sample times
+    counts: np.ndarray  # (M, 3) int32 raw output
+    acc_g: np.ndarray  # (M, 3) counts converted to g with the unit's calibrated sensitivity
+    clipped: np.ndarray  # (M, 3) bool: the sample sat at the range limit
+
+
+def measure(
+    f_sensor_g: np.ndarray,
+    fs_internal_hz: float,
+    t0_s: float,
+    preset: AccelerometerPreset,
+    unit: UnitDraw,
+    rng: np.random.Generator,
+) -> Measurement:
+    """Run the measurement chain (module docstring) on an (N, 3) specific force in g, sensor frame.
+
+    ``fs_internal_hz`` must be an integer multiple of the preset's ODR; the first output sample
+    is the internal sample at ``t0_s``.
+    """
+    preset.validate()
+    f = np.asarray(f_sensor_g, dtype=float)
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise SensorError(f"specific force must be an (N, 3) array, got shape {f.shape}")
+    if not np.isfinite(f).all():
+        bad = int(np.flatnonzero(~np.isfinite(f).all(axis=1))[0])
+        raise SensorError(f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken")
+    ratio = fs_internal_hz / preset.odr_hz
+    k = int(round(ratio))
+    if k < 1 or abs(ratio - k) > 1e-9:
+        raise SensorError(
+            f"internal rate {fs_internal_hz:g} Hz is not an integer multiple of the ODR {preset.odr_hz:g} Hz"
+        )
+    a = f @ (np.eye(3) + unit.cross_axis).T + unit.offset_g
+    if preset.bandwidth_hz is not None and preset.bandwidth_hz < fs_internal_hz / 2:
+        from scipy.signal import butter, sosfilt
+
+        sos = butter(2, preset.bandwidth_hz, fs=fs_internal_hz, output="sos")
+        # start the filter in its steady state for the first sample (no power-on transient)
+        from scipy.signal import sosfilt_zi
+
+        zi = sosfilt_zi(sos)[:, :, None] * a[0][None, None, :]
+        a, _ = sosfilt(sos, a, axis=0, zi=zi)
+    a = a[::k]
+    t = t0_s + np.arange(a.shape[0]) / preset.odr_hz
+    if preset.noise_g > 0:
+        a = a + rng.normal(0.0, preset.noise_g, a.shape)
+    sens_g = preset.lsb_g * (1.0 + unit.sensitivity_err) if preset.lsb_g is not None else None
+    lo, hi = preset.count_range
+    if preset.lsb_g is None:
+        clipped = np.abs(a) >= preset.range_g
+        a = np.clip(a, -preset.range_g, preset.range_g)
+        counts = np.zeros(a.shape, dtype=np.int32)
+        return Measurement(t, counts, a, clipped)
+    # the unit's own sensitivity (lsb * (1 + s), in g per count) maps g to counts; the count
+    # saturates at the range and at the width of the word
+    raw = np.rint(a / sens_g[None, :]) + preset.zero_count
+    lim_lo = max(lo, preset.zero_count - int(round(preset.range_g / preset.lsb_g)))
+    lim_hi = min(hi, preset.zero_count + int(round(preset.range_g / preset.lsb_g)))
+    clipped = (raw <= lim_lo) | (raw >= lim_hi)
+    counts = np.clip(raw, lim_lo, lim_hi).astype(np.int32)
+    acc = (counts - preset.zero_count) * sens_g[None, :]
+    return Measurement(t, counts, acc, clipped)
