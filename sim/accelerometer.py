@@ -212,6 +212,66 @@ class Measurement:
     clipped: np.ndarray  # (M, 3) bool: the sample sat at the range limit
 
 
+class SensorChain:
+    """The measurement chain with its state (filter memory, sampling phase), so that a long
+    stream can be sensed chunk by chunk with the same result as in one piece."""
+
+    def __init__(self, preset: AccelerometerPreset, unit: UnitDraw, fs_internal_hz: float):
+        preset.validate()
+        ratio = fs_internal_hz / preset.odr_hz
+        k = int(round(ratio))
+        if k < 1 or abs(ratio - k) > 1e-9:
+            raise SensorError(
+                f"internal rate {fs_internal_hz:g} Hz is not an integer multiple of the ODR {preset.odr_hz:g} Hz"
+            )
+        self.preset, self.unit, self.k, self.fs = preset, unit, k, fs_internal_hz
+        self._mix = (np.eye(3) + unit.cross_axis).T
+        self._sos = None
+        if preset.bandwidth_hz is not None and preset.bandwidth_hz < fs_internal_hz / 2:
+            from scipy.signal import butter
+
+            self._sos = butter(2, preset.bandwidth_hz, fs=fs_internal_hz, output="sos")
+        self._zi = None
+        self._phase = 0  # index within the next chunk of the next internal sample to keep
+        self._n_out = 0
+
+    def __call__(self, f_sensor_g: np.ndarray, t0_s: float, rng: np.random.Generator) -> Measurement:
+        """Sense a chunk; ``t0_s`` is the time of the first sample of the whole stream."""
+        preset, unit = self.preset, self.unit
+        f = np.asarray(f_sensor_g, dtype=float)
+        if f.ndim != 2 or f.shape[1] != 3:
+            raise SensorError(f"specific force must be an (N, 3) array, got shape {f.shape}")
+        if not np.isfinite(f).all():
+            bad = int(np.flatnonzero(~np.isfinite(f).all(axis=1))[0])
+            raise SensorError(f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken")
+        a = f @ self._mix + unit.offset_g
+        if self._sos is not None:
+            from scipy.signal import sosfilt, sosfilt_zi
+
+            if self._zi is None:  # start in the steady state of the first sample (no power-on transient)
+                self._zi = sosfilt_zi(self._sos)[:, :, None] * a[0][None, None, :]
+            a, self._zi = sosfilt(self._sos, a, axis=0, zi=self._zi)
+        a = a[self._phase :: self.k]
+        self._phase = (self._phase - f.shape[0]) % self.k
+        t = t0_s + (self._n_out + np.arange(a.shape[0])) / preset.odr_hz
+        self._n_out += a.shape[0]
+        if preset.noise_g > 0:
+            a = a + rng.normal(0.0, preset.noise_g, a.shape)
+        if preset.lsb_g is None:
+            clipped = np.abs(a) >= preset.range_g
+            return Measurement(t, np.zeros(a.shape, np.int32), np.clip(a, -preset.range_g, preset.range_g), clipped)
+        # the unit's own sensitivity (lsb * (1 + s), in g per count) maps g to counts; the count
+        # saturates at the range and at the width of the word
+        sens_g = preset.lsb_g * (1.0 + unit.sensitivity_err)
+        lo, hi = preset.count_range
+        raw = np.rint(a / sens_g[None, :]) + preset.zero_count
+        lim_lo = max(lo, preset.zero_count - int(round(preset.range_g / preset.lsb_g)))
+        lim_hi = min(hi, preset.zero_count + int(round(preset.range_g / preset.lsb_g)))
+        clipped = (raw <= lim_lo) | (raw >= lim_hi)
+        counts = np.clip(raw, lim_lo, lim_hi).astype(np.int32)
+        return Measurement(t, counts, (counts - preset.zero_count) * sens_g[None, :], clipped)
+
+
 def measure(
     f_sensor_g: np.ndarray,
     fs_internal_hz: float,
@@ -220,51 +280,5 @@ def measure(
     unit: UnitDraw,
     rng: np.random.Generator,
 ) -> Measurement:
-    """Run the measurement chain (module docstring) on an (N, 3) specific force in g, sensor frame.
-
-    ``fs_internal_hz`` must be an integer multiple of the preset's ODR; the first output sample
-    is the internal sample at ``t0_s``.
-    """
-    preset.validate()
-    f = np.asarray(f_sensor_g, dtype=float)
-    if f.ndim != 2 or f.shape[1] != 3:
-        raise SensorError(f"specific force must be an (N, 3) array, got shape {f.shape}")
-    if not np.isfinite(f).all():
-        bad = int(np.flatnonzero(~np.isfinite(f).all(axis=1))[0])
-        raise SensorError(f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken")
-    ratio = fs_internal_hz / preset.odr_hz
-    k = int(round(ratio))
-    if k < 1 or abs(ratio - k) > 1e-9:
-        raise SensorError(
-            f"internal rate {fs_internal_hz:g} Hz is not an integer multiple of the ODR {preset.odr_hz:g} Hz"
-        )
-    a = f @ (np.eye(3) + unit.cross_axis).T + unit.offset_g
-    if preset.bandwidth_hz is not None and preset.bandwidth_hz < fs_internal_hz / 2:
-        from scipy.signal import butter, sosfilt
-
-        sos = butter(2, preset.bandwidth_hz, fs=fs_internal_hz, output="sos")
-        # start the filter in its steady state for the first sample (no power-on transient)
-        from scipy.signal import sosfilt_zi
-
-        zi = sosfilt_zi(sos)[:, :, None] * a[0][None, None, :]
-        a, _ = sosfilt(sos, a, axis=0, zi=zi)
-    a = a[::k]
-    t = t0_s + np.arange(a.shape[0]) / preset.odr_hz
-    if preset.noise_g > 0:
-        a = a + rng.normal(0.0, preset.noise_g, a.shape)
-    sens_g = preset.lsb_g * (1.0 + unit.sensitivity_err) if preset.lsb_g is not None else None
-    lo, hi = preset.count_range
-    if preset.lsb_g is None:
-        clipped = np.abs(a) >= preset.range_g
-        a = np.clip(a, -preset.range_g, preset.range_g)
-        counts = np.zeros(a.shape, dtype=np.int32)
-        return Measurement(t, counts, a, clipped)
-    # the unit's own sensitivity (lsb * (1 + s), in g per count) maps g to counts; the count
-    # saturates at the range and at the width of the word
-    raw = np.rint(a / sens_g[None, :]) + preset.zero_count
-    lim_lo = max(lo, preset.zero_count - int(round(preset.range_g / preset.lsb_g)))
-    lim_hi = min(hi, preset.zero_count + int(round(preset.range_g / preset.lsb_g)))
-    clipped = (raw <= lim_lo) | (raw >= lim_hi)
-    counts = np.clip(raw, lim_lo, lim_hi).astype(np.int32)
-    acc = (counts - preset.zero_count) * sens_g[None, :]
-    return Measurement(t, counts, acc, clipped)
+    """Run the measurement chain (module docstring) on a whole (N, 3) specific force in g."""
+    return SensorChain(preset, unit, fs_internal_hz)(f_sensor_g, t0_s, rng)

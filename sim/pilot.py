@@ -64,7 +64,7 @@ class Pilot:
         p = profile
         self.pitch_pid = PID(p.pitch_kp, p.pitch_ki, 0.0, -1.0, 1.0)
         self.spd_pid = PID(p.spd_kp, p.spd_ki, 0.0, 0.0, 1.0)
-        self.climb_spd_pid = PID(0.01, 0.004, 0.0, -0.1, 0.35)  # rad per m/s
+        self.climb_spd_pid = PID(0.008, 0.001, 0.04, -0.1, 0.35)  # rad per m/s; kd damps the phugoid
         self.gamma_pid = PID(1.0, 0.4, 0.0, -0.2, 0.35)  # rad per rad
         self._thr = 0.0
         self.ground_spd_pid = PID(0.08, 0.02, 0.0, 0.0, p.taxi_throttle_max)

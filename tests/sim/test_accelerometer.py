@@ -122,3 +122,16 @@ def test_bad_input_is_named():
 def test_every_preset_validates():
     for p in PRESETS.values():
         p.validate()
+
+
+def test_chunked_sensing_equals_one_piece():
+    from sim.accelerometer import SensorChain
+
+    p = get_preset("lis302dl")
+    f = np.random.default_rng(3).normal(0, 0.05, (12000, 3)) + [0, 0, 1]
+    unit = draw_unit(p, np.random.default_rng(4))
+    whole = SensorChain(p, unit, 1200.0)(f, 0.0, np.random.default_rng(9))
+    chain, rng = SensorChain(p, unit, 1200.0), np.random.default_rng(9)
+    parts = [chain(f[a:b], 0.0, rng) for a, b in [(0, 1000), (1000, 1001), (1001, 7777), (7777, 12000)]]
+    np.testing.assert_array_equal(np.concatenate([m.counts for m in parts]), whole.counts)
+    np.testing.assert_array_equal(np.concatenate([m.t_s for m in parts]), whole.t_s)

@@ -49,6 +49,11 @@ def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_
     within(m["final_approach_vs_mps"], w.finalapp_vs(), "final approach vertical rate (m/s)")
     within(m["touchdown_gs_mps"], w.landing_speed(), "landing speed (m/s)")
     within(-m["rollout_decel_mps2"], w.landing_acceleration(), "braking acceleration (m/s^2)")
+    # passenger-transport manoeuvring: outside turbulence, the vertical load factor stays within
+    # 1 +- 0.3 g while airborne (the pilot must not porpoise; touchdown itself is excluded)
+    nz = -tr.specific_force_body_mps2[:, 2] / 9.80665
+    calm_air = tr.airborne & (tr.turbulence_code == 0)
+    assert 0.7 < nz[calm_air].min() and nz[calm_air].max() < 1.3, (nz[calm_air].min(), nz[calm_air].max())
     # touchdown quality (the acceptance ranges)
     sink_fpm = m["touchdown_sink_mps"] / FT_M * 60.0
     assert 60.0 <= sink_fpm <= 600.0, f"touchdown sink rate {sink_fpm:.0f} ft/min"

@@ -1,0 +1,68 @@
+"""Recording: what the bag's accelerometer stored, with per-sample truth labels (DESIGN.md)."""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import asdict, dataclass, fields
+
+import numpy as np
+
+from sim.carrier import BAG_STATES, CarrierSpec
+from sim.labels import PHASES, SEVERITIES
+
+
+@dataclass(frozen=True, slots=True)
+class Recording:
+    """One row per output sample. Shapes (M,) or (M, 3)."""
+
+    t_s: np.ndarray  # FlightTrack time (negative before the track starts, in the terminal)
+    counts: np.ndarray  # raw output counts, int32 (zeros for a float 'ideal' sensor)
+    acc_g: np.ndarray  # counts in g (calibrated unit sensitivity)
+    clipped: np.ndarray  # bool: the sample saturated
+    odr_hz: float
+    preset: str
+    unit: dict  # the drawn per-unit parameters (offsets, sensitivity errors, cross-axis)
+    carrier: CarrierSpec
+    aircraft: str
+    phase_code: np.ndarray
+    in_flight_window: np.ndarray
+    airborne: np.ndarray
+    turbulence_code: np.ndarray
+    bag_state_code: np.ndarray
+    sensor_static: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return int(self.t_s.shape[0])
+
+    @property
+    def phase(self) -> np.ndarray:
+        return np.asarray(PHASES, dtype=object)[self.phase_code]
+
+    @property
+    def bag_state(self) -> np.ndarray:
+        return np.asarray(BAG_STATES, dtype=object)[self.bag_state_code]
+
+    @property
+    def turbulence_severity(self) -> np.ndarray:
+        return np.asarray(SEVERITIES, dtype=object)[self.turbulence_code]
+
+    def summary(self) -> dict:
+        return {
+            "preset": self.preset,
+            "odr_hz": self.odr_hz,
+            "samples": self.n,
+            "duration_s": float(self.t_s[-1] - self.t_s[0]),
+            "unit": self.unit,
+            "carrier": asdict(self.carrier),
+            "static_fraction": float(self.sensor_static.mean()),
+            "clipped_samples": int(self.clipped.any(axis=1).sum()),
+        }
+
+    def digest(self) -> str:
+        h = hashlib.sha256()
+        for f in fields(self):
+            v = getattr(self, f.name)
+            h.update(f.name.encode())
+            h.update(np.ascontiguousarray(v).tobytes() if isinstance(v, np.ndarray) else repr(v).encode())
+        return h.hexdigest()

@@ -1,0 +1,179 @@
+"""Sensing: a FlightTrack plus a carrier timeline plus an accelerometer -> a labelled Recording.
+
+Everything is generated at ``FS_INTERNAL_HZ`` (1200 Hz: a multiple of the 120 Hz FDM, and of the
+100 and 400 Hz ODRs), chunk by chunk with every filter's state carried across chunks, then the
+accelerometer's own filter and sampling decide what reaches its output (aliasing included).
+
+Frames: on board, the floor's specific force is the FlightTrack's at the bag's lever arm (body
+axes) plus airframe vibration, passed through the placement's spring-damper mount; the sensor
+frame is rotated from the body frame by the bag's orientation, drawn anew at every put-down. Off
+board, the bag is in a local north/east/down frame: specific force = motion - gravity.
+
+Labels (DESIGN.md) per output sample: ``phase`` (the bag's: terminal_walk ... boarding, then the
+aircraft's phases while on board, deplaning, arrival_rest), ``in_flight_window``, ``airborne``,
+``turbulence_severity`` (from the FlightTrack; false/none outside it), ``bag_state`` and
+``sensor_static``: true only while the bag rests (in the terminal or at arrival) or sits stowed
+with the engines stopped (before engine start, after engines off), and not within
+``SETTLE_S`` of a put-down.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from sim import carrier as car
+from sim.accelerometer import AccelerometerPreset, SensorChain, SensorError, draw_unit
+from sim.aircraft_profiles import get_profile
+from sim.labels import PHASE_CODE
+from sim.recording import Recording
+from sim.track import FlightTrack
+from sim.vibration import VibrationModel, initial_state, vibration_g
+
+FS_INTERNAL_HZ = 1200.0
+CHUNK_S = 60.0
+SETTLE_S = 2.0
+G0 = 9.80665
+BAG_STATE_CODE = {s: i for i, s in enumerate(car.BAG_STATES)}
+
+
+def isa_density_kgpm3(alt_m: np.ndarray) -> np.ndarray:
+    """ISA air density (troposphere and lower stratosphere)."""
+    h = np.asarray(alt_m, float)
+    tropo = 1.225 * np.clip(1.0 - 2.25577e-5 * h, 0.0, None) ** 4.2559
+    strato = 0.36392 * np.exp(-(h - 11000.0) / 6341.62)
+    return np.where(h < 11000.0, tropo, strato)
+
+
+def _check_track(track: FlightTrack) -> None:
+    if not np.all(np.diff(track.t_s) > 0):
+        i = int(np.flatnonzero(np.diff(track.t_s) <= 0)[0])
+        raise SensorError(f"FlightTrack time is not strictly increasing at sample {i} (t = {track.t_s[i]:.3f} s)")
+    for name in ("specific_force_body_mps2", "rates_radps", "ang_acc_radps2", "n1_pct", "tas_mps", "alt_m"):
+        a = getattr(track, name)
+        if not np.isfinite(a).all():
+            raise SensorError(f"FlightTrack.{name} has NaN or inf: re-fly the scenario")
+
+
+def sense(
+    track: FlightTrack,
+    spec: car.CarrierSpec,
+    preset: AccelerometerPreset,
+    rng: np.random.Generator,
+    vibration: VibrationModel = VibrationModel(),
+) -> Recording:
+    """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``."""
+    _check_track(track)
+    preset.validate()
+    prof = get_profile(track.aircraft)
+    unit = draw_unit(preset, rng)
+    events = {e.name: e.t_s for e in track.events}
+    cruise_idx = np.flatnonzero(track.phase_code == PHASE_CODE["cruise"])
+    cruise = (float(track.t_s[cruise_idx[0]]), float(track.t_s[cruise_idx[-1]])) if cruise_idx.size else None
+    segs = car.build_timeline(spec, events, float(track.t_s[-1]), cruise, rng)
+    seg_t0 = np.array([s.t0_s for s in segs])
+    t_start, t_end = segs[0].t0_s, segs[-1].t1_s
+    fs = FS_INTERNAL_HZ
+    dt = 1.0 / fs
+    n_total = int(round((t_end - t_start) * fs))
+
+    # per-segment motion (walks, handling) drawn up front, in segment order
+    motion: dict[int, np.ndarray] = {}
+    for i, s in enumerate(segs):
+        n = int(round((s.t1_s - s.t0_s) * fs)) + 1
+        if s.state == "handled":
+            motion[i] = car.handling_accel_mps2(n, dt, rng)
+        elif s.walking:
+            motion[i] = car.gait_accel_mps2(np.arange(n) * dt, spec, rng)
+    # put-down shocks at the start of every resting / stowed segment that follows a carried one
+    pulse = car.putdown_pulse_mps2(int(0.2 * fs), dt, spec)
+
+    # track channels at 120 Hz, interpolated per chunk
+    loc = prof.locations_m[car.LOCATION_OF[spec.placement]]
+    f_loc = track.specific_force_at(loc)
+    qbar = 0.5 * isa_density_kgpm3(track.alt_m) * track.tas_mps**2
+    mount = car.mount_sos(spec.placement, fs)
+    mount_zi = [np.zeros((sos.shape[0], 2)) for sos in mount]
+    vstate = initial_state(track.n1_pct.shape[1], vibration, rng)
+    chain = SensorChain(preset, unit, fs)
+    meas = []
+    first_f = None
+    for c0 in range(0, n_total, int(CHUNK_S * fs)):
+        n = min(int(CHUNK_S * fs), n_total - c0)
+        t = t_start + (c0 + np.arange(n)) * dt
+        tt = np.clip(t, track.t_s[0], track.t_s[-1])
+
+        def interp(a):
+            if a.ndim == 1:
+                return np.interp(tt, track.t_s, a)
+            return np.stack([np.interp(tt, track.t_s, a[:, j]) for j in range(a.shape[1])], axis=1)
+
+        fl = interp(f_loc)
+        n1, n2 = interp(track.n1_pct), interp(track.n2_pct)
+        vib_g, vstate = vibration_g(
+            n1, n2, interp(qbar), interp(track.ground_speed_mps), interp(track.wow.astype(float)) > 0.5,
+            fs, track.aircraft, vibration, vstate, rng,
+        )
+        floor = fl + vib_g * G0
+        bag = np.empty_like(floor)
+        for ax in range(3):
+            from scipy.signal import sosfilt
+
+            if first_f is None and ax == 0:
+                # start the mounts in their steady state (DC gain 1)
+                from scipy.signal import sosfilt_zi
+
+                for j in range(3):
+                    mount_zi[j] = sosfilt_zi(mount[j]) * floor[0, j]
+                first_f = True
+            bag[:, ax], mount_zi[ax] = sosfilt(mount[ax], floor[:, ax], zi=mount_zi[ax])
+        f_sensor = np.empty((n, 3))
+        si = np.searchsorted(seg_t0, t, side="right") - 1
+        for k in np.unique(si):
+            s = segs[k]
+            sel = si == k
+            j = np.round((t[sel] - s.t0_s) * fs).astype(int)
+            if s.on_board:
+                f_frame = fl[sel] + motion[k][j] if s.state == "handled" else bag[sel]
+            else:
+                f_frame = np.zeros((sel.sum(), 3))
+                f_frame[:, 2] = -G0  # specific force of a body at rest in N/E/Down
+                if k in motion:
+                    f_frame += motion[k][j]
+            if s.state in ("resting", "stowed", "in_hold") and k > 0 and segs[k - 1].state in ("carried", "handled"):
+                inside = j < pulse.shape[0]
+                f_frame[inside, 2] -= pulse[j[inside]]
+            f_sensor[sel] = f_frame @ s.orientation  # rows: R^T f, sensor <- frame
+        meas.append(chain(f_sensor / G0, t_start, rng))
+    t_out = np.concatenate([m.t_s for m in meas])
+    counts = np.concatenate([m.counts for m in meas])
+    acc = np.concatenate([m.acc_g for m in meas])
+    clipped = np.concatenate([m.clipped for m in meas])
+    labels = _labels(t_out, segs, track, events)
+    return Recording(
+        t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
+        preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft, **labels,
+    )
+
+
+def _labels(t: np.ndarray, segs: list[car.Segment], track: FlightTrack, events: dict[str, float]) -> dict:
+    seg_t0 = np.array([s.t0_s for s in segs])
+    si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
+    inside = (t >= track.t_s[0]) & (t <= track.t_s[-1])
+    ti = np.clip(np.rint((t - track.t_s[0]) * track.fs_hz).astype(int), 0, track.n - 1)
+    phase = track.phase_code[ti].copy()
+    state = np.array([BAG_STATE_CODE[s.state] for s in segs], dtype=np.uint8)[si]
+    own_phase = np.array([PHASE_CODE[s.phase] if s.phase else 255 for s in segs])[si]
+    phase = np.where(own_phase != 255, own_phase, phase).astype(np.uint8)
+    in_window = track.in_flight_window[ti] & inside
+    airborne = track.airborne[ti] & inside
+    turb = np.where(inside, track.turbulence_code[ti], 0).astype(np.uint8)
+    engines_stopped = (t < events["engine_start"]) | (t >= events["engines_off"])
+    resting = np.isin(state, [BAG_STATE_CODE["resting"]])
+    stowed_quiet = np.isin(state, [BAG_STATE_CODE["stowed"], BAG_STATE_CODE["in_hold"]]) & engines_stopped
+    since_start = t - seg_t0[si]
+    settled = since_start >= SETTLE_S
+    static = (resting | stowed_quiet) & settled
+    return dict(
+        phase_code=phase, in_flight_window=in_window, airborne=airborne, turbulence_code=turb,
+        bag_state_code=state, sensor_static=static,
+    )

@@ -1,0 +1,138 @@
+"""Airframe vibration at the cabin floor / hold, generated at the internal rate (>= 1 kHz) so that
+the accelerometer's own filter and sampling decide what survives (aliasing included).
+
+Components (all amplitudes are flightmode assumptions: FACTS.md found no public cabin or cargo
+vibration PSD; they are named parameters of :class:`VibrationModel` and documented here):
+
+- engine lines: each engine's fan (N1) and core (N2) rotation, f = rpm / 60 with the N1 first and
+  second harmonics; amplitude grows with the square of the spool speed (imbalance force ~ w^2);
+- airframe structural modes between 10 and 30 Hz: lightly damped resonators driven by white noise
+  whose level rises with engine power and with dynamic pressure (airflow);
+- runway: roughness (broadband, level proportional to ground speed) and pavement-joint bumps every
+  ``joint_spacing_m`` (an impulse train at v / spacing Hz) while on the gear;
+- no vibration at all with the engines stopped and the aircraft at rest.
+
+Directions: body z (vertical) carries the most, then y and x (``axis_share``).
+
+Engine spool speeds (rpm at 100 %): CFM56-5B N1 5000 / N2 14460 (FACTS.md); CFM56-3 (737) 5490 /
+15183; Rolls-Royce Tay 650 (fokker100) 8400 / 12500; Trent 1000 (787-8) 2683 / 13391 (public type
+certificate data sheets, rounded).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.signal import iirpeak, lfilter
+
+ENGINE_RPM = {  # model -> (N1 rpm at 100 %, N2 rpm at 100 %)
+    "A320": (5000.0, 14460.0),
+    "737": (5490.0, 15183.0),
+    "fokker100": (8400.0, 12500.0),
+    "787-8": (2683.0, 13391.0),
+}
+
+
+@dataclass(frozen=True, slots=True)
+class VibrationModel:
+    n1_line_g: float = 1.5e-3  # first N1 harmonic at 100 % N1, per engine
+    n1_h2_g: float = 0.5e-3  # second N1 harmonic at 100 % N1
+    n2_line_g: float = 0.4e-3  # N2 line at 100 % N2
+    mode_hz: tuple[float, ...] = (11.0, 16.5, 22.0, 27.5)  # airframe modes (10-30 Hz)
+    mode_q: float = 8.0
+    mode_engine_g: float = 2.0e-3  # modal RMS per mode at 100 % N1 (both engines)
+    mode_airflow_g: float = 2.0e-3  # modal RMS per mode at q = 15 kPa (cruise-like)
+    roughness_g_per_mps: float = 0.15e-3  # runway roughness RMS per m/s of ground speed
+    joint_spacing_m: float = 5.0
+    joint_impulse_g: float = 20.0e-3  # peak of one joint bump (decays through the modes)
+    axis_share: tuple[float, float, float] = (0.35, 0.5, 1.0)  # x, y, z relative weights
+
+
+@dataclass(frozen=True, slots=True)
+class VibrationState:
+    """Filter states and oscillator phases carried from one chunk to the next."""
+
+    phases: np.ndarray  # (n_engines, 3) radians: N1, 2*N1, N2
+    mode_zi: np.ndarray  # (n_modes, 3 axes, 2)
+    joint_pos_m: float  # distance rolled since the last joint
+
+
+def initial_state(n_engines: int, model: VibrationModel, rng: np.random.Generator) -> VibrationState:
+    return VibrationState(
+        phases=rng.uniform(0.0, 2 * np.pi, (n_engines, 3)),
+        mode_zi=np.zeros((len(model.mode_hz), 3, 2)),
+        joint_pos_m=float(rng.uniform(0.0, model.joint_spacing_m)),
+    )
+
+
+def vibration_g(
+    n1_pct: np.ndarray,
+    n2_pct: np.ndarray,
+    qbar_pa: np.ndarray,
+    ground_speed_mps: np.ndarray,
+    on_ground: np.ndarray,
+    fs_hz: float,
+    aircraft: str,
+    model: VibrationModel,
+    state: VibrationState,
+    rng: np.random.Generator,
+) -> tuple[np.ndarray, VibrationState]:
+    """Vibration (N, 3) in g, body axes, for one chunk of inputs at ``fs_hz``; returns the new state.
+
+    Inputs are per internal sample: N1 and N2 (N, n_engines) in %, dynamic pressure (N,) in Pa,
+    ground speed (N,) in m/s, weight on wheels (N,) bool.
+    """
+    n = n1_pct.shape[0]
+    rpm1, rpm2 = ENGINE_RPM[aircraft]
+    dt = 1.0 / fs_hz
+    share = np.asarray(model.axis_share)
+    out = np.zeros((n, 3))
+    # engine lines: phase = integral of 2 pi f dt, continuous across chunks
+    phases = state.phases.copy()
+    line = np.zeros(n)
+    for e in range(n1_pct.shape[1]):
+        f1 = n1_pct[:, e] / 100.0 * rpm1 / 60.0
+        f2 = n2_pct[:, e] / 100.0 * rpm2 / 60.0
+        for j, (f, amp) in enumerate(
+            ((f1, model.n1_line_g), (2.0 * f1, model.n1_h2_g), (f2, model.n2_line_g))
+        ):
+            ph = phases[e, j] + 2.0 * np.pi * np.cumsum(f) * dt
+            level = amp * (n1_pct[:, e] / 100.0) ** 2 if j < 2 else amp * (n2_pct[:, e] / 100.0) ** 2
+            line += level * np.sin(ph)
+            phases[e, j] = ph[-1] % (2.0 * np.pi)
+    # engine lines reach the floor mostly vertically, a third laterally (fixed mixing)
+    out += line[:, None] * share[None, :]
+    # structural modes: white noise through resonators, excitation level from power and airflow
+    power = np.mean((n1_pct / 100.0) ** 2, axis=1)
+    level = model.mode_engine_g * power + model.mode_airflow_g * np.clip(qbar_pa / 15000.0, 0.0, 2.0)
+    # runway: roughness and joint bumps feed the same modes while rolling
+    rolling = on_ground & (ground_speed_mps > 0.5)
+    rough = model.roughness_g_per_mps * ground_speed_mps * rolling
+    dist = state.joint_pos_m + np.cumsum(ground_speed_mps * rolling) * dt
+    joints = np.zeros(n)
+    k = np.floor(dist / model.joint_spacing_m)
+    hit = np.flatnonzero(np.diff(np.concatenate([[np.floor(state.joint_pos_m / model.joint_spacing_m)], k])) > 0)
+    joints[hit] = model.joint_impulse_g
+    new_joint = float(dist[-1] % model.joint_spacing_m) if n else state.joint_pos_m
+    mode_zi = state.mode_zi.copy()
+    for m_i, f0 in enumerate(model.mode_hz):
+        b, a = iirpeak(f0, model.mode_q, fs=fs_hz)
+        # unit-RMS resonator output for unit-variance white input: scale by the noise bandwidth
+        gain = 1.0 / np.sqrt(_rms_gain(b, a))
+        for ax in range(3):
+            drive = rng.standard_normal(n) * (level + rough) * gain + joints * (ax == 2)
+            y, mode_zi[m_i, ax] = lfilter(b, a, drive, zi=mode_zi[m_i, ax])
+            out[:, ax] += y * share[ax]
+    return out, VibrationState(phases, mode_zi, new_joint)
+
+
+def _rms_gain(b: np.ndarray, a: np.ndarray) -> float:
+    """Output variance of the filter for unit-variance white input (sum of the squared impulse response)."""
+    imp = np.zeros(4096)
+    imp[0] = 1.0
+    h = lfilter(b, a, imp)
+    return float(np.sum(h**2))
+
+
+__all__ = ["VibrationModel", "VibrationState", "initial_state", "vibration_g", "ENGINE_RPM"]
