@@ -79,8 +79,9 @@ def fly_cmd(
     out: Annotated[Path, typer.Option("--out", help="Output folder; the run goes to OUT/<scenario>-s<seed>/.")] = Path(
         "runs"
     ),
+    sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset (default: the scenario's).")] = None,
 ) -> None:
-    """Fly a scenario gate to gate in JSBSim; write truth.parquet and run.json."""
+    """Fly a scenario gate to gate in JSBSim, sense it; write truth.parquet, samples.parquet, run.json."""
     from scenarios import run_io
     from sim.flight import fly
     from sim.flight_metrics import flight_metrics
@@ -119,12 +120,89 @@ def fly_cmd(
             wall = time.perf_counter() - t0
             metrics = flight_metrics(track, plan)
             run_io.write_truth(stage, track)
+            rec, sense_wall = _sense(track, plan.extra, plan.seed, sensor)
+            run_io.write_samples(stage, rec)
             info = run_io.run_info(plan, desc, str(path), track, metrics)
             info["wall_time_s"] = wall
+            info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
             run_io.write_run_json(stage, info)
         _print_summary(plan, track, metrics, wall)
-        console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), " (truth.parquet, run.json)"))
+        _print_sensor(rec)
+        console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), " (truth.parquet, samples.parquet, run.json)"))
     except FlightmodeError as e:
+        _die(e)
+
+
+def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: dict | None = None):
+    """Sense a track with the scenario's carrier and sensor (``sensor`` overrides the preset)."""
+    import numpy as np
+
+    from sim.accelerometer import get_preset
+    from sim.carrier import CarrierSpec
+    from sim.sensing import sense
+
+    sens = dict(extra.get("sensor") or {"preset": "lis302dl-logged16", "odr_hz": None})
+    preset = get_preset(sensor or sens["preset"])
+    if sens.get("odr_hz") and not sensor:
+        preset = dataclasses.replace(preset, odr_hz=float(sens["odr_hz"]))
+    carrier = CarrierSpec(**{**(extra.get("carrier") or {}), **(carrier_changes or {})})
+    t0 = time.perf_counter()
+    # a stream of its own, derived from the scenario seed: re-sensing with another preset or
+    # carrier keeps the flight and changes only what it must
+    rec = sense(track, carrier, preset, np.random.default_rng([seed, 0x5E45E]))
+    return rec, time.perf_counter() - t0
+
+
+def _print_sensor(rec) -> None:
+    s = rec.summary()
+    console.print(
+        f"sensed with {s['preset']} at {s['odr_hz']:g} Hz: {s['samples']:,} samples over "
+        f"{s['duration_s'] / 60:.1f} min ({rec.carrier.kind}, {rec.carrier.placement}); "
+        f"truly static {100 * s['static_fraction']:.0f} % of the time, {s['clipped_samples']} clipped samples",
+        highlight=False,
+    )
+
+
+@app.command("sense")
+def sense_cmd(
+    run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`.")],
+    sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset.")] = None,
+    carrier: Annotated[Optional[list[str]], typer.Option("--carrier", help="KEY=VALUE carrier setting, e.g. placement=hold (repeatable).")] = None,
+    out: Annotated[Optional[Path], typer.Option("--out", help="Output folder (default: beside RUN_DIR).")] = None,
+) -> None:
+    """Re-sense an existing flight with another sensor or carrier into a new run folder."""
+    from scenarios import run_io
+    from scenarios.spec import SPEC, Key, _check_value
+
+    try:
+        track, info = run_io.read_track(run_dir)
+        changes = {}
+        for item in carrier or []:
+            if "=" not in item:
+                raise FlightmodeError(f"--carrier {item!r}: write KEY=VALUE, e.g. placement=hold")
+            k, v = item.split("=", 1)
+            keys = SPEC["carrier"]
+            if k not in keys:
+                from sim.errors import did_you_mean
+
+                raise FlightmodeError(f"--carrier {k}: unknown carrier key{did_you_mean(k, keys)}; keys: {', '.join(keys)}")
+            key: Key = keys[k]
+            val = v if key.type is str else (int(v) if key.type is int else float(v))
+            changes[k] = _check_value("--carrier", k, key, val)
+        extra = info["plan"].get("extra") or {}
+        rec, wall = _sense(track, extra, int(info["seed"]), sensor, changes)
+        tag = "-".join([rec.preset] + [f"{k}-{v}" for k, v in sorted(changes.items())])
+        rid = f"{info['run_id']}-{tag}"
+        with run_io.staged_run_dir(out or Path(run_dir).parent, rid) as stage:
+            run_io.write_samples(stage, rec)
+            new = dict(info)
+            new["run_id"] = rid
+            new["truth"] = dict(info["truth"], path=str(Path(run_dir).resolve() / "truth.parquet"))
+            new["sensor"] = rec.summary() | {"wall_time_s": wall}
+            run_io.write_run_json(stage, new)
+        _print_sensor(rec)
+        console.print(Text.assemble("wrote ", (str((out or Path(run_dir).parent) / rid), "bold"), " (samples.parquet, run.json)"))
+    except (FlightmodeError, ValueError) as e:
         _die(e)
 
 

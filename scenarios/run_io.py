@@ -100,6 +100,96 @@ def track_table(track: FlightTrack):
 FLOAT64_COLUMNS = frozenset({"t_s", "lat_deg", "lon_deg", "alt_m", "pos_n_m", "pos_e_m", "pos_d_m"})
 
 
+def recording_table(rec):
+    """A Recording as a pyarrow Table: one row per sample, raw counts, g and the labels."""
+    import pyarrow as pa
+
+    from sim.carrier import BAG_STATES
+
+    cols = {"t_s": pa.array(rec.t_s)}
+    for i, ax in enumerate("xyz"):
+        cols[f"raw_{ax}"] = pa.array(rec.counts[:, i].astype(np.int32))
+    for i, ax in enumerate("xyz"):
+        cols[f"acc_{ax}_g"] = pa.array(rec.acc_g[:, i])
+    cols["clipped"] = pa.array(rec.clipped.any(axis=1))
+    cols["phase"] = _dict_column(rec.phase_code, PHASES)
+    cols["in_flight_window"] = pa.array(rec.in_flight_window)
+    cols["airborne"] = pa.array(rec.airborne)
+    cols["turbulence_severity"] = _dict_column(rec.turbulence_code, SEVERITIES)
+    cols["sensor_static"] = pa.array(rec.sensor_static)
+    cols["bag_state"] = _dict_column(rec.bag_state_code, BAG_STATES)
+    return pa.table(cols)
+
+
+def write_samples(stage: Path, rec) -> Path:
+    import pyarrow.parquet as pq
+
+    path = stage / "samples.parquet"
+    pq.write_table(recording_table(rec), path, compression="zstd")
+    return path
+
+
+def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
+    """Rebuild the FlightTrack of a run folder from truth.parquet and run.json."""
+    import pyarrow.parquet as pq
+
+    from sim.errors import FlightmodeError
+    from sim.track import Event, euler_to_quat_wxyz
+
+    run_dir = Path(run_dir)
+    if not (run_dir / "truth.parquet").is_file() or not (run_dir / "run.json").is_file():
+        raise FlightmodeError(
+            f"{run_dir}: not a flight run folder (needs truth.parquet and run.json; "
+            "make one with `flightmode fly`)"
+        )
+    info = json.loads((run_dir / "run.json").read_text())
+    t = pq.read_table(run_dir / "truth.parquet")
+    c = {name: t[name].to_numpy(zero_copy_only=False) for name in t.column_names}
+    ne = sum(1 for k in c if k.startswith("n1_pct_e"))
+    f64 = lambda *names: np.stack([np.asarray(c[n], dtype=float) for n in names], axis=1)  # noqa: E731
+    phase = t["phase"].combine_chunks()
+    turb = t["turbulence_severity"].combine_chunks()
+    euler = f64("phi_rad", "theta_rad", "psi_rad")
+    track = FlightTrack(
+        aircraft=info["aircraft"],
+        fs_hz=float(info["truth"]["fs_hz"]),
+        origin_lat_deg=info["plan"]["origin"]["lat_deg"],
+        origin_lon_deg=info["plan"]["origin"]["lon_deg"],
+        origin_alt_m=info["plan"]["origin"]["elevation_m"],
+        t_s=c["t_s"], lat_deg=c["lat_deg"], lon_deg=c["lon_deg"], alt_m=c["alt_m"],
+        agl_m=np.asarray(c["agl_m"], float),
+        pos_ned_m=f64("pos_n_m", "pos_e_m", "pos_d_m"),
+        vel_ned_mps=f64("vel_n_mps", "vel_e_mps", "vel_d_mps"),
+        euler_rad=euler,
+        quat_wxyz=euler_to_quat_wxyz(euler),
+        rates_radps=f64("p_radps", "q_radps", "r_radps"),
+        ang_acc_radps2=f64("pdot_radps2", "qdot_radps2", "rdot_radps2"),
+        specific_force_body_mps2=f64("fx_body_mps2", "fy_body_mps2", "fz_body_mps2"),
+        n1_pct=f64(*[f"n1_pct_e{e}" for e in range(ne)]),
+        n2_pct=f64(*[f"n2_pct_e{e}" for e in range(ne)]),
+        thrust_n=f64(*[f"thrust_n_e{e}" for e in range(ne)]),
+        wow=np.asarray(c["wow"], bool),
+        flap_norm=np.asarray(c["flap_norm"], float), gear_norm=np.asarray(c["gear_norm"], float),
+        speedbrake_norm=np.asarray(c["speedbrake_norm"], float), ias_mps=np.asarray(c["ias_mps"], float),
+        tas_mps=np.asarray(c["tas_mps"], float), mach=np.asarray(c["mach"], float),
+        alpha_rad=np.asarray(c["alpha_rad"], float),
+        ground_speed_mps=np.asarray(c["ground_speed_mps"], float),
+        vertical_speed_mps=np.asarray(c["vertical_speed_mps"], float),
+        phase_code=_codes(phase, PHASES),
+        in_flight_window=np.asarray(c["in_flight_window"], bool),
+        airborne=np.asarray(c["airborne"], bool),
+        turbulence_code=_codes(turb, SEVERITIES),
+        events=tuple(Event(e["t_s"], e["name"], e["detail"]) for e in info["events"]),
+    )
+    return track, info
+
+
+def _codes(col, vocabulary) -> np.ndarray:
+    """Dictionary column -> codes into ``vocabulary`` (by name, whatever the file's dictionary order)."""
+    lut = np.array([vocabulary.index(v) for v in col.dictionary.to_pylist()], dtype=np.uint8)
+    return lut[col.indices.to_numpy(zero_copy_only=False)]
+
+
 def package_versions() -> dict[str, str]:
     out = {"python": platform.python_version()}
     for pkg in ("flightmode", "jsbsim", "numpy", "scipy", "pyarrow"):

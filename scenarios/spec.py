@@ -103,9 +103,32 @@ SPEC: dict[str, dict[str, Key]] = {
     "shutdown": {
         "post_shutdown_s": Key(float, "time recorded after engines off", 30.0, lo=0, hi=86400),
     },
+    "carrier": {
+        "kind": Key(str, "what carries the sensor", "handbag", choices=("handbag", "parcel")),
+        "placement": Key(str, "where it travels on board", "under_seat",
+                         choices=("under_seat", "overhead_bin", "lap", "hold")),
+        "terminal_walk_s": Key(float, "first walk through the terminal", 240.0, lo=0, hi=86400),
+        "terminal_rest_s": Key(float, "resting in the terminal (truly static)", 600.0, lo=0, hi=86400),
+        "gate_walk_s": Key(float, "walk to the gate", 120.0, lo=0, hi=86400),
+        "gate_rest_s": Key(float, "resting at the gate (truly static)", 900.0, lo=0, hi=86400),
+        "boarding_s": Key(float, "boarding walk (or loading, for a parcel)", 150.0, lo=0, hi=3600),
+        "stow_before_engine_start_s": Key(float, "bag stowed this long before engine start", 60.0, lo=0, hi=3600),
+        "handled_in_cruise": Key(int, "times the bag is taken out and put back in cruise", 1, lo=0, hi=20),
+        "handling_s": Key(float, "duration of one handling", 30.0, lo=1, hi=600),
+        "deplane_after_engines_off_s": Key(float, "wait on board after engines off", 120.0, lo=0, hi=3600),
+        "deplaning_s": Key(float, "deplaning walk (or unloading)", 240.0, lo=0, hi=3600),
+        "arrival_rest_s": Key(float, "resting at the destination (truly static)", 900.0, lo=0, hi=86400),
+        "truck_s": Key(float, "road transport before and after (parcel)", 1200.0, lo=0, hi=86400),
+    },
+    "sensor": {
+        "preset": Key(str, "accelerometer preset", "lis302dl-logged16",
+                      choices=("lis302dl", "lis302dl-8g", "lis302dl-logged16", "eobs", "ideal")),
+        "odr_hz": Key(float, "output data rate; absent: the preset's", optional=True, lo=0.5, hi=1000),
+    },
 }
 ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables
-OPTIONAL_SECTIONS = {"takeoff", "route", "turbulence", "descent", "approach", "landing", "shutdown"}
+OPTIONAL_SECTIONS = {"takeoff", "route", "turbulence", "descent", "approach", "landing", "shutdown", "carrier",
+                     "sensor"}
 
 
 def _fail(source: str, path: str, value: Any, allowed: str, hint: str = "") -> ScenarioError:
@@ -216,6 +239,7 @@ def parse_scenario(doc: dict[str, Any], source: str = "<scenario>") -> tuple[Fli
         autobrake_decel_mps2=v["landing"]["autobrake_decel_mps2"],
         post_shutdown_s=v["shutdown"]["post_shutdown_s"],
         seed=s["seed"],
+        extra={"carrier": v["carrier"], "sensor": v["sensor"]},
     )
     _check_distance(source, plan)
     return plan, s["description"]

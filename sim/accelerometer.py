@@ -244,14 +244,16 @@ class SensorChain:
         if not np.isfinite(f).all():
             bad = int(np.flatnonzero(~np.isfinite(f).all(axis=1))[0])
             raise SensorError(f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken")
-        a = f @ self._mix + unit.offset_g
+        # the anti-alias filter is linear and per axis, the cross-axis mixing a constant matrix and the
+        # offset a constant: they commute, so filter and decimate first and mix at the output rate
+        a = f.T  # (3, N): contiguous time axis for the filter
         if self._sos is not None:
             from scipy.signal import sosfilt, sosfilt_zi
 
             if self._zi is None:  # start in the steady state of the first sample (no power-on transient)
-                self._zi = sosfilt_zi(self._sos)[:, :, None] * a[0][None, None, :]
-            a, self._zi = sosfilt(self._sos, a, axis=0, zi=self._zi)
-        a = a[self._phase :: self.k]
+                self._zi = sosfilt_zi(self._sos)[:, None, :] * a[:, 0][None, :, None]
+            a, self._zi = sosfilt(self._sos, np.ascontiguousarray(a), axis=-1, zi=self._zi)
+        a = a[:, self._phase :: self.k].T @ self._mix + unit.offset_g
         self._phase = (self._phase - f.shape[0]) % self.k
         t = t0_s + (self._n_out + np.arange(a.shape[0])) / preset.odr_hz
         self._n_out += a.shape[0]

@@ -162,8 +162,11 @@ def gait_accel_mps2(t_s: np.ndarray, spec: CarrierSpec, rng: np.random.Generator
     f_step = rng.uniform(1.6, 2.2)
     # pace variation: +-5 % random walk, smoothed (a 5-s moving average of white noise)
     w = rng.standard_normal(n)
-    k = max(1, int(5.0 / dt))
-    pace = np.convolve(w, np.ones(k) / np.sqrt(k), mode="same") * 0.05 / 3.0
+    k = max(1, min(n, int(5.0 / dt)))
+    c = np.concatenate([[0.0], np.cumsum(w)])
+    idx = np.arange(n)
+    lo, hi = np.clip(idx - k // 2, 0, n), np.clip(idx + k // 2 + 1, 0, n)
+    pace = (c[hi] - c[lo]) / np.sqrt(k) * 0.05 / 3.0  # moving sum over ~5 s, about +-5 % (3 sigma)
     phase = 2 * np.pi * np.cumsum(f_step * (1.0 + pace)) * dt + rng.uniform(0, 2 * np.pi)
     a = np.empty((n, 3))
     a[:, 0] = spec.gait_fore_aft_g * (np.sin(phase) + 0.3 * np.sin(2 * phase + 0.5))

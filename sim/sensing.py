@@ -87,32 +87,33 @@ def sense(
     # put-down shocks at the start of every resting / stowed segment that follows a carried one
     pulse = car.putdown_pulse_mps2(int(0.2 * fs), dt, spec)
 
-    # track channels at 120 Hz, interpolated per chunk
+    # track channels at 120 Hz, stacked and interpolated per chunk in one gather
     loc = prof.locations_m[car.LOCATION_OF[spec.placement]]
-    f_loc = track.specific_force_at(loc)
     qbar = 0.5 * isa_density_kgpm3(track.alt_m) * track.tas_mps**2
+    ne = track.n1_pct.shape[1]
+    chans = np.column_stack(
+        [track.specific_force_at(loc), track.n1_pct, track.n2_pct, qbar, track.ground_speed_mps, track.wow]
+    )
     mount = car.mount_sos(spec.placement, fs)
     mount_zi = [np.zeros((sos.shape[0], 2)) for sos in mount]
-    vstate = initial_state(track.n1_pct.shape[1], vibration, rng)
+    vstate = initial_state(ne, vibration, rng)
     chain = SensorChain(preset, unit, fs)
     meas = []
     first_f = None
     for c0 in range(0, n_total, int(CHUNK_S * fs)):
         n = min(int(CHUNK_S * fs), n_total - c0)
         t = t_start + (c0 + np.arange(n)) * dt
-        tt = np.clip(t, track.t_s[0], track.t_s[-1])
-
-        def interp(a):
-            if a.ndim == 1:
-                return np.interp(tt, track.t_s, a)
-            return np.stack([np.interp(tt, track.t_s, a[:, j]) for j in range(a.shape[1])], axis=1)
-
-        fl = interp(f_loc)
-        n1, n2 = interp(track.n1_pct), interp(track.n2_pct)
-        vib_g, vstate = vibration_g(
-            n1, n2, interp(qbar), interp(track.ground_speed_mps), interp(track.wow.astype(float)) > 0.5,
-            fs, track.aircraft, vibration, vstate, rng,
-        )
+        pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
+        i0 = pos.astype(np.int64)
+        w = (pos - i0)[:, None]
+        ch = chans[i0] * (1.0 - w) + chans[i0 + 1] * w
+        fl = ch[:, 0:3]
+        n1, n2 = ch[:, 3 : 3 + ne], ch[:, 3 + ne : 3 + 2 * ne]
+        qb, gs, wow = ch[:, 3 + 2 * ne], ch[:, 4 + 2 * ne], ch[:, 5 + 2 * ne] > 0.5
+        if n1.max() < 1.0 and gs.max() < 0.5:
+            vib_g = np.zeros((n, 3))  # engines stopped, aircraft at rest: no vibration to compute
+        else:
+            vib_g, vstate = vibration_g(n1, n2, qb, gs, wow, fs, track.aircraft, vibration, vstate, rng)
         floor = fl + vib_g * G0
         bag = np.empty_like(floor)
         for ax in range(3):

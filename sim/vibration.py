@@ -24,7 +24,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import iirpeak, lfilter
+from functools import lru_cache
+
+from scipy.signal import iirpeak, lfilter, sosfilt, tf2sos
 
 ENGINE_RPM = {  # model -> (N1 rpm at 100 %, N2 rpm at 100 %)
     "A320": (5000.0, 14460.0),
@@ -54,14 +56,14 @@ class VibrationState:
     """Filter states and oscillator phases carried from one chunk to the next."""
 
     phases: np.ndarray  # (n_engines, 3) radians: N1, 2*N1, N2
-    mode_zi: np.ndarray  # (n_modes, 3 axes, 2)
+    mode_zi: np.ndarray  # (n_sections, 2, 3 axes): state of the mode bank
     joint_pos_m: float  # distance rolled since the last joint
 
 
 def initial_state(n_engines: int, model: VibrationModel, rng: np.random.Generator) -> VibrationState:
     return VibrationState(
         phases=rng.uniform(0.0, 2 * np.pi, (n_engines, 3)),
-        mode_zi=np.zeros((len(model.mode_hz), 3, 2)),
+        mode_zi=np.zeros((_mode_bank(model.mode_hz, model.mode_q, 1200.0).shape[0], 2, 3)),
         joint_pos_m=float(rng.uniform(0.0, model.joint_spacing_m)),
     )
 
@@ -115,16 +117,26 @@ def vibration_g(
     hit = np.flatnonzero(np.diff(np.concatenate([[np.floor(state.joint_pos_m / model.joint_spacing_m)], k])) > 0)
     joints[hit] = model.joint_impulse_g
     new_joint = float(dist[-1] % model.joint_spacing_m) if n else state.joint_pos_m
-    mode_zi = state.mode_zi.copy()
-    for m_i, f0 in enumerate(model.mode_hz):
-        b, a = iirpeak(f0, model.mode_q, fs=fs_hz)
-        # unit-RMS resonator output for unit-variance white input: scale by the noise bandwidth
-        gain = 1.0 / np.sqrt(_rms_gain(b, a))
-        for ax in range(3):
-            drive = rng.standard_normal(n) * (level + rough) * gain + joints * (ax == 2)
-            y, mode_zi[m_i, ax] = lfilter(b, a, drive, zi=mode_zi[m_i, ax])
-            out[:, ax] += y * share[ax]
+    # the modes as one parallel bank (each resonator normalised to unit output RMS for unit white
+    # input), realised as one filter: one noise stream per axis drives all modes
+    sos = _mode_bank(model.mode_hz, model.mode_q, fs_hz)
+    drive = rng.standard_normal((n, 3), dtype=np.float32) * (level + rough)[:, None]
+    drive[:, 2] += joints
+    y, mode_zi = sosfilt(sos, drive, axis=0, zi=state.mode_zi)
+    out += y * share[None, :]
     return out, VibrationState(phases, mode_zi, new_joint)
+
+
+@lru_cache(maxsize=16)
+def _mode_bank(mode_hz: tuple[float, ...], q: float, fs_hz: float) -> np.ndarray:
+    """Sum of unit-RMS resonators (parallel form) as one SOS filter."""
+    b_tot, a_tot = np.zeros(1), np.ones(1)
+    for f0 in mode_hz:
+        b, a = iirpeak(f0, q, fs=fs_hz)
+        b = b / np.sqrt(_rms_gain(b, a))
+        b_tot = np.polyadd(np.polymul(b_tot, a), np.polymul(b, a_tot))
+        a_tot = np.polymul(a_tot, a)
+    return tf2sos(b_tot, a_tot)
 
 
 def _rms_gain(b: np.ndarray, a: np.ndarray) -> float:
