@@ -95,6 +95,7 @@ class Pilot:
         self._t_last = None
         self._t_accel = None
         self._t_alpha_high = None
+        self._v_tgt = None
         self._en_route = False
         self._max_alt_m = -math.inf
 
@@ -543,7 +544,8 @@ class Pilot:
         err = x[ix["ias_mps"]] - target_mps
         theta = self.climb_spd_pid(err, self.dt)
         theta = clamp(theta, math.radians(lo_deg), math.radians(hi_deg))
-        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(2.0) * self.dt)
+        # pitch rate at most 1 deg/s: about 0.25 g of load-factor change at climb speeds (comfort)
+        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(1.0) * self.dt)
         self._pitch_to(x, self.theta_cmd)
 
     def _path_to(
@@ -574,7 +576,12 @@ class Pilot:
         d = self._distance_to_go_m(x)
         h = x[ix["alt_m"]]
         h_tgt = min(self.plan.cruise_alt_m, self._path_alt_m(d))
-        v_tgt = self._speed_target_mps(x, d)
+        # speed target changes at most 1 kt/s (no step at 10,000 ft or at the approach gates)
+        v_new = self._speed_target_mps(x, d)
+        if self._v_tgt is None:
+            self._v_tgt = v_new
+        self._v_tgt = rate_limit(self._v_tgt, v_new, KT_MPS * self.dt)
+        v_tgt = self._v_tgt
         self._lateral(x)
         for v_kt, fl in p.flap_retract_kt:
             if x[ix["ias_mps"]] > v_kt * KT_MPS and fl < self.flaps and self.phase == "climb":
@@ -610,7 +617,7 @@ class Pilot:
             if self._theta_final is None:
                 self._theta_final = math.degrees(x[ix["theta_rad"]])
             lo_deg = self._theta_final - 1.0
-        self._path_to(x, vs_cmd, lo_deg, 15.0)
+        self._path_to(x, vs_cmd, lo_deg, 15.0, rate_dps=3.0 if self._loc_mode else 1.0)
         # speed: throttle, speedbrake when idle is not enough
         err = v_tgt - x[ix["ias_mps"]]
         thr = self.spd_pid(err, self.dt)
