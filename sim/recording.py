@@ -24,6 +24,7 @@ class Recording:
     unit: dict  # the drawn per-unit parameters (offsets, sensitivity errors, cross-axis)
     carrier: CarrierSpec
     aircraft: str
+    segments: tuple  # the carrier timeline (sim.carrier.Segment): states and true orientations
     phase_code: np.ndarray
     in_flight_window: np.ndarray
     airborne: np.ndarray
@@ -64,5 +65,12 @@ class Recording:
         for f in fields(self):
             v = getattr(self, f.name)
             h.update(f.name.encode())
-            h.update(np.ascontiguousarray(v).tobytes() if isinstance(v, np.ndarray) else repr(v).encode())
+            if isinstance(v, np.ndarray):
+                h.update(np.ascontiguousarray(v).tobytes())
+            elif f.name == "segments":
+                for seg in v:
+                    h.update(repr((seg.t0_s, seg.t1_s, seg.state, seg.phase)).encode())
+                    h.update(np.ascontiguousarray(seg.orientation).tobytes())
+            else:
+                h.update(repr(v).encode())
         return h.hexdigest()

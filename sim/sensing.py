@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from sim import carrier as car
-from sim.accelerometer import AccelerometerPreset, SensorChain, SensorError, draw_unit
+from sim.accelerometer import AccelerometerPreset, SensorChain, SensorError, UnitDraw, draw_unit
 from sim.aircraft_profiles import get_profile
 from sim.labels import PHASE_CODE
 from sim.recording import Recording
@@ -60,12 +60,18 @@ def sense(
     preset: AccelerometerPreset,
     rng: np.random.Generator,
     vibration: VibrationModel = VibrationModel(),
+    unit: UnitDraw | None = None,
 ) -> Recording:
-    """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``."""
+    """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``.
+
+    The unit's deviations are drawn from ``rng`` first (always, so that the rest of the stream does
+    not depend on it); pass ``unit`` to impose one instead (e.g. a perfect ``UnitDraw()``).
+    """
     _check_track(track)
     preset.validate()
     prof = get_profile(track.aircraft)
-    unit = draw_unit(preset, rng)
+    drawn = draw_unit(preset, rng)
+    unit = drawn if unit is None else unit
     events = {e.name: e.t_s for e in track.events}
     cruise_idx = np.flatnonzero(track.phase_code == PHASE_CODE["cruise"])
     cruise = (float(track.t_s[cruise_idx[0]]), float(track.t_s[cruise_idx[-1]])) if cruise_idx.size else None
@@ -152,7 +158,8 @@ def sense(
     labels = _labels(t_out, segs, track, events)
     return Recording(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
-        preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft, **labels,
+        preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft,
+        segments=tuple(segs), **labels,
     )
 
 
