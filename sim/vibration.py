@@ -56,6 +56,7 @@ class VibrationState:
     """Filter states and oscillator phases carried from one chunk to the next."""
 
     phases: np.ndarray  # (n_engines, 3) radians: N1, 2*N1, N2
+    detune: np.ndarray  # (n_engines,) relative spool-speed offset: real engines never run in sync
     mode_zi: np.ndarray  # (n_sections, 2, 3 axes): state of the mode bank
     joint_pos_m: float  # distance rolled since the last joint
 
@@ -63,6 +64,10 @@ class VibrationState:
 def initial_state(n_engines: int, model: VibrationModel, rng: np.random.Generator) -> VibrationState:
     return VibrationState(
         phases=rng.uniform(0.0, 2 * np.pi, (n_engines, 3)),
+        # the FDM runs both engines at identical N1; with identical frequencies the two lines would
+        # add with a fixed random phase (and could cancel). Real engines differ by a few tenths of
+        # a percent, so each gets a fixed offset within +-0.3 % (the lines beat instead)
+        detune=rng.uniform(-0.003, 0.003, n_engines),
         mode_zi=np.zeros((_mode_bank(model.mode_hz, model.mode_q, 1200.0).shape[0], 2, 3)),
         joint_pos_m=float(rng.uniform(0.0, model.joint_spacing_m)),
     )
@@ -94,8 +99,8 @@ def vibration_g(
     phases = state.phases.copy()
     line = np.zeros(n)
     for e in range(n1_pct.shape[1]):
-        f1 = n1_pct[:, e] / 100.0 * rpm1 / 60.0
-        f2 = n2_pct[:, e] / 100.0 * rpm2 / 60.0
+        f1 = n1_pct[:, e] / 100.0 * rpm1 / 60.0 * (1.0 + state.detune[e])
+        f2 = n2_pct[:, e] / 100.0 * rpm2 / 60.0 * (1.0 + state.detune[e])
         for j, (f, amp) in enumerate(
             ((f1, model.n1_line_g), (2.0 * f1, model.n1_h2_g), (f2, model.n2_line_g))
         ):
@@ -124,7 +129,7 @@ def vibration_g(
     drive[:, 2] += joints
     y, mode_zi = sosfilt(sos, drive, axis=0, zi=state.mode_zi)
     out += y * share[None, :]
-    return out, VibrationState(phases, mode_zi, new_joint)
+    return out, VibrationState(phases, state.detune, mode_zi, new_joint)
 
 
 @lru_cache(maxsize=16)
