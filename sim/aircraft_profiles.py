@@ -100,9 +100,9 @@ PROFILES: dict[str, AircraftProfile] = {
         takeoff_flaps_norm=0.375,
         approach_steps=(
             ApproachStep(20.0, 0.125, 210.0),
-            ApproachStep(15.0, 0.375, 185.0),
-            ApproachStep(12.0, 0.625, 165.0),
-            ApproachStep(9.0, 0.625, 160.0, gear_down=True),
+            ApproachStep(15.0, 0.375, 180.0),
+            ApproachStep(12.0, 0.625, 160.0),
+            ApproachStep(9.0, 0.625, 155.0, gear_down=True),
             ApproachStep(7.5, 0.875, 138.0, gear_down=True),
         ),
         flap_retract_kt=((185.0, 0.125), (205.0, 0.0)),
@@ -172,9 +172,9 @@ PROFILES: dict[str, AircraftProfile] = {
         # flaps out it cannot shed lift by pitching down: it lands with 15 deg at a speed that keeps
         # alpha positive (JSBSim trim: 15 deg at 160 kt -> alpha 0.8 deg)
         approach_steps=(
-            ApproachStep(20.0, 8.0 / 42.0, 200.0),
-            ApproachStep(14.0, 8.0 / 42.0, 180.0),
-            ApproachStep(10.0, 15.0 / 42.0, 165.0, gear_down=True),
+            ApproachStep(20.0, 0.0, 190.0),
+            ApproachStep(15.0, 8.0 / 42.0, 170.0),
+            ApproachStep(11.0, 15.0 / 42.0, 160.0, gear_down=True),
             ApproachStep(8.0, 15.0 / 42.0, 145.0, gear_down=True),
         ),
         flap_retract_kt=((175.0, 0.0),),

@@ -65,7 +65,7 @@ class Pilot:
         self.pitch_pid = PID(p.pitch_kp, p.pitch_ki, 0.0, -1.0, 1.0)
         self.spd_pid = PID(p.spd_kp, p.spd_ki, 0.0, 0.0, 1.0)
         self.climb_spd_pid = PID(0.008, 0.001, 0.04, -0.1, 0.35)  # rad per m/s; kd damps the phugoid
-        self.gamma_pid = PID(1.0, 0.4, 0.0, -0.2, 0.35)  # rad per rad
+        self.gamma_pid = PID(1.0, 0.15, 0.0, -0.2, 0.35)  # rad per rad
         self._thr = 0.0
         self.ground_spd_pid = PID(0.08, 0.02, 0.0, 0.0, p.taxi_throttle_max)
         self.tug_pid = PID(20000.0, 4000.0, 0.0, -60000.0, 60000.0)  # lbf per m/s
@@ -96,6 +96,7 @@ class Pilot:
         self._t_accel = None
         self._t_alpha_high = None
         self._v_tgt = None
+        self._vs_cmd = None
         self._en_route = False
         self._max_alt_m = -math.inf
 
@@ -500,9 +501,13 @@ class Pilot:
         k = clamp(math.sqrt(mass_kg / self.prof.ref_landing_mass_kg), 0.95, 1.1)
         return self.prof.vapp_kt * k * KT_MPS
 
-    def _configure_approach(self, d_m: float) -> None:
+    def _configure_approach(self, d_m: float, ias_mps: float) -> None:
         for step in self.prof.approach_steps:
-            if d_m < step.dist_nm * NM_M:
+            # a setting is selected inside its distance gate once slow enough for it: within 10 kt
+            # of its own speed (these models' flaps give so much lift that, selected fast on a light
+            # aircraft, they drive the angle of attack negative and the pitch loop porpoises)
+            limit_kt = step.speed_kt + 10.0
+            if d_m < step.dist_nm * NM_M and ias_mps <= limit_kt * KT_MPS:
                 flaps = step.flaps_norm
                 if step.gear_down and self.ac.get("gear/gear-cmd-norm") < 0.5:
                     self.ac.set("gear/gear-cmd-norm", 1.0)
@@ -544,8 +549,10 @@ class Pilot:
         err = x[ix["ias_mps"]] - target_mps
         theta = self.climb_spd_pid(err, self.dt)
         theta = clamp(theta, math.radians(lo_deg), math.radians(hi_deg))
-        # pitch rate at most 1 deg/s: about 0.25 g of load-factor change at climb speeds (comfort)
-        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(1.0) * self.dt)
+        # pitch rate at most 0.6 deg/s once established (about 0.15 g at climb speeds: comfort);
+        # 2 deg/s in the initial climb, where the speeds are low
+        rate = 2.0 if self.phase == "initial_climb" else 0.6
+        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(rate) * self.dt)
         self._pitch_to(x, self.theta_cmd)
 
     def _path_to(
@@ -599,7 +606,7 @@ class Pilot:
         if self.phase == "cruise" and h_tgt < self.plan.cruise_alt_m - 1.0:
             self._set_phase("descent")
         if self.phase in ("descent", "approach"):
-            self._configure_approach(d)
+            self._configure_approach(d, x[ix["ias_mps"]])
         # vertical: altitude error -> vertical speed -> flight-path angle -> pitch
         gs = self._gs(x)
         on_path = h_tgt < self.plan.cruise_alt_m
@@ -609,6 +616,11 @@ class Pilot:
             vs_cmd = clamp(vs_ff + 0.1 * (h_tgt - h), -8.0, 3.0)
         else:
             vs_cmd = clamp(vs_ff + 0.05 * (h_tgt - h), -15.0, 10.0)
+        # vertical acceleration at most 0.8 m/s^2 (< 0.1 g): smooth top of descent and level-offs
+        if self._vs_cmd is None:
+            self._vs_cmd = -x[ix["v_down_mps"]]
+        self._vs_cmd = rate_limit(self._vs_cmd, vs_cmd, 0.8 * self.dt)
+        vs_cmd = self._vs_cmd
         vs = -x[ix["v_down_mps"]]
         lo_deg = -8.0
         mg = x[ix["agl_m"]] - p.cg_height_m
@@ -617,7 +629,7 @@ class Pilot:
             if self._theta_final is None:
                 self._theta_final = math.degrees(x[ix["theta_rad"]])
             lo_deg = self._theta_final - 1.0
-        self._path_to(x, vs_cmd, lo_deg, 15.0, rate_dps=3.0 if self._loc_mode else 1.0)
+        self._path_to(x, vs_cmd, lo_deg, 15.0, rate_dps=1.5 if self._loc_mode else 1.0)
         # speed: throttle, speedbrake when idle is not enough
         err = v_tgt - x[ix["ias_mps"]]
         thr = self.spd_pid(err, self.dt)
