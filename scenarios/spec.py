@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from sim.accelerometer import PRESETS as SENSOR_PRESETS
 from sim.aircraft_profiles import PROFILES
 from sim.errors import FlightmodeError, did_you_mean
 from sim.geodesy import great_circle_distance_m
@@ -121,8 +122,7 @@ SPEC: dict[str, dict[str, Key]] = {
         "truck_s": Key(float, "road transport before and after (parcel)", 1200.0, lo=0, hi=86400),
     },
     "sensor": {
-        "preset": Key(str, "accelerometer preset", "lis302dl-logged16",
-                      choices=("lis302dl", "lis302dl-8g", "lis302dl-logged16", "eobs", "ideal")),
+        "preset": Key(str, "accelerometer preset", "lis302dl-logged16", choices=tuple(SENSOR_PRESETS)),
         "odr_hz": Key(float, "output data rate; absent: the preset's", optional=True, lo=0.5, hi=1000),
     },
 }
@@ -242,6 +242,11 @@ def parse_scenario(doc: dict[str, Any], source: str = "<scenario>") -> tuple[Fli
         extra={"carrier": v["carrier"], "sensor": v["sensor"]},
     )
     _check_distance(source, plan)
+    sensor = v["sensor"]
+    allowed = SENSOR_PRESETS[sensor["preset"]].allowed_odr_hz
+    if sensor["odr_hz"] is not None and sensor["odr_hz"] not in allowed:
+        raise _fail(source, "[sensor].odr_hz", sensor["odr_hz"],
+                    f"the {sensor['preset']} part has only {', '.join(f'{f:g}' for f in allowed)} Hz")
     return plan, s["description"]
 
 

@@ -143,3 +143,13 @@ def test_spec_lists_every_section():
     text = spec_text()
     for sec in SPEC:
         assert sec in text
+
+
+def test_sensor_rate_the_part_does_not_have():
+    doc = _doc()
+    doc["sensor"] = {"preset": "lis302dl", "odr_hz": 200}
+    with pytest.raises(ScenarioError, match=r"\[sensor\]\.odr_hz = 200.0: the lis302dl part has only 100, 400 Hz"):
+        parse_scenario(doc, "x.toml")
+    doc["sensor"] = {"preset": "lis302dll"}
+    with pytest.raises(ScenarioError, match=r'did you mean "lis302dl"'):
+        parse_scenario(doc, "x.toml")
