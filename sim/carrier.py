@@ -119,7 +119,7 @@ def build_timeline(spec: CarrierSpec, events: dict[str, float], t_end_track_s: f
         stow_state = "stowed"
     else:
         t_stow = t_es - spec.stow_before_engine_start_s
-        pre = [("carried", "terminal_walk", spec.truck_s, False), ("handled", "boarding", spec.boarding_s, True)]
+        pre = [("carried", "truck", spec.truck_s, False), ("handled", "boarding", spec.boarding_s, True)]
         stow_state = "in_hold"
     t = t_stow - sum(p[2] for p in pre)
     for state, phase, dur, walking in pre:
@@ -143,7 +143,7 @@ def build_timeline(spec: CarrierSpec, events: dict[str, float], t_end_track_s: f
     segs.append(Segment(cur, t_deplane, stow_state, None, _rot(rng), True))
     post = [("carried", "deplaning", spec.deplaning_s, True)]
     if spec.kind == "parcel":
-        post = [("handled", "deplaning", spec.deplaning_s, True), ("carried", "deplaning", spec.truck_s, False)]
+        post = [("handled", "deplaning", spec.deplaning_s, True), ("carried", "truck", spec.truck_s, False)]
     t = t_deplane
     for state, phase, dur, walking in post:
         segs.append(Segment(t, t + dur, state, phase, _rot(rng), False, walking))
@@ -184,6 +184,19 @@ def handling_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarr
     sos = butter(2, [0.5, 3.0], btype="band", fs=1.0 / dt, output="sos")
     x = sosfiltfilt(sos, rng.standard_normal((n, 3)), axis=0)
     x *= 0.15 * G0 / max(float(x.std()), 1e-12)
+    return x
+
+
+def road_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarray:
+    """A parcel in a van: road vibration, 1-15 Hz band-limited, about 0.05 g RMS (assumption)."""
+    from scipy.signal import butter, sosfilt
+
+    if n < 30:
+        return np.zeros((n, 3))
+    sos = butter(2, [1.0, 15.0], btype="band", fs=1.0 / dt, output="sos")
+    x = sosfilt(sos, rng.standard_normal((n, 3)), axis=0)
+    x *= 0.05 * G0 / max(float(x.std()), 1e-12)
+    x[:, 2] *= 1.5  # mostly vertical
     return x
 
 

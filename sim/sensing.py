@@ -88,6 +88,8 @@ def sense(
         n = int(round((s.t1_s - s.t0_s) * fs)) + 1
         if s.state == "handled":
             motion[i] = car.handling_accel_mps2(n, dt, rng)
+        elif s.phase == "truck":
+            motion[i] = car.road_accel_mps2(n, dt, rng)
         elif s.walking:
             motion[i] = car.gait_accel_mps2(np.arange(n) * dt, spec, rng)
     # put-down shocks at the start of every resting / stowed segment that follows a carried one
@@ -155,6 +157,13 @@ def sense(
     counts = np.concatenate([m.counts for m in meas])
     acc = np.concatenate([m.acc_g for m in meas])
     clipped = np.concatenate([m.clipped for m in meas])
+    if preset.burst_interval_s is not None:
+        # burst recording (e-obs, seed 003 sections 4 and 9): burst_samples per axis at the ODR,
+        # one burst every burst_interval_s; nothing is stored in between
+        k = np.arange(t_out.shape[0])
+        per = int(round(preset.burst_interval_s * preset.odr_hz))
+        keep = (k % per) < preset.burst_samples
+        t_out, counts, acc, clipped = t_out[keep], counts[keep], acc[keep], clipped[keep]
     labels = _labels(t_out, segs, track, events)
     return Recording(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,

@@ -201,3 +201,37 @@ def test_100_hz_odr_aliases_the_fan_line_400_hz_records_it(fly_cached):
     h100 = abs(sosfreqz(butter(2, 50.0, fs=1200.0, output="sos"), worN=[f_n1], fs=1200.0)[1][0])
     h400 = abs(sosfreqz(butter(2, 200.0, fs=1200.0, output="sos"), worN=[f_n1], fs=1200.0)[1][0])
     assert res[100.0][1] / res[400.0][1] == pytest.approx(h100 / h400, rel=0.15)
+
+
+def test_eobs_bursts_and_a_parcel_in_the_hold(fly_cached):
+    _, tr = fly_cached("pattern")
+    p = get_preset("eobs")
+    rec = sense(tr, CarrierSpec(kind="parcel", placement="hold"), p, np.random.default_rng(4))
+    # bursts of 33 samples at 10 Hz, one every 60 s: 33 samples then a 56.7 s gap
+    gaps = np.diff(rec.t_s)
+    assert np.isclose(gaps, 0.1).sum() > 0 and gaps.max() == pytest.approx(60.0 - 3.2, abs=1e-6)
+    assert np.all((rec.counts >= 0) & (rec.counts <= 4095))
+    assert {"truck", "boarding", "deplaning", "arrival_rest"} <= set(rec.phase)
+    assert "in_hold" in set(rec.bag_state) and "stowed" not in set(rec.bag_state)
+    # the van is not static, the arrival rest is
+    assert not rec.sensor_static[rec.phase == "truck"].any()
+    assert rec.sensor_static[rec.phase == "arrival_rest"].mean() > 0.9
+
+
+def test_cli_sense_writes_a_new_run_folder(tmp_path):
+    from typer.testing import CliRunner
+
+    import pyarrow.parquet as pq
+    from scenarios.cli import app
+
+    r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(tmp_path)])
+    assert r.exit_code == 0, r.output
+    r = CliRunner().invoke(app, ["sense", str(tmp_path / "pattern-s1"), "--sensor", "lis302dl",
+                                 "--carrier", "placement=overhead_bin"])
+    assert r.exit_code == 0, r.output
+    new = tmp_path / "pattern-s1-lis302dl-placement-overhead_bin"
+    t = pq.read_table(new / "samples.parquet")
+    assert {"raw_x", "acc_z_g", "phase", "sensor_static", "bag_state", "in_flight_window"} <= set(t.column_names)
+    assert t["raw_z"].to_numpy().max() <= 127
+    r = CliRunner().invoke(app, ["sense", str(tmp_path / "pattern-s1"), "--carrier", "placment=hold"])
+    assert r.exit_code == 2 and 'did you mean "placement"' in r.output
