@@ -154,6 +154,7 @@ PROFILES: dict[str, AircraftProfile] = {
         model="fokker100",
         description="Fokker 100 (JSBSim fokker100, Rolls-Royce Tay): stand-in for seed 000's Avro RJ85",
         wrap_type="E190",
+        rotate_elevator=0.1,  # a light, pitch-sensitive model: a gentle pull (nz < 1.3 g)
         n_engines=2,
         length_m=35.5,
         wingspan_m=28.08,
@@ -166,7 +167,7 @@ PROFILES: dict[str, AircraftProfile] = {
         descent_ias_kt=280.0,
         vapp_kt=145.0,
         ref_landing_mass_kg=29000.0,
-        rotate_pitch_deg=9.0,
+        rotate_pitch_deg=6.0,  # light and fast at rotation (Vr set by the E190 stand-in ranges)
         takeoff_flaps_norm=8.0 / 42.0,
         # the JSBSim fokker100's flap lift table has no rows below zero angle of attack, so with
         # flaps out it cannot shed lift by pitching down: it lands with 15 deg at a speed that keeps
