@@ -111,6 +111,17 @@ def sense(
     for c0 in range(0, n_total, int(CHUNK_S * fs)):
         n = min(int(CHUNK_S * fs), n_total - c0)
         t = t_start + (c0 + np.arange(n)) * dt
+        si = np.searchsorted(seg_t0, t, side="right") - 1
+        ks = range(int(si[0]), int(si[-1]) + 1)  # si is sorted: the segments this chunk touches
+        if not any(segs[k].on_board for k in ks):
+            # the bag is off the aircraft for the whole chunk: no floor, vibration or mount to run
+            # (the mount restarts in its steady state when the bag is next stowed)
+            first_f = None
+            f_sensor = np.empty((n, 3))
+            for k in ks:
+                _off_board(segs, k, motion, pulse, si == k, t, fs, f_sensor)
+            meas.append(chain(f_sensor / G0, t_start, rng))
+            continue
         pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
         i0 = pos.astype(np.int64)
         w = (pos - i0)[:, None]
@@ -124,33 +135,24 @@ def sense(
             vib_g, vstate = vibration_g(n1, n2, qb, gs, wow, fs, track.aircraft, vibration, vstate, rng)
         floor = fl + vib_g * G0
         bag = np.empty_like(floor)
+        from scipy.signal import sosfilt, sosfilt_zi
+
+        if first_f is None:  # start the mounts in their steady state (DC gain 1)
+            for j in range(3):
+                mount_zi[j] = sosfilt_zi(mount[j]) * floor[0, j]
+            first_f = True
         for ax in range(3):
-            from scipy.signal import sosfilt
-
-            if first_f is None and ax == 0:
-                # start the mounts in their steady state (DC gain 1)
-                from scipy.signal import sosfilt_zi
-
-                for j in range(3):
-                    mount_zi[j] = sosfilt_zi(mount[j]) * floor[0, j]
-                first_f = True
             bag[:, ax], mount_zi[ax] = sosfilt(mount[ax], floor[:, ax], zi=mount_zi[ax])
         f_sensor = np.empty((n, 3))
-        si = np.searchsorted(seg_t0, t, side="right") - 1
-        for k in np.unique(si):
+        for k in ks:
             s = segs[k]
             sel = si == k
+            if not s.on_board:
+                _off_board(segs, k, motion, pulse, sel, t, fs, f_sensor)
+                continue
             j = np.round((t[sel] - s.t0_s) * fs).astype(int)
-            if s.on_board:
-                f_frame = fl[sel] + motion[k][j] if s.state == "handled" else bag[sel]
-            else:
-                f_frame = np.zeros((sel.sum(), 3))
-                f_frame[:, 2] = -G0  # specific force of a body at rest in N/E/Down
-                if k in motion:
-                    f_frame += motion[k][j]
-            if s.state in ("resting", "stowed", "in_hold") and k > 0 and segs[k - 1].state in ("carried", "handled"):
-                inside = j < pulse.shape[0]
-                f_frame[inside, 2] -= pulse[j[inside]]
+            f_frame = fl[sel] + motion[k][j] if s.state == "handled" else bag[sel]
+            _putdown(segs, k, pulse, j, f_frame)
             f_sensor[sel] = f_frame @ s.orientation  # rows: R^T f, sensor <- frame
         meas.append(chain(f_sensor / G0, t_start, rng))
     t_out = np.concatenate([m.t_s for m in meas])
@@ -170,6 +172,25 @@ def sense(
         preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft,
         segments=tuple(segs), **labels,
     )
+
+
+def _putdown(segs, k, pulse, j, f_frame) -> None:
+    """Add the put-down shock at the start of a resting / stowed segment that follows a carry."""
+    if segs[k].state in ("resting", "stowed", "in_hold") and k > 0 and segs[k - 1].state in ("carried", "handled"):
+        inside = j < pulse.shape[0]
+        f_frame[inside, 2] -= pulse[j[inside]]
+
+
+def _off_board(segs, k, motion, pulse, sel, t, fs, f_sensor) -> None:
+    """Specific force in sensor axes of a bag off the aircraft (local N/E/Down frame)."""
+    s = segs[k]
+    j = np.round((t[sel] - s.t0_s) * fs).astype(int)
+    f_frame = np.zeros((j.shape[0], 3))
+    f_frame[:, 2] = -G0  # specific force of a body at rest in N/E/Down
+    if k in motion:
+        f_frame += motion[k][j]
+    _putdown(segs, k, pulse, j, f_frame)
+    f_sensor[sel] = f_frame @ s.orientation
 
 
 def _labels(t: np.ndarray, segs: list[car.Segment], track: FlightTrack, events: dict[str, float]) -> dict:

@@ -99,15 +99,15 @@ def vibration_g(
     phases = state.phases.copy()
     line = np.zeros(n)
     for e in range(n1_pct.shape[1]):
-        f1 = n1_pct[:, e] / 100.0 * rpm1 / 60.0 * (1.0 + state.detune[e])
-        f2 = n2_pct[:, e] / 100.0 * rpm2 / 60.0 * (1.0 + state.detune[e])
-        for j, (f, amp) in enumerate(
-            ((f1, model.n1_line_g), (2.0 * f1, model.n1_h2_g), (f2, model.n2_line_g))
-        ):
-            ph = phases[e, j] + 2.0 * np.pi * np.cumsum(f) * dt
-            level = amp * (n1_pct[:, e] / 100.0) ** 2 if j < 2 else amp * (n2_pct[:, e] / 100.0) ** 2
-            line += level * np.sin(ph)
-            phases[e, j] = ph[-1] % (2.0 * np.pi)
+        w1 = 2.0 * np.pi * dt * rpm1 / 6000.0 * (1.0 + state.detune[e])  # rad per sample per % N1
+        w2 = 2.0 * np.pi * dt * rpm2 / 6000.0 * (1.0 + state.detune[e])
+        th1 = np.cumsum(n1_pct[:, e]) * w1  # fan rotation angle since the chunk start
+        th2 = np.cumsum(n2_pct[:, e]) * w2
+        k1 = (n1_pct[:, e] / 100.0) ** 2
+        line += k1 * (model.n1_line_g * np.sin(phases[e, 0] + th1) + model.n1_h2_g * np.sin(phases[e, 1] + 2.0 * th1))
+        line += model.n2_line_g * (n2_pct[:, e] / 100.0) ** 2 * np.sin(phases[e, 2] + th2)
+        if n:
+            phases[e] = (phases[e] + np.array([th1[-1], 2.0 * th1[-1], th2[-1]])) % (2.0 * np.pi)
     # engine lines reach the floor mostly vertically, a third laterally (fixed mixing)
     out += line[:, None] * share[None, :]
     # structural modes: white noise through resonators, excitation level from power and airflow
