@@ -70,11 +70,10 @@ class AccelerometerPreset:
             raise SensorError(f"sensor '{self.name}': a quantised output needs bits and lsb_g > 0")
         if (self.burst_interval_s is None) != (self.burst_samples is None):
             raise SensorError(f"sensor '{self.name}': bursts need both burst_interval_s and burst_samples")
-        if self.burst_interval_s is not None and self.burst_samples / self.odr_hz > self.burst_interval_s:
-            raise SensorError(
-                f"sensor '{self.name}': a burst of {self.burst_samples} samples at {self.odr_hz:g} Hz is "
-                f"longer than the {self.burst_interval_s:g} s interval between bursts"
-            )
+        if self.burst_interval_s is not None and self.burst_interval_s <= 0:
+            raise SensorError(f"sensor '{self.name}': burst interval must be > 0 s")
+        # a burst longer than the interval is allowed: seed 003 section 10 uses it for (nearly)
+        # continuous sampling
 
     @property
     def count_range(self) -> tuple[int, int]:
@@ -134,7 +133,7 @@ PRESETS: dict[str, AccelerometerPreset] = {
     # no anti-alias filter (section 1); sampling frequency is per axis. The calibration spread of
     # the zero-g count (+-40 counts, i.e. +-88 mg) and the gain (+-5 %) is our assumption, to be
     # replaced by the six-orientation calibration of section 7. Bursts: 3.3 s of 3 axes at 10 Hz
-    # every 60 s here; set burst_interval_s / burst_samples from the tag's ACC settings (sec. 9).
+    # every 60 s here; sim.accelerometer.eobs_preset sets them from the ACC settings (sec. 9).
     "eobs": AccelerometerPreset(
         name="eobs",
         description="e-obs tag accelerometer: 12-bit ADC (0.0022 g/count, zero-g 2048), no anti-alias filter",
@@ -284,3 +283,33 @@ def measure(
 ) -> Measurement:
     """Run the measurement chain (module docstring) on a whole (N, 3) specific force in g."""
     return SensorChain(preset, unit, fs_internal_hz)(f_sensor_g, t0_s, rng)
+
+
+def eobs_burst(byte_count: int, n_axes: int, newer_firmware: bool = True) -> tuple[int, int, int]:
+    """Samples per axis in one e-obs burst for an ``ACC BYTE COUNT`` setting (seed 003, section 9).
+
+    Memory is used in 64-byte blocks of which 54, then 63 per further block, hold data; each sample
+    takes 1.5 bytes; the data bytes top out at 747 (firmware up to rv4_s1) or 1188 (rv5 and later).
+    Returns (samples per axis, data bytes, memory bytes used).
+    """
+    if byte_count < 0 or n_axes not in (1, 2, 3):
+        raise SensorError(f"e-obs burst: byte count must be >= 0 and axes 1-3 (got {byte_count}, {n_axes})")
+    if byte_count == 0:
+        return 0, 0, 0
+    blocks = (byte_count - 1) // 63 + 1
+    blocks = min(blocks, 19 if newer_firmware else 12)
+    data = 54 + 63 * (blocks - 1)
+    samples = int(data / 1.5)
+    return samples // n_axes, data, 64 * blocks
+
+
+def eobs_preset(acc_interval_s: float, byte_count: int, odr_per_axis_hz: float = 10.0, n_axes: int = 3,
+                newer_firmware: bool = True) -> AccelerometerPreset:
+    """The ``eobs`` preset with bursts set as on the tag: ACC INTERVAL and ACC BYTE COUNT."""
+    import dataclasses
+
+    per_axis, _, _ = eobs_burst(byte_count, n_axes, newer_firmware)
+    p = dataclasses.replace(PRESETS["eobs"], odr_hz=odr_per_axis_hz, burst_interval_s=acc_interval_s,
+                            burst_samples=per_axis)
+    p.validate()
+    return p

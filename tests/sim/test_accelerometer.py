@@ -135,3 +135,24 @@ def test_chunked_sensing_equals_one_piece():
     parts = [chain(f[a:b], 0.0, rng) for a, b in [(0, 1000), (1000, 1001), (1001, 7777), (7777, 12000)]]
     np.testing.assert_array_equal(np.concatenate([m.counts for m in parts]), whole.counts)
     np.testing.assert_array_equal(np.concatenate([m.t_s for m in parts]), whole.t_s)
+
+
+def test_eobs_burst_table_and_worked_examples():
+    """Seed 003 section 9: byte count 800 on firmware up to rv4_s1 gives 747 data bytes, 768 bytes of
+    memory and 498 samples, 249 per axis with two axes; section 10: 1197 on newer firmware gives
+    792 samples, 7.92 s at 100 Hz in total."""
+    from sim.accelerometer import eobs_burst, eobs_preset
+
+    assert eobs_burst(800, 2, newer_firmware=False) == (249, 747, 768)
+    per_axis, data, mem = eobs_burst(1197, 3, newer_firmware=True)
+    assert (data, mem) == (1188, 1216) and per_axis * 3 == 792
+    # a few rows of the table: setting -> data bytes, samples (all axes)
+    for setting, data_bytes, samples in [(1, 54, 36), (63, 54, 36), (64, 117, 78), (442, 495, 330), (693, 684, 456)]:
+        got = eobs_burst(setting, 1)
+        assert got[1] == data_bytes and got[0] == samples
+    p = eobs_preset(acc_interval_s=1.0, byte_count=1197, odr_per_axis_hz=33.33)
+    assert p.burst_samples == 264 and p.burst_samples / p.odr_hz == pytest.approx(7.92, abs=0.01)
+    # section 10: an interval shorter than the burst samples (nearly) continuously
+    assert p.burst_interval_s < p.burst_samples / p.odr_hz
+    with pytest.raises(SensorError, match="byte count must be >= 0"):
+        eobs_burst(-1, 3)
