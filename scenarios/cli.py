@@ -80,6 +80,7 @@ def fly_cmd(
         "runs"
     ),
     sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset (default: the scenario's).")] = None,
+    gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
 ) -> None:
     """Fly a scenario gate to gate in JSBSim, sense it; write truth.parquet, samples.parquet, run.json."""
     from scenarios import run_io
@@ -120,7 +121,7 @@ def fly_cmd(
             wall = time.perf_counter() - t0
             metrics = flight_metrics(track, plan)
             run_io.write_truth(stage, track)
-            rec, sense_wall = _sense(track, plan.extra, plan.seed, sensor)
+            rec, sense_wall = _sense(track, plan.extra, plan.seed, sensor, gyro=gyro)
             run_io.write_samples(stage, rec)
             info = run_io.run_info(plan, desc, str(path), track, metrics)
             info["wall_time_s"] = wall
@@ -133,13 +134,14 @@ def fly_cmd(
         _die(e)
 
 
-def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: dict | None = None):
+def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: dict | None = None,
+           gyro: bool = False):
     """Sense a track with the scenario's carrier and sensor (``sensor`` overrides the preset)."""
     import numpy as np
 
     from sim.accelerometer import get_preset
     from sim.carrier import CarrierSpec
-    from sim.sensing import sense
+    from sim.sensing import GyroSpec, sense
 
     sens = dict(extra.get("sensor") or {"preset": "lis302dl-logged16", "odr_hz": None})
     preset = get_preset(sensor or sens["preset"])
@@ -149,7 +151,7 @@ def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: d
     t0 = time.perf_counter()
     # a stream of its own, derived from the scenario seed: re-sensing with another preset or
     # carrier keeps the flight and changes only what it must
-    rec = sense(track, carrier, preset, np.random.default_rng([seed, 0x5E45E]))
+    rec = sense(track, carrier, preset, np.random.default_rng([seed, 0x5E45E]), gyro=GyroSpec() if gyro else None)
     return rec, time.perf_counter() - t0
 
 
@@ -169,6 +171,7 @@ def sense_cmd(
     sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset.")] = None,
     carrier: Annotated[Optional[list[str]], typer.Option("--carrier", help="KEY=VALUE carrier setting, e.g. placement=hold (repeatable).")] = None,
     out: Annotated[Optional[Path], typer.Option("--out", help="Output folder (default: beside RUN_DIR).")] = None,
+    gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
 ) -> None:
     """Re-sense an existing flight with another sensor or carrier into a new run folder."""
     from scenarios import run_io
@@ -190,7 +193,7 @@ def sense_cmd(
             val = v if key.type is str else (int(v) if key.type is int else float(v))
             changes[k] = _check_value("--carrier", k, key, val)
         extra = info["plan"].get("extra") or {}
-        rec, wall = _sense(track, extra, int(info["seed"]), sensor, changes)
+        rec, wall = _sense(track, extra, int(info["seed"]), sensor, changes, gyro=gyro)
         tag = "-".join([rec.preset] + [f"{k}-{v}" for k, v in sorted(changes.items())])
         rid = f"{info['run_id']}-{tag}"
         with run_io.staged_run_dir(out or Path(run_dir).parent, rid) as stage:

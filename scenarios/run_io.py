@@ -111,6 +111,9 @@ def recording_table(rec):
         cols[f"raw_{ax}"] = pa.array(rec.counts[:, i].astype(np.int32))
     for i, ax in enumerate("xyz"):
         cols[f"acc_{ax}_g"] = pa.array(rec.acc_g[:, i])
+    if rec.gyro_dps is not None:
+        for i, ax in enumerate("xyz"):
+            cols[f"gyro_{ax}_dps"] = pa.array(rec.gyro_dps[:, i])
     cols["clipped"] = pa.array(rec.clipped.any(axis=1))
     cols["phase"] = _dict_column(rec.phase_code, PHASES)
     cols["in_flight_window"] = pa.array(rec.in_flight_window)

@@ -31,6 +31,7 @@ class Recording:
     turbulence_code: np.ndarray
     bag_state_code: np.ndarray
     sensor_static: np.ndarray
+    gyro_dps: np.ndarray | None = None  # (M, 3) optional gyroscope, deg/s, sensor axes
 
     @property
     def n(self) -> int:

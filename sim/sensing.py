@@ -19,6 +19,8 @@ with the engines stopped (before engine start, after engines off), and not withi
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from sim import carrier as car
@@ -34,6 +36,20 @@ CHUNK_S = 60.0
 SETTLE_S = 2.0
 G0 = 9.80665
 BAG_STATE_CODE = {s: i for i, s in enumerate(car.BAG_STATES)}
+
+
+@dataclass(frozen=True, slots=True)
+class GyroSpec:
+    """An optional MEMS gyroscope sampled with the accelerometer (for the comparative detectors of
+    seed 001). Rates: the aircraft's body rates while on board, plus the bag's own rotation (sway
+    while carried, hand motion while handled, modelled as band-limited random rates); a per-unit
+    bias drawn within +-bias_tol_dps and white noise. Earth rotation (0.004 deg/s) is neglected."""
+
+    noise_dps: float = 0.05
+    bias_tol_dps: float = 0.5
+    range_dps: float = 2000.0
+    sway_dps: float = 20.0  # RMS rotation rate of a carried bag
+    handling_dps: float = 30.0  # RMS rotation rate of a handled bag
 
 
 def isa_density_kgpm3(alt_m: np.ndarray) -> np.ndarray:
@@ -61,6 +77,7 @@ def sense(
     rng: np.random.Generator,
     vibration: VibrationModel = VibrationModel(),
     unit: UnitDraw | None = None,
+    gyro: GyroSpec | None = None,
 ) -> Recording:
     """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``.
 
@@ -166,11 +183,12 @@ def sense(
         per = int(round(preset.burst_interval_s * preset.odr_hz))
         keep = (k % per) < preset.burst_samples
         t_out, counts, acc, clipped = t_out[keep], counts[keep], acc[keep], clipped[keep]
+    gyro_dps = None if gyro is None else _gyro(t_out, segs, track, gyro, rng)
     labels = _labels(t_out, segs, track, events)
     return Recording(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
         preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft,
-        segments=tuple(segs), **labels,
+        segments=tuple(segs), gyro_dps=gyro_dps, **labels,
     )
 
 
@@ -191,6 +209,35 @@ def _off_board(segs, k, motion, pulse, sel, t, fs, f_sensor) -> None:
         f_frame += motion[k][j]
     _putdown(segs, k, pulse, j, f_frame)
     f_sensor[sel] = f_frame @ s.orientation
+
+
+def _gyro(t: np.ndarray, segs, track: FlightTrack, spec: GyroSpec, rng: np.random.Generator) -> np.ndarray:
+    """Gyroscope output (M, 3) in deg/s at the output instants ``t`` (sensor axes)."""
+    from scipy.signal import butter, sosfiltfilt
+
+    seg_t0 = np.array([s.t0_s for s in segs])
+    si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
+    pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
+    i0 = pos.astype(np.int64)
+    w = (pos - i0)[:, None]
+    body = np.degrees(track.rates_radps[i0] * (1.0 - w) + track.rates_radps[i0 + 1] * w)
+    fs = 1.0 / float(np.median(np.diff(t))) if t.shape[0] > 1 else 1.0
+    out = np.zeros((t.shape[0], 3))
+    for k, seg in enumerate(segs):
+        sel = si == k
+        n = int(sel.sum())
+        if n == 0:
+            continue
+        rate = body[sel] if seg.on_board else np.zeros((n, 3))
+        rms = spec.handling_dps if seg.state == "handled" else spec.sway_dps if seg.walking else 0.0
+        if rms > 0 and n > 30:
+            sos = butter(2, [0.3, min(3.0, 0.45 * fs)], btype="band", fs=fs, output="sos")
+            x = sosfiltfilt(sos, rng.standard_normal((n, 3)), axis=0)
+            rate = rate + x * rms / max(float(x.std()), 1e-12)
+        out[sel] = rate @ seg.orientation  # sensor <- frame
+    bias = rng.uniform(-spec.bias_tol_dps, spec.bias_tol_dps, 3)
+    out += bias + rng.normal(0.0, spec.noise_dps, out.shape)
+    return np.clip(out, -spec.range_dps, spec.range_dps)
 
 
 def _labels(t: np.ndarray, segs: list[car.Segment], track: FlightTrack, events: dict[str, float]) -> dict:

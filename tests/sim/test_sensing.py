@@ -235,3 +235,22 @@ def test_cli_sense_writes_a_new_run_folder(tmp_path):
     assert t["raw_z"].to_numpy().max() <= 127
     r = CliRunner().invoke(app, ["sense", str(tmp_path / "pattern-s1"), "--carrier", "placment=hold"])
     assert r.exit_code == 2 and 'did you mean "placement"' in r.output
+
+
+def test_optional_gyroscope_sees_the_aircraft_turn_in_sensor_axes(fly_cached):
+    from sim.sensing import GyroSpec
+
+    _, tr = fly_cached("pattern")
+    spec = GyroSpec(noise_dps=0.0, bias_tol_dps=0.0)
+    rec = sense(tr, CarrierSpec(handled_in_cruise=0), get_preset("ideal"), np.random.default_rng(6), gyro=spec)
+    assert rec.gyro_dps is not None and rec.gyro_dps.shape == rec.acc_g.shape
+    # stowed: the gyro reads the body rates rotated into the bag's axes (|w| is frame-invariant)
+    st = rec.bag_state == "stowed"
+    w = np.stack([np.interp(rec.t_s[st], tr.t_s, tr.rates_radps[:, j]) for j in range(3)], axis=1)
+    body = np.degrees(np.linalg.norm(w, axis=1))
+    np.testing.assert_allclose(np.linalg.norm(rec.gyro_dps[st], axis=1), body, atol=1e-9)
+    assert body.max() > 2.0  # the circuit's turns (about 3 deg/s) are really there
+    # resting in the terminal: nothing but (here zero) noise and bias
+    assert np.abs(rec.gyro_dps[rec.phase == "terminal_rest"]).max() < 1e-9
+    # and the default recording has no gyro channel
+    assert sense(tr, CarrierSpec(), get_preset("ideal"), np.random.default_rng(6)).gyro_dps is None
