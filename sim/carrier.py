@@ -175,27 +175,26 @@ def gait_accel_mps2(t_s: np.ndarray, spec: CarrierSpec, rng: np.random.Generator
     return a * G0
 
 
-def handling_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarray:
-    """Arm motion while a bag is held (0.5-3 Hz band-limited random accelerations, about 0.15 g RMS)."""
+def band_noise(n: int, fs_hz: float, band_hz: tuple[float, float], rms: float, rng: np.random.Generator) -> np.ndarray:
+    """(n, 3) white noise band-limited to ``band_hz`` (2nd-order Butterworth, zero phase) and scaled
+    to ``rms`` per axis; zeros for fewer than 30 samples."""
     from scipy.signal import butter, sosfiltfilt
 
     if n < 30:
         return np.zeros((n, 3))
-    sos = butter(2, [0.5, 3.0], btype="band", fs=1.0 / dt, output="sos")
+    sos = butter(2, [band_hz[0], min(band_hz[1], 0.45 * fs_hz)], btype="band", fs=fs_hz, output="sos")
     x = sosfiltfilt(sos, rng.standard_normal((n, 3)), axis=0)
-    x *= 0.15 * G0 / max(float(x.std()), 1e-12)
-    return x
+    return x * (rms / max(float(x.std()), 1e-12))
+
+
+def handling_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarray:
+    """Arm motion while a bag is held (0.5-3 Hz band-limited random accelerations, about 0.15 g RMS)."""
+    return band_noise(n, 1.0 / dt, (0.5, 3.0), 0.15 * G0, rng)
 
 
 def road_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarray:
     """A parcel in a van: road vibration, 1-15 Hz band-limited, about 0.05 g RMS (assumption)."""
-    from scipy.signal import butter, sosfilt
-
-    if n < 30:
-        return np.zeros((n, 3))
-    sos = butter(2, [1.0, 15.0], btype="band", fs=1.0 / dt, output="sos")
-    x = sosfilt(sos, rng.standard_normal((n, 3)), axis=0)
-    x *= 0.05 * G0 / max(float(x.std()), 1e-12)
+    x = band_noise(n, 1.0 / dt, (1.0, 15.0), 0.05 * G0, rng)
     x[:, 2] *= 1.5  # mostly vertical
     return x
 

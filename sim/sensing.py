@@ -213,8 +213,6 @@ def _off_board(segs, k, motion, pulse, sel, t, fs, f_sensor) -> None:
 
 def _gyro(t: np.ndarray, segs, track: FlightTrack, spec: GyroSpec, rng: np.random.Generator) -> np.ndarray:
     """Gyroscope output (M, 3) in deg/s at the output instants ``t`` (sensor axes)."""
-    from scipy.signal import butter, sosfiltfilt
-
     seg_t0 = np.array([s.t0_s for s in segs])
     si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
     pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
@@ -230,10 +228,8 @@ def _gyro(t: np.ndarray, segs, track: FlightTrack, spec: GyroSpec, rng: np.rando
             continue
         rate = body[sel] if seg.on_board else np.zeros((n, 3))
         rms = spec.handling_dps if seg.state == "handled" else spec.sway_dps if seg.walking else 0.0
-        if rms > 0 and n > 30:
-            sos = butter(2, [0.3, min(3.0, 0.45 * fs)], btype="band", fs=fs, output="sos")
-            x = sosfiltfilt(sos, rng.standard_normal((n, 3)), axis=0)
-            rate = rate + x * rms / max(float(x.std()), 1e-12)
+        if rms > 0:
+            rate = rate + car.band_noise(n, fs, (0.3, 3.0), rms, rng)
         out[sel] = rate @ seg.orientation  # sensor <- frame
     bias = rng.uniform(-spec.bias_tol_dps, spec.bias_tol_dps, 3)
     out += bias + rng.normal(0.0, spec.noise_dps, out.shape)

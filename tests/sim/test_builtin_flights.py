@@ -18,8 +18,9 @@ FT_M = 0.3048
 
 
 def _wrap(wrap_type):
-    openap = pytest.importorskip("openap", reason="openap is a test dependency (pip install -e .[test])")
-    return openap.WRAP(wrap_type)
+    from openap import WRAP  # a test dependency (pip install -e ".[test]")
+
+    return WRAP(wrap_type)
 
 
 @pytest.mark.slow
