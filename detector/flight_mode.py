@@ -1,0 +1,176 @@
+"""The flight-mode detector of seed 000 (section 5, eq. 6-9, Fig. 9).
+
+Every ``W_s`` seconds (every ``N = W_s fs`` samples, at fixed global positions) the moving variance
+of each axis is compared with its threshold ``T_sigma = k sigma^2`` (eq. 7, 12): all axes below it
+gives a *temporary static* check. The sensor is declared *final static* (a GSM transmission is
+allowed) when the last ``ceil(T_th / W_s)`` checks were all temporarily static (eq. 8).
+
+One set of maths, two front ends: :class:`FlightModeDetector` (streaming: push chunks of any size)
+and :func:`detect` (batch: one push). A time gap in the stream (consecutive samples more than 1.5
+sample periods apart) resets the detector: the moving variance restarts and no check is static
+until ``T_th`` of clean data has been seen again (documented behaviour, never silent).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from detector.moving_variance import DetectorError, MovingVariance
+
+
+@dataclass(frozen=True, slots=True)
+class DetectorParams:
+    """Seed 000's recommended values (Table 9): NMV, W_s 1 s, T_sigma 4 sigma^2, T_th 4 s."""
+
+    fs_hz: float = 100.0
+    window_s: float = 1.0
+    k_sigma: float = 4.0
+    time_threshold_s: float = 4.0
+    method: str = "nmv"
+    weight: float = 1.0  # EMV weighting factor
+    emv_initial_k: float = 10.0  # EMV starts from 10 sigma^2 (Fig. 18)
+
+    @property
+    def window(self) -> int:
+        return int(round(self.window_s * self.fs_hz))
+
+    @property
+    def checks_needed(self) -> int:
+        return max(1, math.ceil(self.time_threshold_s / self.window_s - 1e-9))
+
+    def validate(self) -> None:
+        if not self.fs_hz > 0:
+            raise DetectorError(f"sampling rate {self.fs_hz}: must be > 0 Hz")
+        if self.window < 2:
+            raise DetectorError(
+                f"window {self.window_s} s at {self.fs_hz:g} Hz is {self.window} sample(s): a variance needs >= 2"
+            )
+        if not self.k_sigma > 0:
+            raise DetectorError(f"k = {self.k_sigma}: the threshold k sigma^2 needs k > 0")
+        if not self.time_threshold_s > 0:
+            raise DetectorError(f"time threshold {self.time_threshold_s} s: must be > 0")
+
+
+@dataclass(frozen=True, slots=True)
+class Checks:
+    """One row per check (every W_s): the sample index and time it closes, the MV per axis, and the
+    decisions."""
+
+    index: np.ndarray  # (K,) global sample index of the window end
+    t_s: np.ndarray  # (K,)
+    mv: np.ndarray  # (K, 3)
+    temporary_static: np.ndarray  # (K,) bool, eq. 7
+    final_static: np.ndarray  # (K,) bool, eq. 8: transmission allowed
+
+
+def calibrate_sigma2(acc_g: np.ndarray, window: int, lsb_g: float | None = None) -> np.ndarray:
+    """Per-axis static noise variance from a (mostly) static recording, robust to a few
+    disturbances: the median of the non-overlapping window variances (a disturbance moves a few
+    windows, not the median).
+
+    Quantised output: a native 8-bit LIS302DL at rest can output a constant count, so the measured
+    variance may be (nearly) zero and a threshold k sigma^2 would then be zero too (every check
+    dynamic, never a transmission). The variance is therefore floored at the quantisation noise
+    ``lsb^2 / 12`` when ``lsb_g`` is given, and at 1e-12 g^2 otherwise (never zero).
+    """
+    x = np.asarray(acc_g, float)
+    m = x.shape[0] // window
+    if m < 1:
+        raise DetectorError(f"calibration needs at least one {window}-sample window, got {x.shape[0]} samples")
+    v = x[: m * window].reshape(m, window, -1).var(axis=1)
+    s2 = np.median(v, axis=0)
+    floor = lsb_g**2 / 12.0 if lsb_g else 1e-12
+    return np.maximum(s2, floor)
+
+
+class FlightModeDetector:
+    """Streaming detector. ``push(t_s, acc_g)`` returns the checks completed by that chunk."""
+
+    def __init__(self, params: DetectorParams, sigma2: np.ndarray):
+        params.validate()
+        sigma2 = np.asarray(sigma2, float).reshape(-1)
+        if sigma2.shape != (3,) or not np.all(sigma2 > 0):
+            raise DetectorError(f"sigma^2 must be three positive per-axis variances, got {sigma2}")
+        self.p = params
+        self.sigma2 = sigma2
+        self.thresholds = params.k_sigma * sigma2  # eq. 12: T_sigma = k sigma^2
+        self._new_engine()
+        self._t_last = None
+        self._n = 0  # samples seen (global index of the next one)
+
+    def _new_engine(self) -> None:
+        p = self.p
+        self._mv = MovingVariance(p.window, p.method, p.weight, p.emv_initial_k * self.sigma2)
+        self._since_reset = 0
+        self._history: list[bool] = []
+
+    def push(self, t_s: np.ndarray, acc_g: np.ndarray) -> Checks:
+        t = np.asarray(t_s, float)
+        a = np.asarray(acc_g, float)
+        if a.ndim != 2 or a.shape[1] != 3 or t.shape != (a.shape[0],):
+            raise DetectorError(f"need t_s (n,) and acc_g (n, 3); got {t.shape} and {a.shape}")
+        period = 1.0 / self.p.fs_hz
+        if t.shape[0] > 1:
+            dt = np.diff(t)
+            if np.any(dt <= 0):
+                i = int(np.flatnonzero(dt <= 0)[0])
+                raise DetectorError(f"time is not increasing at sample {self._n + i + 1} (t = {t[i + 1]:.4f} s)")
+            med = float(np.median(dt))
+            if abs(med - period) > 0.01 * period:
+                raise DetectorError(
+                    f"the stream is sampled at {1 / med:.2f} Hz but the detector expects {self.p.fs_hz:g} Hz: "
+                    "set fs_hz to the stream's rate"
+                )
+        out = []
+        start = 0
+        # split at gaps (including one against the previous chunk): each gap resets the detector
+        t_prev = self._t_last
+        gaps = []
+        if t_prev is not None and t.shape[0] and t[0] - t_prev > 1.5 * period:
+            gaps.append(0)
+        if t.shape[0] > 1:
+            gaps += list(np.flatnonzero(np.diff(t) > 1.5 * period) + 1)
+        for g in [*gaps, t.shape[0]]:
+            if g > start:
+                out.append(self._run(t[start:g], a[start:g]))
+            if g < t.shape[0]:
+                self._new_engine()
+            start = g
+        if t.shape[0]:
+            self._t_last = float(t[-1])
+        return _cat(out)
+
+    def _run(self, t: np.ndarray, a: np.ndarray) -> Checks:
+        n0 = self._since_reset
+        mv = self._mv.push(a)
+        w = self.p.window
+        k = np.arange(a.shape[0])
+        at_check = ((n0 + k + 1) % w == 0) & (n0 + k + 1 >= w)  # every W_s, windows full
+        idx = np.flatnonzero(at_check)
+        m = mv[idx]
+        temp = np.all(m < self.thresholds, axis=1)  # eq. 7
+        final = np.empty_like(temp)
+        need = self.p.checks_needed
+        for i, tv in enumerate(temp):  # eq. 8: the last `need` checks all temporarily static
+            self._history.append(bool(tv))
+            final[i] = len(self._history) >= need and all(self._history[-need:])
+        self._history = self._history[-need:]
+        self._since_reset += a.shape[0]
+        res = Checks(self._n + idx, t[idx], m, temp, final)
+        self._n += a.shape[0]
+        return res
+
+
+def _cat(parts: list[Checks]) -> Checks:
+    if not parts:
+        z = np.zeros(0)
+        return Checks(z.astype(int), z, np.zeros((0, 3)), z.astype(bool), z.astype(bool))
+    return Checks(*(np.concatenate([getattr(p, f) for p in parts]) for f in Checks.__slots__))
+
+
+def detect(t_s: np.ndarray, acc_g: np.ndarray, params: DetectorParams, sigma2: np.ndarray) -> Checks:
+    """Batch front end: every check of a whole stream."""
+    return FlightModeDetector(params, sigma2).push(t_s, acc_g)
