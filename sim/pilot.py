@@ -98,6 +98,7 @@ class Pilot:
         self._v_tgt = None
         self._vs_cmd = None
         self._en_route = False
+        self._straight = False
         self._max_alt_m = -math.inf
 
     # ------------------------------------------------------------------ helpers
@@ -162,11 +163,16 @@ class Pilot:
     # ------------------------------------------------------------------ tick
     @property
     def control_every(self) -> int:
-        """FDM steps between ticks: 40 Hz near the ground, 10 Hz en route (the loops' bandwidths
-        are well below 1 Hz there, and the pilot is most of flightmode's cost per step)."""
+        """FDM steps between ticks: 40 Hz in turns, takeoff, approach and landing; 20 Hz taxiing
+        straight; 5 Hz en route (the loops' bandwidths are well below 1 Hz there, and the pilot is
+        most of flightmode's cost per step); 4 Hz standing still."""
         if self.phase in ("gate", "parked") or self._hold_until is not None:
             return 30  # standing still on the brakes: 4 Hz
-        return 12 if self._en_route or self.phase == "engine_start" else 3
+        if self._en_route:
+            return 24  # 5 Hz
+        if self.phase == "engine_start" or (self.phase in ("taxi_out", "taxi_in") and self._straight):
+            return 6  # 20 Hz: straight taxiing, far from any corner
+        return 3
 
     def tick(self, x, t: float) -> None:
         if self._t_last is not None:
@@ -320,6 +326,9 @@ class Pilot:
         v_t = v_max
         if abs(steer) > math.radians(15.0):  # hard steering: no faster than a turn
             v_t = self.prof.taxi_turn_kt * KT_MPS
+        self._straight = abs(steer) < math.radians(3.0) and all(
+            abs(sc - s) > 60.0 for sc in self.path.corners_s
+        )
         for sc in self.path.corners_s:
             if sc > s - 15.0:
                 d = max(0.0, sc - s - 10.0)
