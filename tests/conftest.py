@@ -3,11 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
-
 import pytest
-
-SHARED = Path(__file__).resolve().parents[2] / "shared"
 
 
 @pytest.fixture(scope="session")

@@ -10,6 +10,7 @@ import sys
 import tempfile
 import time
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import psutil
 import pytest
@@ -29,7 +30,6 @@ def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
     assert [f.get("name") for f in forces] == ["pushback"]
     # the stock file does have them (so the stripping above is doing something)
     import jsbsim
-    from pathlib import Path
 
     stock = ET.parse(Path(jsbsim.get_default_root_dir()) / "aircraft" / "737" / "737.xml").getroot()
     assert len(stock.findall("input")) == 2
@@ -60,7 +60,7 @@ def test_unknown_model_suggests_the_nearest():
 def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
     work = tmp_path / "cwd"
     work.mkdir()
-    tmp_before = set(p.name for p in __import__("pathlib").Path(tempfile.gettempdir()).iterdir())
+    tmp_before = set(p.name for p in Path(tempfile.gettempdir()).iterdir())
     proc = subprocess.Popen(
         [sys.executable, "-m", "scenarios.cli", "fly", "pattern", "--out", "out"],
         cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
@@ -80,7 +80,7 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
     assert sorted(p.name for p in work.iterdir()) == ["out"]
     assert sorted(p.name for p in (work / "out").iterdir()) == ["pattern-s1"]
     assert sorted(p.name for p in (work / "out" / "pattern-s1").iterdir()) == ["run.json", "samples.parquet", "truth.parquet"]
-    tmp_after = set(p.name for p in __import__("pathlib").Path(tempfile.gettempdir()).iterdir())
+    tmp_after = set(p.name for p in Path(tempfile.gettempdir()).iterdir())
     assert not [n for n in tmp_after - tmp_before if n.startswith("flightmode")]
     info = json.loads((work / "out" / "pattern-s1" / "run.json").read_text())
     assert info["seed"] == 1 and info["scenario"] == "pattern"
