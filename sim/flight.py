@@ -15,6 +15,7 @@ switched to the destination's at the top of climb (the aircraft is then far abov
 from __future__ import annotations
 
 import math
+from array import array
 from collections.abc import Callable
 from pathlib import Path
 
@@ -32,7 +33,6 @@ from sim.taxi_route import gate_position_out
 from sim.track import Event, FlightTrack, euler_to_quat_wxyz
 
 FDM_HZ = 120.0
-BLOCK = 120 * 600  # rows per preallocated block (10 simulated minutes)
 KG_LB = 2.20462262185
 
 
@@ -80,45 +80,47 @@ def fly(
 
     nch = len(ac.channels)
     scales = ac.scales
+    scales_list = scales.tolist()
     read = ac.raw_reader()
+    get, nodes = ac.raw_getter()
     run = ac.fdm.run
-    blocks: list[np.ndarray] = []
+    data = array("d")  # every step's raw channels, appended in place (no per-step NumPy work)
+    ext = data.extend
     changes: list[tuple[int, int, int]] = [(0, pilot.phase_code, pilot.severity_code)]
     limit_steps = int(max_duration_s(plan) * FDM_HZ)
     step = 0
-    next_tick = 0
     dest_terrain_set = False
     next_progress = 0.0
     while not pilot.done:
-        buf = np.empty((BLOCK, nch))
-        k = 0
-        while k < BLOCK and not pilot.done:
-            buf[k] = read()
-            if step == next_tick:
-                t = step / FDM_HZ
-                codes = (pilot.phase_code, pilot.severity_code)
-                pilot.tick((buf[k] * scales).tolist(), t)  # floats, not NumPy scalars: faster
-                next_tick = step + pilot.control_every
-                if (pilot.phase_code, pilot.severity_code) != codes:
-                    # labels change at the sample whose state made the pilot change phase
-                    changes.append((step, pilot.phase_code, pilot.severity_code))
-                if not dest_terrain_set and pilot.phase in ("cruise", "descent", "approach"):
-                    ac.set("position/terrain-elevation-asl-ft", plan.destination.elevation_m / FT_M)
-                    dest_terrain_set = True
-                if progress is not None and t >= next_progress:
-                    progress(t, pilot.phase)
-                    next_progress = t + 60.0
+        # a control tick: sample, decide, step
+        raw = read()
+        ext(raw)
+        t = step / FDM_HZ
+        codes = (pilot.phase_code, pilot.severity_code)
+        pilot.tick([v * k for v, k in zip(raw, scales_list)], t)  # SI floats
+        if (pilot.phase_code, pilot.severity_code) != codes:
+            # labels change at the sample whose state made the pilot change phase
+            changes.append((step, pilot.phase_code, pilot.severity_code))
+        if not dest_terrain_set and pilot.phase in ("cruise", "descent", "approach"):
+            ac.set("position/terrain-elevation-asl-ft", plan.destination.elevation_m / FT_M)
+            dest_terrain_set = True
+        if progress is not None and t >= next_progress:
+            progress(t, pilot.phase)
+            next_progress = t + 60.0
+        run()
+        every = 1 if pilot.done else pilot.control_every
+        # the steps between ticks: record and step, nothing else
+        for _ in range(every - 1):
+            ext(map(get, nodes))
             run()
-            step += 1
-            k += 1
-            if step > limit_steps:
-                raise FlightError(
-                    f"the flight did not reach the stand within {limit_steps / FDM_HZ:.0f} s",
-                    phase=pilot.phase,
-                    t_s=step / FDM_HZ,
-                )
-        blocks.append(buf[:k])
-    x = np.concatenate(blocks) * scales
+        step += every
+        if step > limit_steps:
+            raise FlightError(
+                f"the flight did not reach the stand within {limit_steps / FDM_HZ:.0f} s",
+                phase=pilot.phase,
+                t_s=step / FDM_HZ,
+            )
+    x = np.frombuffer(data, dtype=np.float64).reshape(-1, nch) * scales
     starts = np.array([c[0] for c in changes] + [step])
     reps = np.diff(starts)
     phase_code = np.repeat(np.array([c[1] for c in changes], dtype=np.uint8), reps)

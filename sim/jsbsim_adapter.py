@@ -214,6 +214,10 @@ class JSBSimAircraft:
         """Per-channel factors from JSBSim's units to SI (multiply a raw row by them)."""
         return self._scales
 
+    def raw_getter(self):
+        """(getter, nodes): ``map(getter, nodes)`` yields every channel's raw value."""
+        return type(self._read_nodes[0]).get_double_value, self._read_nodes
+
     def raw_reader(self):
         """A function returning every channel's raw (JSBSim-unit) value as a list, fast."""
         get = type(self._read_nodes[0]).get_double_value

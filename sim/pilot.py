@@ -99,6 +99,7 @@ class Pilot:
         self._vs_cmd = None
         self._en_route = False
         self._straight = False
+        self._airborne_high = False
         self._max_alt_m = -math.inf
 
     # ------------------------------------------------------------------ helpers
@@ -163,15 +164,17 @@ class Pilot:
     # ------------------------------------------------------------------ tick
     @property
     def control_every(self) -> int:
-        """FDM steps between ticks: 40 Hz in turns, takeoff, approach and landing; 20 Hz taxiing
-        straight; 5 Hz en route (the loops' bandwidths are well below 1 Hz there, and the pilot is
+        """FDM steps between ticks: 40 Hz on the runway and below 1000 ft; 20 Hz taxiing;
+        10 Hz airborne above 1000 ft; 5 Hz en route (the loops' bandwidths are well below 1 Hz there, and the pilot is
         most of flightmode's cost per step); 4 Hz standing still."""
         if self.phase in ("gate", "parked") or self._hold_until is not None:
             return 30  # standing still on the brakes: 4 Hz
         if self._en_route:
             return 24  # 5 Hz
-        if self.phase == "engine_start" or (self.phase in ("taxi_out", "taxi_in") and self._straight):
-            return 6  # 20 Hz: straight taxiing, far from any corner
+        if self._airborne_high:
+            return 12  # 10 Hz: airborne above 1000 ft (climb-out, approach before the last 1000 ft)
+        if self.phase in ("engine_start", "pushback", "taxi_out", "taxi_in"):
+            return 6  # 20 Hz on the taxiways (turns are taken at 6-10 kt)
         return 3
 
     def tick(self, x, t: float) -> None:
@@ -194,6 +197,10 @@ class Pilot:
             self.phase in ("climb", "cruise", "descent")
             and x[ix["agl_m"]] > 3000 * FT_M
             and not self._loc_mode
+        )
+        self._airborne_high = (
+            self.phase in ("initial_climb", "climb", "cruise", "descent", "approach")
+            and x[ix["agl_m"]] > 1000 * FT_M
         )
         if abs(math.degrees(x[ix["phi_rad"]])) > MAX_BANK_DEG:
             self._fail(f"bank angle {math.degrees(x[ix['phi_rad']]):.1f} deg exceeds {MAX_BANK_DEG:.0f} deg")
