@@ -45,7 +45,7 @@ def test_a_gap_resets_the_detector():
     assert c.final_static[after].any()
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=40, deadline=None, derandomize=True)  # CI sees the same examples every run
 @given(cuts=st.lists(st.integers(0, 6000), max_size=10), method=st.sampled_from(["nmv", "emv"]),
        seed=st.integers(0, 2**16))
 def test_any_chunking_gives_identical_decisions(cuts, method, seed):

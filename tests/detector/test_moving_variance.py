@@ -60,7 +60,7 @@ def test_emv_equals_the_direct_recursion():
         np.testing.assert_allclose(got, _direct_emv(x, 100, weight, 10 * 2.23e-3**2), rtol=1e-12)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=60, deadline=None, derandomize=True)  # CI sees the same examples every run
 @given(
     cuts=st.lists(st.integers(min_value=0, max_value=3000), max_size=12),
     method=st.sampled_from(["nmv", "emv"]),
@@ -75,11 +75,13 @@ def test_any_chunking_gives_identical_values(cuts, method, window, seed):
     got = np.concatenate([mv.push(x[a:b]) for a, b in zip(bounds, bounds[1:])])
     # bit-identical to one push (NaN where no full window yet)
     np.testing.assert_array_equal(got, MovingVariance(**engine).push(x))
-    # and the batch front end (its own re-anchoring block) agrees to 1e-12 relative, or 1e-14 g^2
-    # absolute: a 2-sample window of nearly equal values has a variance ~1e-11 g^2 while the sums'
-    # rounding, relative to an anchor ~0.1 g away, is ~1e-15 g^2 (deviation^2 x machine epsilon)
+    # and the batch front end (its own re-anchoring block, 4096) agrees to 1e-12 relative or 1e-13
+    # g^2 absolute: the running sums' rounding is bounded by (block + N) x eps x max(y^2) =
+    # 4196 x 2.2e-16 x (0.2 g)^2 ~ 4e-14 g^2, y being the deviation from the block's anchor; a
+    # 2-sample window of nearly equal values can have a variance far below that, so relative
+    # agreement alone cannot be asked of it
     batch = moving_variance(x, window, method, weight=min(5, window))
-    np.testing.assert_allclose(got, batch, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(got, batch, rtol=1e-12, atol=1e-13)
 
 
 def test_bad_input_is_named():
