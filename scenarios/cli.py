@@ -237,9 +237,5 @@ def _print_summary(plan, track, m: dict, wall_s: float) -> None:
     console.print(t)
 
 
-def main() -> None:  # pragma: no cover - console entry point alias
-    app()
-
-
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(app())

@@ -102,8 +102,8 @@ def _rot(rng: np.random.Generator) -> np.ndarray:
     return Rotation.random(random_state=rng).as_matrix()
 
 
-def build_timeline(spec: CarrierSpec, events: dict[str, float], t_end_track_s: float,
-                   cruise: tuple[float, float] | None, rng: np.random.Generator) -> list[Segment]:
+def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[float, float] | None,
+                   rng: np.random.Generator) -> list[Segment]:
     """Lay the bag's segments on the flight. ``events`` maps event names to times (engine_start,
     engines_off); ``cruise`` is the (start, end) of the cruise phase, where handling happens."""
     spec.validate()

@@ -81,7 +81,6 @@ def fly(
     nch = len(ac.channels)
     scales = ac.scales
     scales_list = scales.tolist()
-    read = ac.raw_reader()
     get, nodes = ac.raw_getter()
     run = ac.fdm.run
     data = array("d")  # every step's raw channels, appended in place (no per-step NumPy work)
@@ -93,7 +92,7 @@ def fly(
     next_progress = 0.0
     while not pilot.done:
         # a control tick: sample, decide, step
-        raw = read()
+        raw = list(map(get, nodes))
         ext(raw)
         t = step / FDM_HZ
         codes = (pilot.phase_code, pilot.severity_code)

@@ -53,21 +53,6 @@ def geodetic_to_ned(lat_deg, lon_deg, alt_m, lat0_deg: float, lon0_deg: float, a
     return (ecef - ecef0) @ ecef_to_ned_matrix(lat0_deg, lon0_deg).T
 
 
-def ned_offset_to_geodetic(lat0_deg: float, lon0_deg: float, north_m, east_m):
-    """Latitude and longitude (deg) of a small horizontal offset from (lat0, lon0).
-
-    Uses the ellipsoid's meridian and prime-vertical radii of curvature: exact to well below a
-    centimetre for the few kilometres of an airport.
-    """
-    lat0 = np.radians(lat0_deg)
-    s = np.sin(lat0)
-    rn = WGS84_A_M / np.sqrt(1.0 - WGS84_E2 * s * s)
-    rm = rn * (1.0 - WGS84_E2) / (1.0 - WGS84_E2 * s * s)
-    lat = lat0_deg + np.degrees(np.asarray(north_m) / rm)
-    lon = lon0_deg + np.degrees(np.asarray(east_m) / (rn * np.cos(lat0)))
-    return lat, lon
-
-
 def great_circle_distance_m(lat1_deg, lon1_deg, lat2_deg, lon2_deg):
     """Haversine distance on the mean-radius sphere (m)."""
     p1, p2 = np.radians(lat1_deg), np.radians(lat2_deg)
@@ -108,11 +93,6 @@ def destination_point(lat_deg: float, lon_deg: float, course_deg: float, distanc
     p2 = np.arcsin(np.sin(p1) * np.cos(d) + np.cos(p1) * np.sin(d) * np.cos(c))
     l2 = l1 + np.arctan2(np.sin(c) * np.sin(d) * np.cos(p1), np.cos(d) - np.sin(p1) * np.sin(p2))
     return float(np.degrees(p2)), float((np.degrees(l2) + 540.0) % 360.0 - 180.0)
-
-
-def wrap_deg(angle_deg):
-    """Wrap an angle to (-180, 180]."""
-    return -((-np.asarray(angle_deg) + 180.0) % 360.0 - 180.0)
 
 
 class RunwayFrame:

@@ -218,17 +218,6 @@ class JSBSimAircraft:
         """(getter, nodes): ``map(getter, nodes)`` yields every channel's raw value."""
         return type(self._read_nodes[0]).get_double_value, self._read_nodes
 
-    def raw_reader(self):
-        """A function returning every channel's raw (JSBSim-unit) value as a list, fast."""
-        get = type(self._read_nodes[0]).get_double_value
-        nodes = self._read_nodes
-        return lambda: list(map(get, nodes))
-
-    def sample_into(self, row: np.ndarray) -> None:
-        """Read every channel (SI) into ``row`` (length ``len(self.channels)``)."""
-        row[:] = self.raw_reader()()
-        row *= self._scales
-
     def init_on_ground(
         self, lat_deg: float, lon_deg: float, elevation_m: float, heading_deg: float
     ) -> None:
@@ -249,10 +238,6 @@ class JSBSimAircraft:
         fdm["simulation/do_simple_trim"] = 2  # ground trim
         if not math.isfinite(fdm["position/h-agl-ft"]):
             raise AircraftError(f"ground trim of '{self.model}' produced NaN")
-
-    def set_seed(self, seed: int) -> None:
-        """Seed JSBSim's turbulence generator (FACTS.md: seeds 0 and 1 are identical)."""
-        self.fdm["simulation/randomseed"] = int(seed)
 
     def step(self) -> None:
         self.fdm.run()

@@ -27,7 +27,7 @@ from sim.jsbsim_adapter import FT_M, KT_MPS
 from sim.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITY_CODE
 from sim.geodesy import RunwayFrame
 from sim.plan import FlightPlan
-from sim.taxi_route import Path2D, gate_position_out, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
+from sim.taxi_route import Path2D, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
 
 NM_M = 1852.0
 LBF_N = 4.4482216152605
@@ -53,7 +53,6 @@ class Pilot:
         self.origin = RunwayFrame(plan.origin)
         self.dest = RunwayFrame(plan.destination)
         self.events: list[tuple[float, str, str]] = [(0.0, "gate", "phase")]  # (t_s, name, detail)
-        self.summary: dict[str, float] = {}
         self.phase = "gate"
         self.phase_code = PHASE_CODE["gate"]
         self.severity_code = 0
@@ -98,9 +97,7 @@ class Pilot:
         self._v_tgt = None
         self._vs_cmd = None
         self._en_route = False
-        self._straight = False
         self._airborne_high = False
-        self._max_alt_m = -math.inf
 
     # ------------------------------------------------------------------ helpers
     def _event(self, name: str, detail: str = "") -> None:
@@ -157,7 +154,7 @@ class Pilot:
     def _gs(self, x) -> float:
         return math.hypot(x[self.ix["v_north_mps"]], x[self.ix["v_east_mps"]])
 
-    def _ground_speed_signed(self, x, frame: RunwayFrame) -> float:
+    def _ground_speed_signed(self, x) -> float:
         psi = x[self.ix["psi_rad"]]
         return x[self.ix["v_north_mps"]] * math.cos(psi) + x[self.ix["v_east_mps"]] * math.sin(psi)
 
@@ -286,7 +283,7 @@ class Pilot:
 
     def _ph_pushback(self, x) -> None:
         ix = self.ix
-        v = self._ground_speed_signed(x, self.origin)
+        v = self._ground_speed_signed(x)
         turned = (x[ix["psi_rad"]] - self._push_heading0 + math.pi) % (2 * math.pi) - math.pi
         # push straight back across the apron, then turn the tail so the nose swings 90 deg left
         # onto the taxiway (turn radius = wheelbase / tan(35 deg))
@@ -333,9 +330,6 @@ class Pilot:
         v_t = v_max
         if abs(steer) > math.radians(15.0):  # hard steering: no faster than a turn
             v_t = self.prof.taxi_turn_kt * KT_MPS
-        self._straight = abs(steer) < math.radians(3.0) and all(
-            abs(sc - s) > 60.0 for sc in self.path.corners_s
-        )
         for sc in self.path.corners_s:
             if sc > s - 15.0:
                 d = max(0.0, sc - s - 10.0)
@@ -433,9 +427,6 @@ class Pilot:
         if x[ix["wow"]] < 0.5 and x[ix["agl_m"]] > self.prof.cg_height_m + 1.0:
             self._t_liftoff = self._t
             self._event("liftoff", f"{ias / KT_MPS:.1f} kt")
-            self.summary["liftoff_ias_mps"] = ias
-            self.summary["liftoff_gs_mps"] = self._gs(x)
-            self.summary["takeoff_roll_s"] = self._t - self._t_phase
             self._steer(0.0)
             self.ac.set("fcs/rudder-cmd-norm", 0.0)
             # hand the rotation bias over to the pitch integrator so the elevator does not jump
@@ -540,8 +531,6 @@ class Pilot:
         if self.ac.get("gear/gear-cmd-norm") > 0.5 and agl > 15.0 and -x[ix["v_down_mps"]] > 1.0:
             self.ac.set("gear/gear-cmd-norm", 0.0)
             self._event("gear_up")
-        if "climb_rate_mps" not in self.summary and agl > 500 * FT_M:
-            self.summary["climb_rate_mps"] = -x[ix["v_down_mps"]]
         # V2 + 20 kt to the acceleration height (1500 ft), then accelerate while still climbing:
         # the speed target ramps up at 1.5 kt/s (no level-off), thrust back to climb thrust
         target = (p.v2_kt + 20.0) * KT_MPS
@@ -595,7 +584,6 @@ class Pilot:
         """Climb, cruise, descent and approach: one set of loops, targets by phase and distance."""
         ix = self.ix
         p = self.prof
-        self._max_alt_m = max(self._max_alt_m, x[ix["alt_m"]])
         d = self._distance_to_go_m(x)
         h = x[ix["alt_m"]]
         h_tgt = min(self.plan.cruise_alt_m, self._path_alt_m(d))
@@ -618,7 +606,6 @@ class Pilot:
             return
         if self.phase == "climb":
             self._set_phase("cruise")
-            self.summary["cruise_alt_m"] = h_tgt
         if self.phase == "cruise" and h_tgt < self.plan.cruise_alt_m - 1.0:
             self._set_phase("descent")
         if self.phase in ("descent", "approach"):
@@ -637,7 +624,6 @@ class Pilot:
             self._vs_cmd = -x[ix["v_down_mps"]]
         self._vs_cmd = rate_limit(self._vs_cmd, vs_cmd, 0.8 * self.dt)
         vs_cmd = self._vs_cmd
-        vs = -x[ix["v_down_mps"]]
         lo_deg = -8.0
         mg = x[ix["agl_m"]] - p.cg_height_m
         if self._loc_mode and mg < 200 * FT_M:
@@ -657,8 +643,6 @@ class Pilot:
             mg = agl - p.cg_height_m
             if mg < p.flare_height_ft * FT_M:
                 self._set_phase("flare")
-                self.summary["final_approach_vs_mps"] = vs
-                self.summary["approach_ias_mps"] = x[ix["ias_mps"]]
 
     _ph_climb = _air
     _ph_cruise = _air
@@ -684,20 +668,13 @@ class Pilot:
         crs = self.dest.heading_rad - math.atan2(ry, 1500.0)
         self._heading_to(x, crs, 5.0)
         if x[ix["wow"]] > 0.5:
-            self.summary["touchdown_sink_mps"] = x[ix["v_down_mps"]]
-            self.summary["touchdown_ias_mps"] = x[ix["ias_mps"]]
-            self.summary["touchdown_gs_mps"] = self._gs(x)
-            self.summary["touchdown_x_m"] = rx
-            self.summary["touchdown_y_m"] = ry
             self._event("touchdown", f"sink {x[ix['v_down_mps']] / FT_M * 60:.0f} fpm at {rx:.0f} m")
             if x[ix["v_down_mps"]] / FT_M > MAX_SINK_FPS:
                 self._fail(f"hard landing: touchdown sink rate {x[ix['v_down_mps']] / FT_M:.1f} ft/s exceeds {MAX_SINK_FPS:.0f} ft/s")
             self._set_phase("rollout")
             self.ac.set("fcs/speedbrake-cmd-norm", 1.0)
             self.ac.set("fcs/spoiler-cmd-norm", 1.0)
-            self._rollout_v0 = self._gs(x)
             self._rev_thr = p.reverse_throttle
-            self._rollout_t0 = self._t
             self.brake_pid.reset()
 
     def _ph_rollout(self, x) -> None:
@@ -723,9 +700,7 @@ class Pilot:
             u = self.brake_pid(target - self._decel_f, self.dt)
             self._brakes(u)
         if gs < 20.0 * KT_MPS:
-            self.summary["rollout_decel_mps2"] = (self._rollout_v0 - gs) / (self._t - self._rollout_t0)
             rx, _ = self.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
-            self.summary["rollout_end_x_m"] = rx
             self.ac.set("fcs/speedbrake-cmd-norm", 0.0)
             self.ac.set("fcs/spoiler-cmd-norm", 0.0)
             self.ac.set("fcs/rudder-cmd-norm", 0.0)

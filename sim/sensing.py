@@ -92,7 +92,7 @@ def sense(
     events = {e.name: e.t_s for e in track.events}
     cruise_idx = np.flatnonzero(track.phase_code == PHASE_CODE["cruise"])
     cruise = (float(track.t_s[cruise_idx[0]]), float(track.t_s[cruise_idx[-1]])) if cruise_idx.size else None
-    segs = car.build_timeline(spec, events, float(track.t_s[-1]), cruise, rng)
+    segs = car.build_timeline(spec, events, cruise, rng)
     seg_t0 = np.array([s.t0_s for s in segs])
     t_start, t_end = segs[0].t0_s, segs[-1].t1_s
     fs = FS_INTERNAL_HZ

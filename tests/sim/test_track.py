@@ -1,7 +1,6 @@
 """FlightTrack helpers: lever-arm specific force and attitude quaternions."""
 
 import numpy as np
-import pytest
 from scipy.spatial.transform import Rotation
 
 from sim.track import euler_to_quat_wxyz
