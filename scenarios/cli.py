@@ -2,6 +2,9 @@
 
     flightmode scenarios [--spec]                 list the built-in scenarios (or the file spec)
     flightmode fly [SCENARIO] [--seed N] [--out DIR]   fly one gate to gate; default gva-lhr-a320
+    flightmode sense RUN_DIR [--sensor P] [--carrier K=V]   re-sense a flight
+    flightmode detect RUN_DIR_OR_SAMPLES [--method] [--window-s] [--k] [--time-threshold-s]
+                      [--weight] [--tables]       the flight-mode detector's figures
 
 Errors that flightmode raises on purpose (bad scenario, unknown aircraft, failed flight) print one
 line on stderr and exit with status 2, with no traceback.
@@ -126,9 +129,12 @@ def fly_cmd(
             info = run_io.run_info(plan, desc, str(path), track, metrics)
             info["wall_time_s"] = wall
             info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
+            evaluation, s2_source = _detect_recording(rec, plan.seed)
+            info["detector"] = evaluation.summary() | {"sigma2_from": s2_source}
             run_io.write_run_json(stage, info)
         _print_summary(plan, track, metrics, wall)
         _print_sensor(rec)
+        _print_detector_line(evaluation)
         console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), " (truth.parquet, samples.parquet, run.json)"))
     except FlightmodeError as e:
         _die(e)
@@ -153,6 +159,72 @@ def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: d
     # carrier keeps the flight and changes only what it must
     rec = sense(track, carrier, preset, np.random.default_rng([seed, 0x5E45E]), gyro=GyroSpec() if gyro else None)
     return rec, time.perf_counter() - t0
+
+
+def _detect_recording(rec, seed: int):
+    """The seed's recommended detector (Table 9: NMV, W_s 1 s, T_sigma 4 sigma^2, T_th 4 s) on a
+    fresh Recording, sigma^2 from the bench calibration of the recording's own unit."""
+    import numpy as np
+
+    from detector.evaluation import evaluate
+    from detector.flight_mode import DetectorParams, sigma2_from_preset
+
+    p = DetectorParams(fs_hz=rec.odr_hz)
+    s2 = sigma2_from_preset(rec.preset, rec.odr_hz, rec.unit, p.window, np.random.default_rng([seed, 0xCA1]))
+    labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
+    return evaluate(rec.t_s, rec.acc_g, labels, p, s2), "bench calibration of the unit"
+
+
+def _print_detector_line(e) -> None:
+    resp = "never came back" if e.response_s is None else f"{e.response_s:.1f} s"
+    style = "bold red" if e.false_static_count else "bold green"
+    console.print(Text.assemble(
+        "detector (NMV, 1 s, 4 sigma^2, 4 s): ",
+        (f"{e.false_static_count} false-static events in flight", style),
+        f" ({e.false_static_s:g} s); response after the flight {resp}; accuracy {e.accuracy:.3f}",
+    ), highlight=False)
+
+
+@app.command("detect")
+def detect_cmd(
+    source: Annotated[Path, typer.Argument(help="A run folder, or a samples.parquet file.")],
+    method: Annotated[str, typer.Option("--method", help="Moving variance: nmv or emv.")] = "nmv",
+    window_s: Annotated[float, typer.Option("--window-s", help="Window W_s and check period, s.")] = 1.0,
+    k: Annotated[float, typer.Option("--k", help="Amplitude threshold T_sigma = k sigma^2.")] = 4.0,
+    time_threshold_s: Annotated[float, typer.Option("--time-threshold-s", help="Time threshold T_th, s.")] = 4.0,
+    weight: Annotated[float, typer.Option("--weight", help="EMV weighting factor (1, 5, 10 in the seed).")] = 1.0,
+    sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (bench calibration of the unit) or rest (the recording's static samples before the flight).")] = "preset",
+    tables: Annotated[bool, typer.Option("--tables", help="Also print the seed's Table 2, 3, 4/5 forms and the Fig. 18 response.")] = False,
+) -> None:
+    """Run the flight-mode detector over a recording and print how it did against the truth."""
+    import numpy as np
+
+    from detector.evaluation import evaluate
+    from detector.flight_mode import DetectorParams
+    from scenarios import detector_report as dr
+    from scenarios import run_io
+
+    try:
+        cols, info = run_io.read_samples(source)
+        t, a = cols["t_s"], cols["acc_g"]
+        if info and info.get("sensor"):
+            fs = float(info["sensor"]["odr_hz"])
+        else:
+            fs = 1.0 / float(np.median(np.diff(t[: min(len(t), 10_000)])))
+        p = DetectorParams(fs_hz=fs, window_s=window_s, k_sigma=k, time_threshold_s=time_threshold_s,
+                           method=method, weight=weight)
+        p.validate()
+        labels = dr.labels_of(cols)
+        seed = int(info["seed"]) if info else 0
+        s2, s2_source = dr.calibrate(cols, info, p, sigma2_from, seed)
+        title = f"{source}" + (f": {info['sensor']['preset']} at {fs:g} Hz" if info and info.get("sensor") else "")
+        console.print(Text(title, style="bold"), highlight=False)
+        e = evaluate(t, a, labels, p, s2)
+        dr.print_evaluation(console, e, s2_source)
+        if tables:
+            dr.print_tables(console, t, a, labels, p, s2)
+    except FlightmodeError as e:
+        _die(e)
 
 
 def _print_sensor(rec) -> None:

@@ -132,6 +132,44 @@ def write_samples(stage: Path, rec) -> Path:
     return path
 
 
+def read_samples(path: Path) -> tuple[dict, dict | None]:
+    """Read a ``samples.parquet`` (or the run folder holding one) back: ``(columns, run_info)``.
+
+    ``columns`` holds ``t_s`` (M,), ``acc_g`` (M, 3), ``counts`` (M, 3) and the labels as arrays
+    (``phase`` as strings); ``run_info`` is the run.json beside it, or None if there is none."""
+    import pyarrow.parquet as pq
+
+    from sim.errors import FlightmodeError
+
+    path = Path(path)
+    file = path / "samples.parquet" if path.is_dir() else path
+    if not file.is_file():
+        raise FlightmodeError(f"{path}: no samples.parquet (make a run folder with `flightmode fly`)")
+    try:
+        t = pq.read_table(file)
+    except Exception as e:  # pyarrow raises several types for a file that is not Parquet
+        raise FlightmodeError(f"{file}: not a readable Parquet file ({e})") from None
+    need = {"t_s", "acc_x_g", "acc_y_g", "acc_z_g"}
+    if not need <= set(t.column_names):
+        raise FlightmodeError(f"{file}: not a flightmode samples file (columns {sorted(need)} missing)")
+    col = lambda n: t[n].to_numpy(zero_copy_only=False)  # noqa: E731
+    out = {
+        "t_s": np.asarray(col("t_s"), float),
+        "acc_g": np.stack([np.asarray(col(f"acc_{a}_g"), float) for a in "xyz"], axis=1),
+    }
+    if "raw_x" in t.column_names:
+        out["counts"] = np.stack([np.asarray(col(f"raw_{a}"), np.int32) for a in "xyz"], axis=1)
+    for name in ("in_flight_window", "airborne", "sensor_static", "clipped"):
+        if name in t.column_names:
+            out[name] = np.asarray(col(name), bool)
+    for name in ("phase", "bag_state", "turbulence_severity"):
+        if name in t.column_names:
+            out[name] = np.asarray(t[name].to_pylist(), dtype=object)
+    info_path = file.parent / "run.json"
+    info = json.loads(info_path.read_text()) if info_path.is_file() else None
+    return out, info
+
+
 def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
     """Rebuild the FlightTrack of a run folder from truth.parquet and run.json."""
     import pyarrow.parquet as pq

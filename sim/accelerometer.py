@@ -313,3 +313,18 @@ def eobs_preset(acc_interval_s: float, byte_count: int, odr_per_axis_hz: float =
                             burst_samples=per_axis)
     p.validate()
     return p
+
+
+def bench_static(preset: AccelerometerPreset, unit: UnitDraw, rng: np.random.Generator,
+                 duration_s: float = 60.0) -> Measurement:
+    """The unit lying flat and still on a bench for ``duration_s``: the static behaviour a tracker's
+    noise calibration sees (seed 000 section 5.1: sigma^2 from static measurements). The specific
+    force is 1 g along the sensor's -z axis (z down in our sensor frame), so two axes read about
+    0 g and one about 1 g, through the unit's own offsets, gain, noise and quantisation."""
+    if not duration_s > 0:
+        raise SensorError(f"bench duration {duration_s} s: must be > 0")
+    fs = preset.odr_hz * 4
+    n = int(round(duration_s * fs))
+    f = np.zeros((n, 3))
+    f[:, 2] = -1.0
+    return SensorChain(preset, unit, fs)(f, 0.0, rng)

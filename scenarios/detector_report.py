@@ -1,0 +1,145 @@
+"""Detector figures for the command line: run the detector over a labelled stream and print them as
+Rich tables (per-recording scores; with ``tables`` also seed 000's Table 2, 3, 4/5 forms and the
+turn-on response of Fig. 18). Used by ``flightmode detect`` and ``flightmode fly``."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from rich.console import Console
+from rich.table import Table
+
+from detector import evaluation as ev
+from detector.flight_mode import DetectorParams, calibrate_sigma2, sigma2_from_preset
+from detector.moving_variance import DetectorError
+from detector.statistics import table2
+
+SIGMA2_SOURCES = ("preset", "rest")
+
+
+def calibrate(columns: dict, info: dict | None, params: DetectorParams, source: str, seed: int) -> tuple[np.ndarray, str]:
+    """sigma^2 per axis and a sentence saying where it came from.
+
+    ``preset``: the recording's own unit on the bench (:func:`sigma2_from_preset`), the seed's
+    procedure; needs the run.json beside the samples. ``rest``: the recording's truly static
+    samples before the flight (the terminal rest), as a tracker calibrating in place would."""
+    if source not in SIGMA2_SOURCES:
+        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}")
+    if source == "preset":
+        if info is None or "sensor" not in info:
+            raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
+                                "use --sigma2-from rest for a bare samples file")
+        s = info["sensor"]
+        s2 = sigma2_from_preset(s["preset"], float(s["odr_hz"]), s.get("unit"), params.window,
+                                np.random.default_rng([seed, 0xCA1]))
+        return s2, f"bench calibration of this {s['preset']} unit (60 s static, quantisation floor)"
+    static = columns.get("sensor_static")
+    if static is None or not static.any():
+        raise DetectorError("--sigma2-from rest: the stream has no truly static samples")
+    first_window = np.flatnonzero(columns["in_flight_window"])[0] if columns["in_flight_window"].any() else len(static)
+    sel = static.copy()
+    sel[first_window:] = False  # only what a tracker could see before the flight
+    if sel.sum() < params.window:
+        sel = static
+    lsb = None
+    if info is not None and info.get("sensor"):
+        from sim.accelerometer import get_preset
+
+        lsb = get_preset(info["sensor"]["preset"]).lsb_g
+    return calibrate_sigma2(columns["acc_g"][sel], params.window, lsb), f"{int(sel.sum())} truly static samples before the flight"
+
+
+def labels_of(columns: dict) -> dict:
+    missing = [k for k in ("in_flight_window", "sensor_static", "phase") if k not in columns]
+    if missing:
+        raise DetectorError(f"the samples have no {', '.join(missing)} column(s): evaluation needs the truth labels")
+    return {k: columns[k] for k in ("in_flight_window", "sensor_static", "phase")}
+
+
+def _e(x) -> str:
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    return "0" if x == 0 else f"{x:.1e}"
+
+
+def print_evaluation(console: Console, e: ev.Evaluation, source: str, max_events: int = 15) -> None:
+    p = e.params
+    t = Table(title=f"flight-mode detector: {p.method.upper()}"
+              + (f" weight {p.weight:g}" if p.method == "emv" else "")
+              + f", W_s {p.window_s:g} s, T_sigma {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s",
+              show_header=False)
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    t.add_row("sigma^2 per axis", ", ".join(f"{v:.2e}" for v in e.sigma2) + " g^2")
+    t.add_row("sigma^2 from", source)
+    t.add_row("checks (in the in-flight window)", f"{e.checks.t_s.shape[0]:,} ({e.in_flight_checks:,})")
+    t.add_row("false-static events in flight", f"{e.false_static_count} ({e.false_static_s:g} s in all)")
+    t.add_row("response after the flight", "never" if e.response_s is None else f"{e.response_s:.1f} s")
+    t.add_row("static time missed outside the window", f"{e.missed_static_s:g} s")
+    t.add_row("accuracy / correlation vs sensor_static", f"{e.accuracy:.4f} / {e.correlation:.4f}")
+    console.print(t)
+    if e.false_static_events:
+        ft = Table(title="false-static events (transmission allowed while the aircraft moves)")
+        for c in ("t (s)", "duration (s)", "phase"):
+            ft.add_column(c)
+        for ev_ in e.false_static_events[:max_events]:
+            ft.add_row(f"{ev_['t_s']:.0f}", f"{ev_['duration_s']:g}", ev_["phase"])
+        if e.false_static_count > max_events:
+            ft.add_row("...", f"{e.false_static_count - max_events} more", "")
+        console.print(ft)
+
+
+def print_tables(console: Console, t_s, acc_g, labels: dict, p: DetectorParams, sigma2) -> dict:
+    """Print (and return) the Table 2, 3, 4/5 forms and the Fig. 18 turn-on response."""
+    out = {}
+    rows = table2(window_s=p.window_s, fs_hz=p.fs_hz)
+    out["table2"] = rows
+    t = Table(title=f"Table 2 form: P_M of one check on white noise, N = {p.window} (seed 000 eq. 13)")
+    for c in ("T_sigma", "P_M Gaussian (eq. 13)", "P_M exact chi-square", "TimeError Gaussian", "TimeError exact"):
+        t.add_column(c, justify="right")
+    for r in rows:
+        t.add_row(r["T_sigma"], _e(r["P_M_gaussian"]), _e(r["P_M_exact"]),
+                  f"{r['time_error_gaussian_s']:.1e} s", f"{r['time_error_exact_s']:.1e} s")
+    console.print(t)
+
+    static = labels["sensor_static"]
+    rows = ev.mv_vs_window(t_s, acc_g, static, p, sigma2)
+    out["table3"] = rows
+    t = Table(title="Table 3 form: NMV average on truly static data (seed 000 Table 3 reads 0.6, 0.5, 0.51, 0.51)")
+    for c in ("W_s", "checks", "MV x, y, z (1e-5 g^2)", "mean (1e-5 g^2)", "mean / sigma^2"):
+        t.add_column(c, justify="right")
+    s2m = float(np.mean(sigma2))
+    for r in rows:
+        t.add_row(f"{r['window_s']:g} s", str(r["checks"]), ", ".join(f"{v / 1e-5:.3f}" for v in r["mv_g2"]),
+                  f"{r['mv_mean_g2'] / 1e-5:.3f}", f"{r['mv_mean_g2'] / s2m:.2f}")
+    console.print(t)
+
+    rows = ev.pfa_table(t_s, acc_g, labels, p, sigma2)
+    out["table4"] = rows
+    t = Table(title="Tables 4-5 form: P_FA over the in-flight window (eq. 14), and the observed rate")
+    t.add_column("")
+    for r in rows:
+        t.add_column(f"{r['T_sigma']:g}s2/{r['T_th_s']:g}s", justify="right")
+    for key, name in (("P_FA_x", "P_FA^x"), ("P_FA_y", "P_FA^y"), ("P_FA_z", "P_FA^z"),
+                      ("P_FA_t", "P_FA^t (product)"), ("P_FA_t_joint", "P_FA^t (joint, observed)"),
+                      ("P_FA", "P_FA = (P_FA^t)^(T_th/W_s)"),
+                      ("observed_final_static_rate", "final statics / checks (observed)")):
+        t.add_row(name, *[_e(r[key]) for r in rows])
+    console.print(t)
+
+    try:
+        a, b = ev.longest_static_run(static)
+        rows = ev.turn_on_response(t_s[a:b], acc_g[a:b], p, sigma2)
+    except DetectorError:
+        rows = []
+    out["turn_on"] = rows
+    t = Table(title=f"Turn-on response on static data (section 7.1, Fig. 18; EMV starts at {p.emv_initial_k:g} sigma^2)")
+    for c in ("method", "MV below T_sigma", "first temporary static", "final static"):
+        t.add_column(c, justify="right")
+    fmt = lambda v: "never" if v is None else f"{v:.2f} s"  # noqa: E731
+    for r in rows:
+        name = "NMV" if r["method"] == "nmv" else f"EMV w={r['weight']:g}"
+        t.add_row(name, fmt(r["mv_below_threshold_s"]), fmt(r["first_temporary_static_s"]), fmt(r["response_s"]))
+    console.print(t)
+    return out
