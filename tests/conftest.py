@@ -26,3 +26,16 @@ def fly_cached():
         return cache[key]
 
     return _fly
+
+
+@pytest.fixture(scope="session")
+def pattern_run(tmp_path_factory):
+    """A run folder written by `flightmode fly pattern` (the CLI, end to end), once per session."""
+    from typer.testing import CliRunner
+
+    from scenarios.cli import app
+
+    out = tmp_path_factory.mktemp("runs")
+    r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    return out / "pattern-s1", r.output
