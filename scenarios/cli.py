@@ -131,10 +131,13 @@ def fly_cmd(
             info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
             evaluation, s2_source = _detect_recording(rec, plan.seed)
             info["detector"] = evaluation.summary() | {"sigma2_from": s2_source}
+            path = _path_summary(track, rec, plan.seed)
+            info["path"] = path
             run_io.write_run_json(stage, info)
         _print_summary(plan, track, metrics, wall)
         _print_sensor(rec)
         _print_detector_line(evaluation)
+        _print_path_line(path)
         console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), " (truth.parquet, samples.parquet, run.json)"))
     except FlightmodeError as e:
         _die(e)
@@ -173,6 +176,25 @@ def _detect_recording(rec, seed: int):
     s2 = sigma2_from_preset(rec.preset, rec.odr_hz, rec.unit, p.window, np.random.default_rng([seed, 0xCA1]))
     labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
     return evaluate(rec.t_s, rec.acc_g, labels, p, s2), "bench calibration of the unit"
+
+
+def _path_summary(track, rec, seed: int) -> list[dict]:
+    """The seed 002 estimators on this recording, truth-aided (nav.evaluation rows)."""
+    from scenarios.path_report import path_rows
+
+    rows = path_rows(track, {rec.preset: rec}, rec.carrier, seed)
+    return [r for r in rows if r["source"].endswith("truth-aided")]
+
+
+def _print_path_line(rows: list[dict]) -> None:
+    by = {r["method"].split(" ")[0]: r for r in rows}
+    tri, rec = by["tridiagonal"], by["recurrence"]
+    console.print(
+        f"path from acceleration (truth-aided frames): tridiagonal with the gate positions max error "
+        f"{tri['max_m']:,.0f} m; recurrence from the gate final {rec['final_m']:,.0f} m, max {rec['max_m']:,.0f} m "
+        "(flightmode path RUN_DIR for the table)",
+        highlight=False,
+    )
 
 
 def _print_detector_line(e) -> None:
@@ -223,6 +245,36 @@ def detect_cmd(
         dr.print_evaluation(console, e, s2_source)
         if tables:
             dr.print_tables(console, t, a, labels, p, s2)
+    except FlightmodeError as e:
+        _die(e)
+
+
+@app.command("path")
+def path_cmd(
+    run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`.")],
+    sensors: Annotated[str, typer.Option("--sensors", help="Comma-separated presets to compare; 'run' is the run's own sensor.")] = "run,ideal",
+) -> None:
+    """Rebuild the bag's path from acceleration (seed 002 cubic splines) and print its errors."""
+    from scenarios import run_io
+    from scenarios.path_report import path_rows, print_rows
+    from sim.carrier import CarrierSpec
+
+    try:
+        track, info = run_io.read_track(run_dir)
+        extra = info["plan"].get("extra") or {}
+        seed = int(info["seed"])
+        run_preset = (info.get("sensor") or {}).get("preset")
+        recs = {}
+        for name in [s.strip() for s in sensors.split(",") if s.strip()]:
+            preset = run_preset if name == "run" else name
+            if preset in recs:
+                continue
+            # re-sensing is deterministic: the run's own preset gives its samples.parquet again,
+            # with the carrier timeline (orientations) that the truth-aided frames need
+            recs[preset], _ = _sense(track, extra, seed, preset)
+        carrier = CarrierSpec(**(extra.get("carrier") or {}))
+        rows = path_rows(track, recs, carrier, seed)
+        print_rows(console, rows, f"{info['run_id']}: path errors against the truth (bag seat position)")
     except FlightmodeError as e:
         _die(e)
 

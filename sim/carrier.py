@@ -188,8 +188,20 @@ def band_noise(n: int, fs_hz: float, band_hz: tuple[float, float], rms: float, r
 
 
 def handling_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarray:
-    """Arm motion while a bag is held (0.5-3 Hz band-limited random accelerations, about 0.15 g RMS)."""
-    return band_noise(n, 1.0 / dt, (0.5, 3.0), 0.15 * G0, rng)
+    """Arm motion while a bag is held (0.5-3 Hz band-limited, about 0.15 g RMS).
+
+    Built as the second derivative of a band-limited *displacement* tapered to zero at both ends
+    (a Tukey window), so the bag ends where it started, at rest: a random acceleration alone would
+    leave it with a random net velocity (tens of cm/s after 30 s), i.e. flying through the cabin
+    for anything that integrates it (nav/)."""
+    if n < 30:
+        return np.zeros((n, 3))
+    from scipy.signal.windows import tukey
+
+    x = band_noise(n, 1.0 / dt, (0.5, 3.0), 1.0, rng) * tukey(n, min(1.0, 2.0 / (n * dt)))[:, None]
+    a = np.zeros_like(x)
+    a[1:-1] = (x[2:] - 2.0 * x[1:-1] + x[:-2]) / (dt * dt)  # sums to zero velocity change
+    return a * (0.15 * G0 / max(float(a.std()), 1e-12))
 
 
 def road_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarray:
@@ -200,11 +212,18 @@ def road_accel_mps2(n: int, dt: float, rng: np.random.Generator) -> np.ndarray:
 
 
 def putdown_pulse_mps2(n: int, dt: float, spec: CarrierSpec) -> np.ndarray:
-    """A half-sine put-down shock along the frame's down axis (positive up specific force)."""
-    m = max(2, int(spec.putdown_ms / 1000.0 / dt))
+    """Setting the bag down, along the frame's down axis (positive: upward specific force): the last
+    few centimetres of lowering (a gentle negative half-sine over 0.15 s) then the stop, a half-sine
+    shock of ``putdown_peak_g`` over ``putdown_ms``. The two impulses cancel, so the bag ends at
+    rest (a shock alone would leave it a net 0.4 m/s, which a path estimator would integrate)."""
+    m = max(2, int(round(spec.putdown_ms / 1000.0 / dt)))
+    m0 = max(2, int(round(0.15 / dt)))
     p = np.zeros(n)
-    k = min(n, m)
-    p[:k] = spec.putdown_peak_g * G0 * np.sin(np.pi * np.arange(k) / m)
+    shock = spec.putdown_peak_g * G0 * np.sin(np.pi * (np.arange(m) + 0.5) / m)
+    lower = -np.sin(np.pi * (np.arange(m0) + 0.5) / m0)
+    lower *= shock.sum() / -lower.sum()
+    pulse = np.concatenate([lower, shock])[:n]
+    p[: pulse.shape[0]] = pulse
     return p
 
 

@@ -56,6 +56,9 @@ def _load_fuel(ac: JSBSimAircraft, fuel_kg: float) -> None:
         ac.set(f"propulsion/tank[{i}]/contents-lbs", min(cap, fuel_kg * KG_LB * cap / total))
 
 
+SETTLE_S = 8.0  # FDM time let run after run_ic, before the track's t = 0
+
+
 def fly(
     plan: FlightPlan,
     *,
@@ -77,6 +80,13 @@ def fly(
     ac.set("atmosphere/turb-type", 0)
     ac.set("propulsion/cutoff_cmd", 1)
     pilot = Pilot(ac, plan, prof, 3.0 / FDM_HZ)
+    # JSBSim's state straight after run_ic is the requested initial condition, not yet resolved on
+    # its gear: its first step moves the aircraft 0.2 m at once, and the gear then settles for about
+    # 4 s (0.08 m/s, a few m/s^2). Let it settle before recording, so that the track starts truly at
+    # rest at the gate (a 0.2 m jump in 1/120 s is 3,000 m/s^2 of phantom acceleration to anything
+    # that integrates the track, such as nav/).
+    for _ in range(int(SETTLE_S * FDM_HZ)):
+        ac.fdm.run()
 
     nch = len(ac.channels)
     scales = ac.scales

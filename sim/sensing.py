@@ -110,7 +110,7 @@ def sense(
         elif s.walking:
             motion[i] = car.gait_accel_mps2(np.arange(n) * dt, spec, rng)
     # put-down shocks at the start of every resting / stowed segment that follows a carried one
-    pulse = car.putdown_pulse_mps2(int(0.2 * fs), dt, spec)
+    pulse = car.putdown_pulse_mps2(int(0.25 * fs), dt, spec)
 
     # track channels at 120 Hz, stacked and interpolated per chunk in one gather
     loc = prof.locations_m[car.LOCATION_OF[spec.placement]]

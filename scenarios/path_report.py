@@ -1,0 +1,46 @@
+"""Path-estimator figures for the command line (``flightmode path``, and the summary line of
+``flightmode fly``): nav.evaluation rows as a Rich table."""
+
+from __future__ import annotations
+
+import numpy as np
+from rich.console import Console
+from rich.table import Table
+
+from nav.evaluation import evaluate
+
+
+def lever_arm_m(track, carrier) -> tuple[float, float, float]:
+    from sim.aircraft_profiles import get_profile
+    from sim.carrier import LOCATION_OF
+
+    return get_profile(track.aircraft).locations_m[LOCATION_OF[carrier.placement]]
+
+
+def checks_of(seed: int):
+    """The seed's recommended detector on a recording (for ZUPT and tilt-only static periods)."""
+    from detector.flight_mode import DetectorParams, detect, sigma2_from_preset
+
+    def run(rec):
+        p = DetectorParams(fs_hz=rec.odr_hz)
+        s2 = sigma2_from_preset(rec.preset, rec.odr_hz, rec.unit, p.window, np.random.default_rng([seed, 0xCA1]))
+        return detect(rec.t_s, rec.acc_g, p, s2), p.window
+
+    return run
+
+
+def path_rows(track, recordings: dict, carrier, seed: int) -> list[dict]:
+    return evaluate(track, recordings, lever_arm_m(track, carrier), checks_of(seed))
+
+
+def _m(x: float) -> str:
+    return f"{x:,.2f}" if x < 10 else f"{x:,.0f}"
+
+
+def print_rows(console: Console, rows: list[dict], title: str) -> None:
+    t = Table(title=title)
+    for c in ("acceleration", "method", "max error (m)", "RMS (m)", "final (m)"):
+        t.add_column(c, justify="right" if "(m)" in c else "left")
+    for r in rows:
+        t.add_row(r["source"], r["method"], _m(r["max_m"]), _m(r["rms_m"]), _m(r["final_m"]))
+    console.print(t)
