@@ -64,6 +64,22 @@ def span(rec, track, settle_s: float = 3.0) -> tuple[float, float]:
     return t0, t1
 
 
+def estimate_paths(track, rec, lever_arm_body_m) -> dict:
+    """The truth-aided estimates of one recording over the evaluation span: times, the truth, the
+    tridiagonal path with the gate positions and the recurrence from the gate at rest (world frame,
+    m, at every sample)."""
+    t0, t1 = span(rec, track)
+    s = (rec.t_s >= t0) & (rec.t_s <= t1)
+    tt = rec.t_s[s]
+    truth = frames.truth_position(track, tt, lever_arm_body_m)
+    a = frames.truth_aided_acceleration(rec, track, tt, rec.acc_g[s])
+    return {
+        "t_s": tt, "truth": truth, "acc": a, "mask": s,
+        "tridiagonal": tridiagonal_path(tt, a, truth[0], truth[-1])(tt),
+        "recurrence": recurrence_path(tt, a, truth[0], np.zeros(3))(tt),
+    }
+
+
 def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[dict]:
     """Rows of the module docstring. ``recordings``: {label: Recording}; ``checks_of(rec)`` returns
     the detector's Checks for a recording (for ZUPT and tilt-only); None skips those rows."""
@@ -83,14 +99,9 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
     rows.append({"source": "truth acceleration, point samples", "method": "tridiagonal (gate positions)",
                  **errors(t, tridiagonal_path(t, a_pt, truth[0], truth[-1])(t), truth)})
     for label, rec in recordings.items():
-        s = (rec.t_s >= t0) & (rec.t_s <= t1)
-        tt = rec.t_s[s]
-        tr_pos = frames.truth_position(track, tt, lever_arm_body_m)
-        a = frames.truth_aided_acceleration(rec, track, tt, rec.acc_g[s])
-        rows.append({"source": f"{label}, truth-aided", "method": "tridiagonal (gate positions)",
-                     **errors(tt, tridiagonal_path(tt, a, tr_pos[0], tr_pos[-1])(tt), tr_pos)})
-        rows.append({"source": f"{label}, truth-aided", "method": "recurrence (gate, at rest)",
-                     **errors(tt, recurrence_path(tt, a, tr_pos[0], v0)(tt), tr_pos)})
+        est = estimate_paths(track, rec, lever_arm_body_m)
+        s, tt, tr_pos, a = est["mask"], est["t_s"], est["truth"], est["acc"]
+        rows += path_rows(est, label)
         if checks_of is None:
             continue
         c, window = checks_of(rec)
@@ -108,6 +119,15 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
         rows.append({"source": f"{label}, tilt-only (vertical only)", "method": "recurrence + ZUPT",
                      **errors(tt, est[:, None], tr_pos[:, 2:3])})
     return rows
+
+
+def path_rows(est: dict, label: str) -> list[dict]:
+    return [
+        {"source": f"{label}, truth-aided", "method": "tridiagonal (gate positions)",
+         **errors(est["t_s"], est["tridiagonal"], est["truth"])},
+        {"source": f"{label}, truth-aided", "method": "recurrence (gate, at rest)",
+         **errors(est["t_s"], est["recurrence"], est["truth"])},
+    ]
 
 
 def random_walk_exponent(noise_mps2: float, fs_hz: float, duration_s: float, runs: int,

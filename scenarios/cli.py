@@ -84,8 +84,10 @@ def fly_cmd(
     ),
     sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset (default: the scenario's).")] = None,
     gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
+    rrd: Annotated[bool, typer.Option("--rrd/--no-rrd", help="Write recording.rrd (Rerun) beside the Parquet files.")] = True,
 ) -> None:
-    """Fly a scenario gate to gate in JSBSim, sense it; write truth.parquet, samples.parquet, run.json."""
+    """Fly a scenario gate to gate in JSBSim, sense it, run the detector and the path estimators;
+    write truth.parquet, samples.parquet, run.json and recording.rrd."""
     from scenarios import run_io
     from sim.flight import fly
     from sim.flight_metrics import flight_metrics
@@ -131,14 +133,29 @@ def fly_cmd(
             info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
             evaluation, s2_source = _detect_recording(rec, plan.seed)
             info["detector"] = evaluation.summary() | {"sigma2_from": s2_source}
-            path = _path_summary(track, rec, plan.seed)
+            from nav.evaluation import path_rows as _rows
+
+            paths = _estimate_paths(track, rec)
+            path = _rows(paths, rec.preset)
             info["path"] = path
+            if rrd:
+                from scenarios.run_view import run_view
+                from viz.rrd import write_rrd
+
+                t_rrd = time.perf_counter()
+                write_rrd(run_view(rid, plan, track, rec, evaluation, paths), stage / "recording.rrd")
+                info["rrd_wall_time_s"] = time.perf_counter() - t_rrd
             run_io.write_run_json(stage, info)
         _print_summary(plan, track, metrics, wall)
         _print_sensor(rec)
         _print_detector_line(evaluation)
         _print_path_line(path)
-        console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), " (truth.parquet, samples.parquet, run.json)"))
+        files = "truth.parquet, samples.parquet, run.json" + (", recording.rrd" if rrd else "")
+        console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), f" ({files})"), highlight=False)
+        if rrd:
+            where = Path(out) / rid / "recording.rrd"
+            console.print(Text.assemble("recording: ", (str(where), "bold"), "; open it with: ",
+                                        (f"flightmode view {where}", "bold")), highlight=False)
     except FlightmodeError as e:
         _die(e)
 
@@ -178,12 +195,12 @@ def _detect_recording(rec, seed: int):
     return evaluate(rec.t_s, rec.acc_g, labels, p, s2), "bench calibration of the unit"
 
 
-def _path_summary(track, rec, seed: int) -> list[dict]:
-    """The seed 002 estimators on this recording, truth-aided (nav.evaluation rows)."""
-    from scenarios.path_report import path_rows
+def _estimate_paths(track, rec) -> dict:
+    """The seed 002 estimators on this recording, truth-aided (nav.evaluation)."""
+    from nav.evaluation import estimate_paths
+    from scenarios.path_report import lever_arm_m
 
-    rows = path_rows(track, {rec.preset: rec}, rec.carrier, seed)
-    return [r for r in rows if r["source"].endswith("truth-aided")]
+    return estimate_paths(track, rec, lever_arm_m(track, rec.carrier))
 
 
 def _print_path_line(rows: list[dict]) -> None:
@@ -275,6 +292,35 @@ def path_cmd(
         carrier = CarrierSpec(**(extra.get("carrier") or {}))
         rows = path_rows(track, recs, carrier, seed)
         print_rows(console, rows, f"{info['run_id']}: path errors against the truth (bag seat position)")
+    except FlightmodeError as e:
+        _die(e)
+
+
+@app.command("view")
+def view_cmd(
+    source: Annotated[Path, typer.Argument(help="A run folder (its recording.rrd) or an .rrd file.")],
+    web: Annotated[bool, typer.Option("--web", help="Serve the web viewer on 127.0.0.1 and print its URL.")] = False,
+    port: Annotated[Optional[int], typer.Option("--port", help="Web viewer HTTP port (default: a free one).")] = None,
+) -> None:
+    """Open a recording in a new Rerun viewer (native), or serve the web viewer on 127.0.0.1."""
+    import subprocess
+
+    from viz import viewer
+
+    try:
+        rrd = viewer.resolve_rrd(source)
+        if web:
+            cmd, url = viewer.web_command(rrd, port or viewer.free_port(), viewer.free_port())
+            console.print(Text.assemble("web viewer (127.0.0.1 only): ", (url, "bold")), highlight=False)
+            console.print("Ctrl-C stops it. Rerun's viewer sends anonymous usage analytics unless you run "
+                          "`rerun analytics disable`.", highlight=False)
+        else:
+            cmd = viewer.native_command(rrd)
+        code = subprocess.call(cmd)
+        if code not in (0, -2, 130):
+            raise FlightmodeError(f"the Rerun viewer exited with status {code} ({' '.join(cmd)})")
+    except KeyboardInterrupt:
+        pass
     except FlightmodeError as e:
         _die(e)
 

@@ -1,0 +1,47 @@
+"""Opening a recording: a new native Rerun viewer, or the web viewer served on 127.0.0.1 only.
+
+Rerun's own CLI (shipped in the rerun-sdk wheel as ``rerun_cli``) binds 0.0.0.0 unless told
+otherwise (FACTS.md), so every command here passes ``--bind 127.0.0.1``. The native viewer gets
+``--new`` so that it never streams into a viewer that is already open.
+
+Rerun's viewer sends anonymous usage analytics unless they are disabled with
+``rerun analytics disable`` (a per-user setting that flightmode does not change for you);
+``flightmode view`` prints that hint.
+"""
+
+from __future__ import annotations
+
+import socket
+import sys
+from pathlib import Path
+
+from sim.errors import FlightmodeError
+
+LOOPBACK = "127.0.0.1"
+
+
+def resolve_rrd(path: Path) -> Path:
+    p = Path(path)
+    rrd = p / "recording.rrd" if p.is_dir() else p
+    if not rrd.is_file():
+        raise FlightmodeError(f"{path}: no recording.rrd (run `flightmode fly` without --no-rrd, or give an .rrd file)")
+    if rrd.suffix != ".rrd":
+        raise FlightmodeError(f"{rrd}: not an .rrd file")
+    return rrd
+
+
+def free_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind((LOOPBACK, 0))
+        return int(s.getsockname()[1])
+
+
+def native_command(rrd: Path) -> list[str]:
+    return [sys.executable, "-m", "rerun_cli", "--new", "--bind", LOOPBACK, str(rrd)]
+
+
+def web_command(rrd: Path, web_port: int, grpc_port: int) -> tuple[list[str], str]:
+    cmd = [sys.executable, "-m", "rerun_cli", "--web-viewer", "--bind", LOOPBACK,
+           "--web-viewer-port", str(web_port), "--port", str(grpc_port), str(rrd)]
+    url = f"http://{LOOPBACK}:{web_port}/?url=rerun%2Bhttp%3A%2F%2F{LOOPBACK}%3A{grpc_port}%2Fproxy"
+    return cmd, url
