@@ -39,3 +39,16 @@ def pattern_run(tmp_path_factory):
     r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(out)])
     assert r.exit_code == 0, r.output
     return out / "pattern-s1", r.output
+
+
+@pytest.fixture(scope="session")
+def default_run(tmp_path_factory):
+    """`flightmode fly` (the default scenario, end to end, recording.rrd included), once per session."""
+    from typer.testing import CliRunner
+
+    from scenarios.cli import app
+
+    out = tmp_path_factory.mktemp("runs")
+    r = CliRunner().invoke(app, ["fly", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    return out / "gva-lhr-a320-s1", r.output
