@@ -316,11 +316,15 @@ def view_cmd(
                           "`rerun analytics disable`.", highlight=False)
         else:
             cmd = viewer.native_command(rrd)
-        code = subprocess.call(cmd)
-        if code not in (0, -2, 130):
+        proc = subprocess.Popen(cmd)
+        try:
+            code = proc.wait()
+        except KeyboardInterrupt:
+            proc.terminate()
+            proc.wait(timeout=10)
+            return
+        if code not in (0, -2, -15, 130):
             raise FlightmodeError(f"the Rerun viewer exited with status {code} ({' '.join(cmd)})")
-    except KeyboardInterrupt:
-        pass
     except FlightmodeError as e:
         _die(e)
 

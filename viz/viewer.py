@@ -1,6 +1,6 @@
 """Opening a recording: a new native Rerun viewer, or the web viewer served on 127.0.0.1 only.
 
-Rerun's own CLI (shipped in the rerun-sdk wheel as ``rerun_cli``) binds 0.0.0.0 unless told
+Rerun's own viewer binary (shipped in the rerun-sdk wheel, package ``rerun_cli``) binds 0.0.0.0 unless told
 otherwise (FACTS.md), so every command here passes ``--bind 127.0.0.1``. The native viewer gets
 ``--new`` so that it never streams into a viewer that is already open.
 
@@ -36,12 +36,28 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
+def rerun_exe() -> str:
+    """The viewer binary shipped in the rerun-sdk wheel, run directly (``python -m rerun_cli`` would
+    add a wrapper process that outlives nothing but can be left behind when killed)."""
+    import os
+
+    import rerun_cli
+
+    exe = os.path.join(os.path.dirname(rerun_cli.__file__), "rerun" + (".exe" if sys.platform.startswith("win") else ""))
+    if sys.platform == "darwin":
+        app = os.path.join(os.path.dirname(rerun_cli.__file__), "Rerun.app", "Contents", "MacOS", "Rerun")
+        exe = app if os.path.exists(app) else exe
+    if not os.path.exists(exe):
+        raise FlightmodeError(f"the Rerun viewer binary is missing ({exe}): reinstall rerun-sdk==0.41.0")
+    return exe
+
+
 def native_command(rrd: Path) -> list[str]:
-    return [sys.executable, "-m", "rerun_cli", "--new", "--bind", LOOPBACK, str(rrd)]
+    return [rerun_exe(), "--new", "--bind", LOOPBACK, str(rrd)]
 
 
 def web_command(rrd: Path, web_port: int, grpc_port: int) -> tuple[list[str], str]:
-    cmd = [sys.executable, "-m", "rerun_cli", "--web-viewer", "--bind", LOOPBACK,
+    cmd = [rerun_exe(), "--web-viewer", "--bind", LOOPBACK,
            "--web-viewer-port", str(web_port), "--port", str(grpc_port), str(rrd)]
     url = f"http://{LOOPBACK}:{web_port}/?url=rerun%2Bhttp%3A%2F%2F{LOOPBACK}%3A{grpc_port}%2Fproxy"
     return cmd, url

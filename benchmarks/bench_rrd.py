@@ -1,0 +1,67 @@
+"""Benchmark: writing the default flight's recording.rrd against flying it, same run (goal: <= 0.2),
+and the file size per flight-hour at 100 Hz (goal: <= 60 MB).
+
+    python benchmarks/bench_rrd.py [SCENARIO]
+
+Timed here: ``sim.flight.fly`` (JSBSim and the pilot), and ``viz.rrd.write_rrd`` of the assembled
+RunView (sensing, the detector and nav run before, untimed). Size per hour: the .rrd's bytes divided
+by the accelerometer recording's duration in hours (the bag records from the terminal to arrival).
+"""
+
+from __future__ import annotations
+
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def main(name: str = "gva-lhr-a320") -> dict:
+    from detector.evaluation import evaluate
+    from detector.flight_mode import DetectorParams, sigma2_from_preset
+    from nav.evaluation import estimate_paths
+    from scenarios.path_report import lever_arm_m
+    from scenarios.registry import resolve
+    from scenarios.run_view import run_view
+    from sim.accelerometer import get_preset
+    from sim.carrier import CarrierSpec
+    from sim.flight import fly
+    from sim.sensing import sense
+    from viz.rrd import write_rrd
+
+    plan, _, _ = resolve(name)
+    t0 = time.perf_counter()
+    track = fly(plan)
+    t_fly = time.perf_counter() - t0
+    rec = sense(track, CarrierSpec(**plan.extra.get("carrier", {})), get_preset("lis302dl-logged16"),
+                np.random.default_rng([plan.seed, 0x5E45E]))
+    p = DetectorParams(fs_hz=rec.odr_hz)
+    s2 = sigma2_from_preset(rec.preset, rec.odr_hz, rec.unit, p.window, np.random.default_rng(1))
+    ev = evaluate(rec.t_s, rec.acc_g, {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static,
+                                       "phase": rec.phase}, p, s2)
+    paths = estimate_paths(track, rec, lever_arm_m(track, rec.carrier))
+    view = run_view("bench", plan, track, rec, ev, paths)
+    with tempfile.TemporaryDirectory() as d:
+        best = np.inf
+        for _ in range(3):
+            t0 = time.perf_counter()
+            out = write_rrd(view, Path(d) / "recording.rrd")
+            best = min(best, time.perf_counter() - t0)
+        size = out.stat().st_size
+    hours = float(rec.t_s[-1] - rec.t_s[0]) / 3600.0
+    res = {
+        "scenario": name, "fly_wall_s": t_fly, "rrd_wall_s": best, "ratio": best / t_fly,
+        "rrd_mb": size / 1e6, "recording_hours": hours, "mb_per_hour": size / 1e6 / hours,
+        "samples": rec.n,
+    }
+    for k, v in res.items():
+        print(f"{k:>16}: {v:,.3f}" if isinstance(v, float) else f"{k:>16}: {v}")
+    print(f"goal: ratio <= 0.2 -> {'met' if res['ratio'] <= 0.2 else 'NOT met'}; "
+          f"size <= 60 MB per hour -> {'met' if res['mb_per_hour'] <= 60 else 'NOT met'}")
+    return res
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:2])
