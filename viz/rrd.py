@@ -169,8 +169,8 @@ def _send(rr, rec, v: RunView) -> None:
                         columns=rr.StateChange.columns(state=list(labels)), **kw)
     # event log: INFO phase transitions and flight events, WARN false statics
     ev = [(t, "INFO", txt) for t, txt in v.info_events]
-    ev += [(e["t_s"], "WARN", f"false static: transmission allowed at t = {e['t_s']:.0f} s for {e['duration_s']:g} s "
-                              f"in phase {e['phase']}") for e in v.false_static_events]
+    ev += [(e["t_s"], "WARN", (f"false static: transmission allowed at t = {e['t_s']:.0f} s for "
+                               f"{e['duration_s']:g} s in phase {e['phase']}")) for e in v.false_static_events]
     ev.sort(key=lambda e: e[0])
     if ev:
         rr.send_columns("/events", indexes=[rr.TimeColumn("sim_time", duration=_ns([e[0] for e in ev]))],

@@ -120,10 +120,12 @@ def _serve(run):
 
 
 def _stop(proc, ps):
+    import psutil
+
     for p in [*ps.children(recursive=True), ps]:
         try:
             p.terminate()
-        except Exception:
+        except psutil.NoSuchProcess:
             pass
     proc.wait(timeout=10)
 
@@ -149,7 +151,7 @@ def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_
     from playwright.sync_api import sync_playwright
 
     run, _ = pattern_run
-    proc, ps, socks = _serve(run)
+    proc, ps, _ = _serve(run)
     msgs = []
     try:
         line = ""
