@@ -79,7 +79,7 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
     # the working directory holds only OUT, and OUT only the finished run folder
     assert sorted(p.name for p in work.iterdir()) == ["out"]
     assert sorted(p.name for p in (work / "out").iterdir()) == ["pattern-s1"]
-    assert sorted(p.name for p in (work / "out" / "pattern-s1").iterdir()) == ["run.json", "samples.parquet", "truth.parquet"]
+    assert sorted(p.name for p in (work / "out" / "pattern-s1").iterdir()) == ["recording.rrd", "run.json", "samples.parquet", "truth.parquet"]
     tmp_after = set(p.name for p in Path(tempfile.gettempdir()).iterdir())
     assert not [n for n in tmp_after - tmp_before if n.startswith("flightmode")]
     info = json.loads((work / "out" / "pattern-s1" / "run.json").read_text())
