@@ -81,7 +81,9 @@ def tridiagonal_path(t_s, acc, pos_start, pos_end) -> PPoly:
     ``acc`` is (n+1,) or (n+1, k); ``pos_start``/``pos_end`` scalars or (k,) (per axis)."""
     t, acc, h = _check(t_s, acc)
     n = t.shape[0] - 1
-    if np.ptp(h) <= 1e-12 * h[0]:
+    # uniform up to the rounding of the time stamps themselves (t = k / fs has ulp-level jitter:
+    # 9e-13 s at t = 7200 s), so the eq. 16 fast path applies to real sampled streams
+    if np.ptp(h) <= 1e-9 * h[0] + 8.0 * np.finfo(float).eps * float(np.abs(t).max()):
         return _tridiagonal_uniform(t, acc, float(np.mean(h)), pos_start, pos_end)
     # eq. 15 for rows 1..n-1:  3/h_{i-1} a_{i-1} - (3/h_{i-1} + 3/h_i) a_i + 3/h_i a_{i+1}
     #                          = h_{i-1} c_{i-1} + 2 (h_{i-1} + h_i) c_i + h_i c_{i+1}
@@ -112,31 +114,52 @@ def _boundary_rows(ab: np.ndarray) -> None:
 
 def _tridiagonal_uniform(t, acc, hh: float, pos_start, pos_end) -> PPoly:
     """Eq. 16 (uniform step h), with c = acc / 2:
-    a_{i-1} - 2 a_i + a_{i+1} = h^2/6 (acc_{i-1} + 4 acc_i + acc_{i+1});
-    the coefficients are then written in place into the PPoly's (4, n, ...) array."""
+    a_{i-1} - 2 a_i + a_{i+1} = h^2/6 (acc_{i-1} + 4 acc_i + acc_{i+1}).
+
+    Memory is the cost at these sizes (the first touch of fresh pages, ~0.4 ns per byte; see
+    benchmarks/bench_path.py), so nothing is allocated but the PPoly's own (4, n, ...) coefficient
+    array: the right-hand side (Fortran order, LAPACK's layout, solved in place) lives in the
+    memory of coef[0:2] and the band matrix in that of coef[2:4] (when it fits: 3 axes or more);
+    coef[3] and coef[2] are written
+    from the solution before coef[0:2] are overwritten."""
     n = t.shape[0] - 1
-    ab = np.empty((3, n + 1))
+    shape = acc.shape[1:]
+    k = int(np.prod(shape, dtype=int))
+    coef = np.empty((4, n) + shape)
+    flat = coef.reshape(4, n * k)
+    a2 = acc.reshape(n + 1, k)
+    rhs = flat[0:2].reshape(-1)[: (n + 1) * k].reshape((n + 1, k), order="F")
+    if 3 * (n + 1) <= 2 * n * k:
+        ab = flat[2:4].reshape(-1)[: 3 * (n + 1)].reshape(3, n + 1)
+    else:  # a single axis: the band does not fit in coef[2:4]
+        ab = np.empty((3, n + 1))
     ab[0], ab[1], ab[2] = 1.0, -2.0, 1.0
     _boundary_rows(ab)
-    rhs = np.empty(acc.shape)
     inner = rhs[1:-1]
-    np.multiply(acc[1:-1], 4.0, out=inner)
-    inner += acc[:-2]
-    inner += acc[2:]
+    np.multiply(a2[1:-1], 4.0, out=inner)
+    inner += a2[:-2]
+    inner += a2[2:]
     inner *= hh * hh / 6.0
-    rhs[0], rhs[-1] = pos_start, pos_end
+    rhs[0] = np.broadcast_to(np.asarray(pos_start, float), shape).reshape(k)
+    rhs[-1] = np.broadcast_to(np.asarray(pos_end, float), shape).reshape(k)
     a = solve_banded((1, 1), ab, rhs, overwrite_ab=True, overwrite_b=True, check_finite=False)
-    coef = np.empty((4, n) + acc.shape[1:])
-    np.add(acc[:-1], acc[1:], out=coef[0])
-    coef[0] += acc[:-1]
-    coef[0] *= hh / 6.0  # (2 c_i + c_{i+1}) h / 3
-    np.subtract(a[1:], a[:-1], out=coef[2])
-    coef[2] *= 1.0 / hh
-    coef[2] -= coef[0]  # eq. 13: b_i = (a_{i+1} - a_i) / h - (2 c_i + c_{i+1}) h / 3
-    np.subtract(acc[1:], acc[:-1], out=coef[0])
-    coef[0] *= 1.0 / (6.0 * hh)  # eq. 12: d_i = (c_{i+1} - c_i) / (3 h)
-    np.multiply(acc[:-1], 0.5, out=coef[1])  # c_i = acc_i / 2
-    coef[3] = a[:-1]
+    if np.shares_memory(a, coef):  # solved in place: move it out of coef[0:2] before they are reused
+        c3 = coef[3].reshape(n, k)
+        c3[...] = a[:-1]
+        c2 = coef[2].reshape(n, k)
+        np.subtract(a[1:], a[:-1], out=c2)
+    else:
+        coef[3] = a[:-1].reshape((n,) + shape)
+        np.subtract(a[1:], a[:-1], out=coef[2].reshape(n, k))
+    c0, c1, c2 = (coef[i].reshape(n, k) for i in range(3))
+    c2 *= 1.0 / hh
+    np.add(a2[:-1], a2[1:], out=c0)
+    c0 += a2[:-1]
+    c0 *= hh / 6.0  # (2 c_i + c_{i+1}) h / 3
+    c2 -= c0  # eq. 13: b_i = (a_{i+1} - a_i) / h - (2 c_i + c_{i+1}) h / 3
+    np.subtract(a2[1:], a2[:-1], out=c0)
+    c0 *= 1.0 / (6.0 * hh)  # eq. 12: d_i = (c_{i+1} - c_i) / (3 h)
+    np.multiply(a2[:-1], 0.5, out=c1)  # c_i = acc_i / 2
     return PPoly.construct_fast(coef, t, extrapolate=True)
 
 
@@ -157,30 +180,55 @@ class RecurrencePath:
     def push(self, t_s, acc) -> None:
         t = np.asarray(t_s, float)
         acc = np.asarray(acc, float)
-        if t.shape[0] == 0:
+        n = t.shape[0]
+        if n == 0:
             return
         if self._last is None:
-            if t.shape[0] < 1:
-                return
-            first_t, first_c = t[0], 0.5 * acc[0]
-            self._last = (first_t, np.broadcast_to(self._a0, first_c.shape).astype(float),
-                          np.broadcast_to(self._b0, first_c.shape).astype(float), first_c)
-            self._append(t[:1], self._last[1][None], self._last[2][None], self._last[3][None])
-            t, acc = t[1:], acc[1:]
-            if t.shape[0] == 0:
-                return
-        tl, al, bl, cl = self._last
-        tt = np.concatenate([[tl], t])
-        _, _, h = _check(tt, np.concatenate([cl[None] * 2.0, acc]), min_samples=2)
-        c = 0.5 * acc
-        cc = np.concatenate([cl[None], c])
-        hb = _hb(h, cc.ndim)
-        # eq. 17: b_i = b_{i-1} + (c_{i-1} + c_i) h_{i-1}
-        b = np.cumsum(np.concatenate([bl[None], (cc[:-1] + cc[1:]) * hb]), axis=0)
+            # the first sample carries the initial state: stored as row 0 of this chunk's arrays
+            tl, cl = t[0], 0.5 * acc[0]
+            al = np.broadcast_to(self._a0, cl.shape).astype(float)
+            bl = np.broadcast_to(self._b0, cl.shape).astype(float)
+            first = 1
+        else:
+            tl, al, bl, cl = self._last
+            first = 0
+        m = n - first  # new pieces
+        if m == 0:
+            self._append(t, al[None], bl[None], cl[None])
+            self._last = (tl, al, bl, cl)
+            return
+        tn, accn = t[first:], acc[first:]
+        h = np.diff(np.concatenate([[tl], tn]))
+        if np.any(h <= 0) or not np.isfinite(accn).all() or not np.isfinite(tn).all():
+            # name the first bad sample (index within this chunk)
+            _check(np.concatenate([[tl], tn]), np.concatenate([2.0 * cl[None], accn]), min_samples=2)
+        hb = _hb(h, accn.ndim)
+        a = np.empty((n,) + cl.shape)
+        b = np.empty_like(a)
+        c = np.empty_like(a)
+        if first:
+            a[0], b[0], c[0] = al, bl, cl
+        an, bn, cn = a[first:], b[first:], c[first:]
+        np.multiply(accn, 0.5, out=cn)
+        # eq. 17: b_i = b_{i-1} + (c_{i-1} + c_i) h_{i-1}   (running sum continued from b_last)
+        np.add(cn[:-1], cn[1:], out=bn[1:])
+        bn[0] = cl + cn[0]
+        bn *= hb
+        bn[0] += bl
+        np.cumsum(bn, axis=0, out=bn)
         # eq. 18: a_i = a_{i-1} + b_{i-1} h_{i-1} + (2 c_{i-1} + c_i)/3 h_{i-1}^2
-        a = np.cumsum(np.concatenate([al[None], b[:-1] * hb + (2.0 * cc[:-1] + cc[1:]) / 3.0 * hb * hb]), axis=0)
-        self._append(t, a[1:], b[1:], c)
-        self._last = (t[-1], a[-1], b[-1], c[-1])
+        np.multiply(cn[:-1], 2.0, out=an[1:])
+        an[0] = 2.0 * cl
+        an += cn
+        an /= 3.0
+        an *= hb
+        an *= hb
+        an[1:] += bn[:-1] * hb[1:]
+        an[0] += bl * hb[0]
+        an[0] += al
+        np.cumsum(an, axis=0, out=an)
+        self._append(t, a, b, c)
+        self._last = (t[-1], a[-1].copy(), b[-1].copy(), c[-1].copy())
 
     def restart(self, vel) -> None:
         """Zero-velocity update (or any known velocity) at the last pushed sample."""
@@ -189,8 +237,7 @@ class RecurrencePath:
         tl, al, bl, cl = self._last
         nb = np.broadcast_to(np.asarray(vel, float), bl.shape).astype(float)
         self._last = (tl, al, nb, cl)
-        self._b[-1] = self._b[-1].copy()
-        self._b[-1][-1] = nb
+        self._b[-1][-1] = nb  # each chunk's arrays are owned by this object
 
     def _append(self, t, a, b, c) -> None:
         self._t.append(t)
@@ -200,13 +247,14 @@ class RecurrencePath:
 
     @property
     def position(self) -> np.ndarray:
-        return np.concatenate(self._a)
+        return self._a[0] if len(self._a) == 1 else np.concatenate(self._a)
 
     def ppoly(self) -> PPoly:
-        t = np.concatenate(self._t)
+        one = len(self._t) == 1
+        t = self._t[0] if one else np.concatenate(self._t)
         if t.shape[0] < 3:
             raise NavError(f"{t.shape[0]} sample(s) pushed: a cubic-spline path needs at least 3")
-        a, b, c = (np.concatenate(x) for x in (self._a, self._b, self._c))
+        a, b, c = ((x[0] if one else np.concatenate(x)) for x in (self._a, self._b, self._c))
         # the velocity the piece i starts with is b_i; after a restart at sample j, b_j was replaced,
         # so piece j starts from the restarted velocity (and piece j-1 ends with its own)
         return _ppoly(t, a, b[:-1], c, np.diff(t))
