@@ -163,6 +163,31 @@ def _tridiagonal_uniform(t, acc, hh: float, pos_start, pos_end) -> PPoly:
     return PPoly.construct_fast(coef, t, extrapolate=True)
 
 
+BLOCK = 1 << 15  # rows per block in the recurrence (about 0.8 MB per (rows, 3) array)
+
+
+def _extend(al, bl, cl, hb, acc, a, b, c) -> None:
+    """Eq. 17-18 for one block of new samples, continued from the last sample's (a, b, c)."""
+    np.multiply(acc, 0.5, out=c)
+    # eq. 17: b_i = b_{i-1} + (c_{i-1} + c_i) h_{i-1}   (running sum continued from b_last)
+    np.add(c[:-1], c[1:], out=b[1:])
+    b[0] = cl + c[0]
+    b *= hb
+    b[0] += bl
+    np.cumsum(b, axis=0, out=b)
+    # eq. 18: a_i = a_{i-1} + b_{i-1} h_{i-1} + (2 c_{i-1} + c_i)/3 h_{i-1}^2
+    np.multiply(c[:-1], 2.0, out=a[1:])
+    a[0] = 2.0 * cl
+    a += c
+    a /= 3.0
+    a *= hb
+    a *= hb
+    a[1:] += b[:-1] * hb[1:]
+    a[0] += bl * hb[0]
+    a[0] += al
+    np.cumsum(a, axis=0, out=a)
+
+
 class RecurrencePath:
     """Seed 002 section III in streaming form: ``push(t, acc)`` extends the spline by one piece per
     new sample in O(1) (chunks of any length); ``ppoly()`` returns the spline so far. ``restart``
@@ -202,31 +227,18 @@ class RecurrencePath:
         if np.any(h <= 0) or not np.isfinite(accn).all() or not np.isfinite(tn).all():
             # name the first bad sample (index within this chunk)
             _check(np.concatenate([[tl], tn]), np.concatenate([2.0 * cl[None], accn]), min_samples=2)
-        hb = _hb(h, accn.ndim)
         a = np.empty((n,) + cl.shape)
         b = np.empty_like(a)
         c = np.empty_like(a)
         if first:
             a[0], b[0], c[0] = al, bl, cl
-        an, bn, cn = a[first:], b[first:], c[first:]
-        np.multiply(accn, 0.5, out=cn)
-        # eq. 17: b_i = b_{i-1} + (c_{i-1} + c_i) h_{i-1}   (running sum continued from b_last)
-        np.add(cn[:-1], cn[1:], out=bn[1:])
-        bn[0] = cl + cn[0]
-        bn *= hb
-        bn[0] += bl
-        np.cumsum(bn, axis=0, out=bn)
-        # eq. 18: a_i = a_{i-1} + b_{i-1} h_{i-1} + (2 c_{i-1} + c_i)/3 h_{i-1}^2
-        np.multiply(cn[:-1], 2.0, out=an[1:])
-        an[0] = 2.0 * cl
-        an += cn
-        an /= 3.0
-        an *= hb
-        an *= hb
-        an[1:] += bn[:-1] * hb[1:]
-        an[0] += bl * hb[0]
-        an[0] += al
-        np.cumsum(an, axis=0, out=an)
+        # blocks of BLOCK rows keep every pass in cache; each block continues the running sums of
+        # the one before exactly as a separate push would (bit-identical for any chunking)
+        for s0 in range(0, m, BLOCK):
+            s1 = min(m, s0 + BLOCK)
+            sl = slice(first + s0, first + s1)
+            _extend(al, bl, cl, _hb(h[s0:s1], accn.ndim), accn[s0:s1], a[sl], b[sl], c[sl])
+            al, bl, cl = a[first + s1 - 1], b[first + s1 - 1], c[first + s1 - 1]
         self._append(t, a, b, c)
         self._last = (t[-1], a[-1].copy(), b[-1].copy(), c[-1].copy())
 
@@ -261,8 +273,35 @@ class RecurrencePath:
 
 
 def recurrence_path(t_s, acc, pos0, vel0) -> PPoly:
-    """Seed 002 section III in one call: positions from accelerations, initial position and velocity."""
-    _check(t_s, acc)
-    r = RecurrencePath(pos0, vel0)
-    r.push(t_s, acc)
-    return r.ppoly()
+    """Seed 002 section III in one call: positions from accelerations, initial position and velocity.
+
+    The same arithmetic as :class:`RecurrencePath` (the same blocks of :func:`_extend`, so the two
+    agree bit for bit), written straight into the PPoly's coefficient array: at 1e7 samples the
+    cost is the memory written, so no intermediate a, b, c arrays are kept."""
+    t, acc, h = _check(t_s, acc)
+    n = t.shape[0]
+    shape = acc.shape[1:]
+    coef = np.empty((4, n - 1) + shape)
+    d_, c_, b_, a_ = coef
+    al = np.broadcast_to(np.asarray(pos0, float), shape).astype(float)
+    bl = np.broadcast_to(np.asarray(vel0, float), shape).astype(float)
+    cl = 0.5 * acc[0]
+    a_[0], b_[0], c_[0] = al, bl, cl
+    c_last = None
+    for s0 in range(1, n, BLOCK):
+        s1 = min(n, s0 + BLOCK)
+        hb = _hb(h[s0 - 1 : s1 - 1], acc.ndim)
+        if s1 <= n - 1:
+            ta, tb, tc = a_[s0:s1], b_[s0:s1], c_[s0:s1]
+            _extend(al, bl, cl, hb, acc[s0:s1], ta, tb, tc)
+        else:  # the block holding the last sample, which has no piece of its own
+            ta, tb, tc = (np.empty((s1 - s0,) + shape) for _ in range(3))
+            _extend(al, bl, cl, hb, acc[s0:s1], ta, tb, tc)
+            a_[s0:], b_[s0:], c_[s0:] = ta[:-1], tb[:-1], tc[:-1]
+            c_last = tc[-1]
+        al, bl, cl = ta[-1], tb[-1], tc[-1]
+    # eq. 12: d_i = (c_{i+1} - c_i) / (3 h_i), as _ppoly computes it
+    np.subtract(c_[1:], c_[:-1], out=d_[:-1])
+    d_[-1] = c_last - c_[-1]
+    d_ /= 3.0 * _hb(h, acc.ndim)
+    return PPoly.construct_fast(coef, t, extrapolate=True)
