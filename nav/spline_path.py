@@ -116,12 +116,12 @@ def _tridiagonal_uniform(t, acc, hh: float, pos_start, pos_end) -> PPoly:
     """Eq. 16 (uniform step h), with c = acc / 2:
     a_{i-1} - 2 a_i + a_{i+1} = h^2/6 (acc_{i-1} + 4 acc_i + acc_{i+1}).
 
-    Memory is the cost at these sizes (the first touch of fresh pages, ~0.4 ns per byte; see
+    Memory is the cost at these sizes (the first touch of fresh pages and cache misses; see
     benchmarks/bench_path.py), so nothing is allocated but the PPoly's own (4, n, ...) coefficient
     array: the right-hand side (Fortran order, LAPACK's layout, solved in place) lives in the
-    memory of coef[0:2] and the band matrix in that of coef[2:4] (when it fits: 3 axes or more);
-    coef[3] and coef[2] are written
-    from the solution before coef[0:2] are overwritten."""
+    memory of coef[0:2] and the band matrix in that of coef[2:4] (when it fits: 3 axes or more).
+    coef[3] and coef[2] are written from the solution before coef[0:2] are overwritten, and every
+    elementwise pass runs in cache-sized blocks."""
     n = t.shape[0] - 1
     shape = acc.shape[1:]
     k = int(np.prod(shape, dtype=int))
@@ -135,31 +135,34 @@ def _tridiagonal_uniform(t, acc, hh: float, pos_start, pos_end) -> PPoly:
         ab = np.empty((3, n + 1))
     ab[0], ab[1], ab[2] = 1.0, -2.0, 1.0
     _boundary_rows(ab)
-    inner = rhs[1:-1]
-    np.multiply(a2[1:-1], 4.0, out=inner)
-    inner += a2[:-2]
-    inner += a2[2:]
-    inner *= hh * hh / 6.0
+    for s0 in range(1, n, BLOCK):  # rows 1..n-1, in cache-sized blocks
+        s1 = min(n, s0 + BLOCK)
+        inner = rhs[s0:s1]
+        np.multiply(a2[s0:s1], 4.0, out=inner)
+        inner += a2[s0 - 1 : s1 - 1]
+        inner += a2[s0 + 1 : s1 + 1]
+        inner *= hh * hh / 6.0
     rhs[0] = np.broadcast_to(np.asarray(pos_start, float), shape).reshape(k)
     rhs[-1] = np.broadcast_to(np.asarray(pos_end, float), shape).reshape(k)
     a = solve_banded((1, 1), ab, rhs, overwrite_ab=True, overwrite_b=True, check_finite=False)
-    if np.shares_memory(a, coef):  # solved in place: move it out of coef[0:2] before they are reused
-        c3 = coef[3].reshape(n, k)
-        c3[...] = a[:-1]
-        c2 = coef[2].reshape(n, k)
-        np.subtract(a[1:], a[:-1], out=c2)
-    else:
-        coef[3] = a[:-1].reshape((n,) + shape)
-        np.subtract(a[1:], a[:-1], out=coef[2].reshape(n, k))
-    c0, c1, c2 = (coef[i].reshape(n, k) for i in range(3))
-    c2 *= 1.0 / hh
-    np.add(a2[:-1], a2[1:], out=c0)
-    c0 += a2[:-1]
-    c0 *= hh / 6.0  # (2 c_i + c_{i+1}) h / 3
-    c2 -= c0  # eq. 13: b_i = (a_{i+1} - a_i) / h - (2 c_i + c_{i+1}) h / 3
-    np.subtract(a2[1:], a2[:-1], out=c0)
-    c0 *= 1.0 / (6.0 * hh)  # eq. 12: d_i = (c_{i+1} - c_i) / (3 h)
-    np.multiply(a2[:-1], 0.5, out=c1)  # c_i = acc_i / 2
+    c0, c1, c2, c3 = (coef[i].reshape(n, k) for i in range(4))
+    # coef[3] and coef[2] first, from the solution (which may live in coef[0:2]), block by block
+    for s0 in range(0, n, BLOCK):
+        s1 = min(n, s0 + BLOCK)
+        c3[s0:s1] = a[s0:s1]
+        np.subtract(a[s0 + 1 : s1 + 1], a[s0:s1], out=c2[s0:s1])
+    for s0 in range(0, n, BLOCK):
+        s1 = min(n, s0 + BLOCK)
+        lo, hi, nx = a2[s0:s1], c0[s0:s1], a2[s0 + 1 : s1 + 1]
+        b = c2[s0:s1]
+        b *= 1.0 / hh
+        np.add(lo, nx, out=hi)
+        hi += lo
+        hi *= hh / 6.0  # (2 c_i + c_{i+1}) h / 3
+        b -= hi  # eq. 13: b_i = (a_{i+1} - a_i) / h - (2 c_i + c_{i+1}) h / 3
+        np.subtract(nx, lo, out=hi)
+        hi *= 1.0 / (6.0 * hh)  # eq. 12: d_i = (c_{i+1} - c_i) / (3 h)
+        np.multiply(lo, 0.5, out=c1[s0:s1])  # c_i = acc_i / 2
     return PPoly.construct_fast(coef, t, extrapolate=True)
 
 
