@@ -15,18 +15,9 @@ All timed in the same run on the same (n, 3) array of 100 Hz samples (default 2 
 from __future__ import annotations
 
 import sys
-import time
 
 import numpy as np
-
-
-def _best(f, repeat=3):
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        best = min(best, time.perf_counter() - t0)
-    return best
+from _bench import best, report
 
 
 def main(hours: float = 2.0) -> dict:
@@ -40,7 +31,7 @@ def main(hours: float = 2.0) -> dict:
     s2 = np.full(3, 2.23e-3**2)
     w = p.window
 
-    t_batch = _best(lambda: detect(t, a, p, s2))
+    t_batch = best(lambda: detect(t, a, p, s2))
     # naive: np.var of every window (each sample's MV), timed on the first 600 s and scaled per sample
     m = min(n, 60_000)
 
@@ -50,8 +41,8 @@ def main(hours: float = 2.0) -> dict:
             out[i - w + 1] = np.var(a[i - w + 1 : i + 1], axis=0)
         return out
 
-    t_naive = _best(naive, 1) * (n - w + 1) / (m - w + 1)
-    t_sum = _best(lambda: np.sum(a, axis=0))
+    t_naive = best(naive, 1) * (n - w + 1) / (m - w + 1)
+    t_sum = best(lambda: np.sum(a, axis=0))
     # streaming with 1-sample chunks (scaled from 20 s of data) and 1000-sample chunks (the whole array)
     m1 = 2000
 
@@ -60,8 +51,8 @@ def main(hours: float = 2.0) -> dict:
         for i in range(0, rows, chunk):
             det.push(t[i : i + chunk], a[i : i + chunk])
 
-    t_s1 = _best(lambda: stream(1, m1), 1) * n / m1
-    t_s1000 = _best(lambda: stream(1000, n), 1)
+    t_s1 = best(lambda: stream(1, m1), 1) * n / m1
+    t_s1000 = best(lambda: stream(1000, n), 1)
     res = {
         "samples": n,
         "batch_s": t_batch,
@@ -75,8 +66,7 @@ def main(hours: float = 2.0) -> dict:
         "stream_1_over_1000": t_s1 / t_s1000,
         "stream_1000_over_batch": t_s1000 / t_batch,
     }
-    for k, v in res.items():
-        print(f"{k:>36}: {v:,.4g}" if isinstance(v, float) else f"{k:>36}: {v}")
+    report(res)
     print(f"goal: batch >= 20x the naive reference -> {'met' if res['speedup_vs_naive'] >= 20 else 'NOT met'}")
     return res
 

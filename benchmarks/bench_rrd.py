@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
+from _bench import best, report, timed
 
 
 def main(name: str = "gva-lhr-a320") -> dict:
@@ -32,9 +32,7 @@ def main(name: str = "gva-lhr-a320") -> dict:
     from viz.rrd import write_rrd
 
     plan, _, _ = resolve(name)
-    t0 = time.perf_counter()
-    track = fly(plan)
-    t_fly = time.perf_counter() - t0
+    track, t_fly = timed(lambda: fly(plan))
     rec = sense(track, CarrierSpec(**plan.extra.get("carrier", {})), get_preset("lis302dl-logged16"),
                 np.random.default_rng([plan.seed, 0x5E45E]))
     p = DetectorParams(fs_hz=rec.odr_hz)
@@ -44,20 +42,15 @@ def main(name: str = "gva-lhr-a320") -> dict:
     paths = estimate_paths(track, rec, lever_arm_m(track, rec.carrier))
     view = run_view("bench", plan, track, rec, ev, paths)
     with tempfile.TemporaryDirectory() as d:
-        best = np.inf
-        for _ in range(3):
-            t0 = time.perf_counter()
-            out = write_rrd(view, Path(d) / "recording.rrd")
-            best = min(best, time.perf_counter() - t0)
-        size = out.stat().st_size
+        t_rrd = best(lambda: write_rrd(view, Path(d) / "recording.rrd"))
+        size = (Path(d) / "recording.rrd").stat().st_size
     hours = float(rec.t_s[-1] - rec.t_s[0]) / 3600.0
     res = {
-        "scenario": name, "fly_wall_s": t_fly, "rrd_wall_s": best, "ratio": best / t_fly,
+        "scenario": name, "fly_wall_s": t_fly, "rrd_wall_s": t_rrd, "ratio": t_rrd / t_fly,
         "rrd_mb": size / 1e6, "recording_hours": hours, "mb_per_hour": size / 1e6 / hours,
         "samples": rec.n,
     }
-    for k, v in res.items():
-        print(f"{k:>16}: {v:,.3f}" if isinstance(v, float) else f"{k:>16}: {v}")
+    report(res)
     print(f"goal: ratio <= 0.2 -> {'met' if res['ratio'] <= 0.2 else 'NOT met'}; "
           f"size <= 60 MB per hour -> {'met' if res['mb_per_hour'] <= 60 else 'NOT met'}")
     return res

@@ -9,9 +9,9 @@ timeline, vibration, mount, accelerometer chain at 1200 Hz internal rate, labels
 from __future__ import annotations
 
 import sys
-import time
 
 import numpy as np
+from _bench import report, timed
 
 
 def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16") -> dict:
@@ -22,13 +22,9 @@ def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16") -> 
     from sim.sensing import FS_INTERNAL_HZ, sense
 
     plan, _, _ = resolve(name)
-    t0 = time.perf_counter()
-    track = fly(plan)
-    t_fly = time.perf_counter() - t0
+    track, t_fly = timed(lambda: fly(plan))
     carrier = CarrierSpec(**plan.extra.get("carrier", {}))
-    t0 = time.perf_counter()
-    rec = sense(track, carrier, get_preset(preset_name), np.random.default_rng(plan.seed))
-    t_sense = time.perf_counter() - t0
+    rec, t_sense = timed(lambda: sense(track, carrier, get_preset(preset_name), np.random.default_rng(plan.seed)))
     span = float(rec.t_s[-1] - rec.t_s[0])
     res = {
         "scenario": name,
@@ -41,8 +37,7 @@ def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16") -> 
         "sense_wall_s": t_sense,
         "ratio": t_sense / t_fly,
     }
-    for k, v in res.items():
-        print(f"{k:>17}: {v:,.3f}" if isinstance(v, float) else f"{k:>17}: {v}")
+    report(res)
     print(f"goal: ratio <= 0.25 -> {'met' if res['ratio'] <= 0.25 else 'NOT met'}")
     return res
 

@@ -64,6 +64,22 @@ class Checks:
     mv: np.ndarray  # (K, 3)
     temporary_static: np.ndarray  # (K,) bool, eq. 7
     final_static: np.ndarray  # (K,) bool, eq. 8: transmission allowed
+    after_reset: np.ndarray  # (K,) bool: the first check after the detector (re)started
+
+
+def final_static(temporary: np.ndarray, after_reset: np.ndarray, need: int, carry: int = 0) -> np.ndarray:
+    """Eq. 8: a check is final static when it and the ``need - 1`` checks before it (since the last
+    reset) were all temporarily static. ``carry``: temporary statics in a row just before the first
+    check (the streaming detector's state). Vectorised: the length of the run of temporary statics
+    ending at each check."""
+    temp = np.asarray(temporary, bool)
+    k = np.arange(temp.shape[0])
+    # the last check that breaks a run: a dynamic check, or the check before a reset
+    breaks = np.where(~temp, k, -1)
+    breaks = np.where(np.asarray(after_reset, bool), np.maximum(breaks, k - 1), breaks)
+    last = np.maximum.accumulate(breaks) if k.size else breaks
+    run = np.where(last < 0, k + 1 + carry, k - last)
+    return temp & (run >= need)
 
 
 def calibrate_sigma2(acc_g: np.ndarray, window: int, lsb_g: float | None = None) -> np.ndarray:
@@ -125,7 +141,7 @@ class FlightModeDetector:
         p = self.p
         self._mv = MovingVariance(p.window, p.method, p.weight, p.emv_initial_k * self.sigma2)
         self._since_reset = 0
-        self._history: list[bool] = []
+        self._run_len = 0  # temporary statics in a row so far (eq. 8's state)
 
     def push(self, t_s: np.ndarray, acc_g: np.ndarray) -> Checks:
         t = np.asarray(t_s, float)
@@ -172,14 +188,13 @@ class FlightModeDetector:
         idx = np.flatnonzero(at_check)
         m = mv[idx]
         temp = np.all(m < self.thresholds, axis=1)  # eq. 7
-        final = np.empty_like(temp)
-        need = self.p.checks_needed
-        for i, tv in enumerate(temp):  # eq. 8: the last `need` checks all temporarily static
-            self._history.append(bool(tv))
-            final[i] = len(self._history) >= need and all(self._history[-need:])
-        self._history = self._history[-need:]
+        first = (n0 + idx + 1) == w  # the first check of this engine (after a start or a reset)
+        final = final_static(temp, first, self.p.checks_needed, self._run_len)  # eq. 8
+        if temp.size:
+            last_dyn = np.flatnonzero(~temp)
+            self._run_len = temp.size - 1 - int(last_dyn[-1]) if last_dyn.size else self._run_len + temp.size
         self._since_reset += a.shape[0]
-        res = Checks(self._n + idx, t[idx], m, temp, final)
+        res = Checks(self._n + idx, t[idx], m, temp, final, first)
         self._n += a.shape[0]
         return res
 
@@ -187,7 +202,7 @@ class FlightModeDetector:
 def _cat(parts: list[Checks]) -> Checks:
     if not parts:
         z = np.zeros(0)
-        return Checks(z.astype(int), z, np.zeros((0, 3)), z.astype(bool), z.astype(bool))
+        return Checks(z.astype(int), z, np.zeros((0, 3)), z.astype(bool), z.astype(bool), z.astype(bool))
     return Checks(*(np.concatenate([getattr(p, f) for p in parts]) for f in Checks.__slots__))
 
 

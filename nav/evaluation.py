@@ -8,7 +8,7 @@ cruise moves a few centimetres about that point, which counts as error.
 
 Rows (:func:`evaluate`), each with the maximum, RMS and final 3D position error:
 
-- ``truth`` acceleration, integrating samples (``nav.frames.truth_world_acceleration``), by the
+- ``truth`` acceleration, integrating samples (``nav.frames.TruthPath.acceleration``), by the
   tridiagonal method with the two gate positions and by the recurrence from the gate at rest;
   and the tridiagonal with *point* samples (what aliasing of the FDM's ground impulses costs);
 - per sensor preset: the truth-aided frames, by the tridiagonal method, the recurrence, and the
@@ -19,6 +19,7 @@ Rows (:func:`evaluate`), each with the maximum, RMS and final 3D position error:
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -34,22 +35,24 @@ def errors(t_s, est, truth) -> dict:
 
 
 def zupt_path(t_s, acc, pos0, static_mask) -> np.ndarray:
-    """Positions at the samples by the seed's recurrence, restarted with zero velocity at every
-    sample inside a static period (the velocity is held at zero there; the position continues)."""
+    """Positions at the samples by the seed's recurrence with zero-velocity updates: at rest (a
+    static period) the velocity is reset to zero and the bag's kinematic acceleration is zero, so
+    the position holds; between rests the recurrence runs on the measured acceleration. One push
+    per run of samples (O(n), Python work per run, not per sample)."""
     t = np.asarray(t_s, float)
+    a = np.asarray(acc, float)
     st = np.asarray(static_mask, bool)
     r = RecurrencePath(pos0, np.zeros_like(np.asarray(pos0, float)))
-    # chunks alternate between moving runs (pushed whole) and static runs (pushed one sample at a
-    # time with a velocity reset after each): O(n), Python work only per static sample
     edges = np.flatnonzero(np.diff(st.astype(np.int8))) + 1
     bounds = [0, *edges.tolist(), t.shape[0]]
-    for s, e in zip(bounds[:-1], bounds[1:]):
+    for s, e in itertools.pairwise(bounds):
         if st[s]:
-            for i in range(s, e):
-                r.push(t[i : i + 1], acc[i : i + 1])
+            if s > 0:
                 r.restart(0.0)
+            r.push(t[s:e], np.zeros_like(a[s:e]))
+            r.restart(0.0)
         else:
-            r.push(t[s:e], acc[s:e])
+            r.push(t[s:e], a[s:e])
     return r.position
 
 
@@ -64,19 +67,20 @@ def span(rec, track, settle_s: float = 3.0) -> tuple[float, float]:
     return t0, t1
 
 
-def estimate_paths(track, rec, lever_arm_body_m) -> dict:
+def estimate_paths(track, rec, lever_arm_body_m, truth: frames.TruthPath | None = None) -> dict:
     """The truth-aided estimates of one recording over the evaluation span: times, the truth, the
     tridiagonal path with the gate positions and the recurrence from the gate at rest (world frame,
     m, at every sample)."""
     t0, t1 = span(rec, track)
     s = (rec.t_s >= t0) & (rec.t_s <= t1)
     tt = rec.t_s[s]
-    truth = frames.truth_position(track, tt, lever_arm_body_m)
-    a = frames.truth_aided_acceleration(rec, track, tt, rec.acc_g[s])
+    truth = truth or frames.TruthPath(track, lever_arm_body_m)
+    pos = truth.position(tt)
+    a = frames.truth_aided_acceleration(rec, track, tt, rec.acc_g[s], truth)
     return {
-        "t_s": tt, "truth": truth, "acc": a, "mask": s,
-        "tridiagonal": tridiagonal_path(tt, a, truth[0], truth[-1])(tt),
-        "recurrence": recurrence_path(tt, a, truth[0], np.zeros(3))(tt),
+        "t_s": tt, "truth": pos, "acc": a, "mask": s,
+        "tridiagonal": tridiagonal_path(tt, a, pos[0], pos[-1])(tt),
+        "recurrence": recurrence_path(tt, a, pos[0], np.zeros(3))(tt),
     }
 
 
@@ -88,9 +92,10 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
     t0, t1 = span(first, track)
     sel = (first.t_s >= t0) & (first.t_s <= t1)
     t = first.t_s[sel]
-    truth = frames.truth_position(track, t, lever_arm_body_m)
-    a_int = frames.truth_world_acceleration(track, t, True, lever_arm_body_m)
-    a_pt = frames.truth_world_acceleration(track, t, False, lever_arm_body_m)
+    bag = frames.TruthPath(track, lever_arm_body_m)  # one interpolant for every row
+    truth = bag.position(t)
+    a_int = bag.acceleration(t, integrating=True)
+    a_pt = bag.acceleration(t, integrating=False)
     v0 = np.zeros(3)  # the aircraft stands at the gate when the bag is stowed
     rows.append({"source": "truth acceleration", "method": "tridiagonal (gate positions)",
                  **errors(t, tridiagonal_path(t, a_int, truth[0], truth[-1])(t), truth)})
@@ -99,7 +104,7 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
     rows.append({"source": "truth acceleration, point samples", "method": "tridiagonal (gate positions)",
                  **errors(t, tridiagonal_path(t, a_pt, truth[0], truth[-1])(t), truth)})
     for label, rec in recordings.items():
-        est = estimate_paths(track, rec, lever_arm_body_m)
+        est = estimate_paths(track, rec, lever_arm_body_m, bag)
         s, tt, tr_pos, a = est["mask"], est["t_s"], est["truth"], est["acc"]
         rows += path_rows(est, label)
         if checks_of is None:

@@ -14,7 +14,7 @@ hour if ignored).
 
 Modes (issue: nav frames):
 
-- :func:`truth_world_acceleration`: the exact kinematic acceleration of the truth path, sampled as
+- :class:`TruthPath` (``acceleration``): the exact kinematic acceleration of the truth path, sampled as
   a perfect *integrating* accelerometer would (the mean over each sample period, from the exact
   velocity change). Point samples of JSBSim's 120 Hz acceleration alias the wheel spin-up and
   gear impulses (touchdown: 45 m/s^2 for one FDM step) and leave 20-80 m of error after a flight;
@@ -85,20 +85,50 @@ def world_from_local(track, lat_deg, lon_deg) -> np.ndarray:
     return np.einsum("ij,nkj->nik", r0, _ecef_to_ned(lat_deg, lon_deg))
 
 
-def _interp(track, t_s, x):
-    return np.stack([np.interp(t_s, track.t_s, x[:, j]) for j in range(x.shape[1])], axis=1)
+class TruthPath:
+    """The truth path of a point fixed in the aircraft (the CG, or a bag at a body-axis lever arm
+    from it), in the world frame: one cubic interpolant of its 120 Hz positions, built once and
+    asked for position, velocity and acceleration."""
+
+    def __init__(self, track, lever_arm_body_m=None):
+        from scipy.interpolate import CubicSpline
+
+        pos = track.pos_ned_m
+        if lever_arm_body_m is not None:
+            r = np.asarray(lever_arm_body_m, float)
+            pos = pos + np.einsum("nij,j->ni", _world_from_body(track, track.t_s), r)
+        self.t0_s, self.t1_s = float(track.t_s[0]), float(track.t_s[-1])
+        self.spline = CubicSpline(track.t_s, pos)
+
+    def position(self, t_s) -> np.ndarray:
+        return self.spline(np.asarray(t_s, float))
+
+    def velocity(self, t_s) -> np.ndarray:
+        return self.spline(np.asarray(t_s, float), 1)
+
+    def acceleration(self, t_s, integrating: bool = True) -> np.ndarray:
+        """Kinematic acceleration (m/s^2) at ``t_s`` (uniform). ``integrating``: the mean over each
+        sample period [t - h/2, t + h/2] (the exact velocity change of the interpolant over h,
+        divided by h), as a perfect integrating accelerometer; else point samples."""
+        t = np.asarray(t_s, float)
+        if t.shape[0] < 2:
+            raise NavError("need at least two sample times")
+        if not integrating:
+            return self.spline(t, 2)
+        h = float(np.median(np.diff(t)))
+        lo = np.maximum(t - h / 2, self.t0_s)
+        hi = np.minimum(t + h / 2, self.t1_s)
+        return (self.spline(hi, 1) - self.spline(lo, 1)) / (hi - lo)[:, None]
 
 
 def truth_position(track, t_s, lever_arm_body_m=None) -> np.ndarray:
-    """The truth position (world frame, m) at ``t_s`` of the CG, or of a point at a body-axis lever
-    arm from it (a stowed bag), by cubic interpolation of the 120 Hz track."""
-    from scipy.interpolate import CubicSpline
+    """The truth position (world frame, m) at ``t_s`` (one-off use of :class:`TruthPath`)."""
+    return TruthPath(track, lever_arm_body_m).position(t_s)
 
-    t = np.asarray(t_s, float)
-    pos = CubicSpline(track.t_s, track.pos_ned_m)(t)
-    if lever_arm_body_m is not None:
-        pos = pos + np.einsum("nij,j->ni", _world_from_body(track, t), np.asarray(lever_arm_body_m, float))
-    return pos
+
+def truth_world_acceleration(track, t_s, integrating: bool = True, lever_arm_body_m=None) -> np.ndarray:
+    """Kinematic acceleration of the truth path (one-off use of :class:`TruthPath`)."""
+    return TruthPath(track, lever_arm_body_m).acceleration(t_s, integrating)
 
 
 def _world_from_body(track, t_s) -> np.ndarray:
@@ -111,34 +141,13 @@ def _world_from_body(track, t_s) -> np.ndarray:
     return np.einsum("nij,njk->nik", world_from_local(track, lat, lon), att.as_matrix())
 
 
-def truth_world_acceleration(track, t_s, integrating: bool = True, lever_arm_body_m=None) -> np.ndarray:
-    """Kinematic acceleration (world frame, m/s^2) of the truth path at ``t_s`` (uniform).
-
-    ``integrating``: the mean over each sample period [t - h/2, t + h/2] (exact velocity change of
-    the cubic interpolant of the 120 Hz positions over h, divided by h); else point samples."""
-    from scipy.interpolate import CubicSpline
-
-    t = np.asarray(t_s, float)
-    if t.shape[0] < 2:
-        raise NavError("need at least two sample times")
-    if lever_arm_body_m is not None:
-        grid = track.t_s
-        cs = CubicSpline(grid, truth_position(track, grid, lever_arm_body_m))
-    else:
-        cs = CubicSpline(track.t_s, track.pos_ned_m)
-    if not integrating:
-        return cs(t, 2)
-    h = float(np.median(np.diff(t)))
-    lo = np.maximum(t - h / 2, track.t_s[0])
-    hi = np.minimum(t + h / 2, track.t_s[-1])
-    return (cs(hi, 1) - cs(lo, 1)) / (hi - lo)[:, None]
-
-
-def truth_aided_acceleration(rec, track, t_s=None, acc_g=None) -> np.ndarray:
+def truth_aided_acceleration(rec, track, t_s=None, acc_g=None, truth: TruthPath | None = None) -> np.ndarray:
     """World-frame kinematic acceleration (m/s^2) from a Recording's samples with the truth's help:
     sensor -> body by the bag's orientation in its stowed segment, body -> local NED -> world by the
-    track, plus normal gravity, minus Coriolis (module docstring). Only for samples while the bag is
-    on board and not carried (stowed, in the hold, or handled in its seat; raises otherwise). ``t_s``/``acc_g`` default to the whole Recording."""
+    track, plus gravity (J2 and centrifugal), minus Coriolis (module docstring). Only for samples
+    while the bag is on board and not carried (stowed, in the hold, or handled in its seat; raises
+    otherwise). ``t_s``/``acc_g`` default to the whole Recording; ``truth`` (the bag's TruthPath,
+    for the Coriolis term's velocity) is built if not given."""
     t = rec.t_s if t_s is None else np.asarray(t_s, float)
     a = rec.acc_g if acc_g is None else np.asarray(acc_g, float)
     seg_t0 = np.array([s.t0_s for s in rec.segments])
@@ -160,19 +169,18 @@ def truth_aided_acceleration(rec, track, t_s=None, acc_g=None) -> np.ndarray:
     # Earth rate in world axes: ECEF z axis expressed in the origin's NED
     r0 = _ecef_to_ned(track.origin_lat_deg, track.origin_lon_deg)
     omega_w = r0 @ np.array([0.0, 0.0, OMEGA_E_RADPS])
-    from scipy.interpolate import CubicSpline
-
-    v_w = CubicSpline(track.t_s, track.pos_ned_m)(t, 1)
+    v_w = (truth or TruthPath(track)).velocity(t)
     return np.einsum("nij,nj->ni", c_wb, f_body) + g_w - 2.0 * np.cross(omega_w, v_w)
 
 
 def static_periods(checks, window: int, n: int) -> np.ndarray:
     """Per-sample mask of the detector's final-static periods: every sample of each window whose
     check was final static (the detector's own view, no truth)."""
-    mask = np.zeros(n, bool)
-    for end in np.asarray(checks.index)[checks.final_static]:
-        mask[max(0, end - window + 1) : end + 1] = True
-    return mask
+    ends = np.asarray(checks.index)[checks.final_static]
+    edges = np.zeros(n + 1, np.int64)  # +1 where a window starts, -1 after it ends
+    np.add.at(edges, np.maximum(ends - window + 1, 0), 1)
+    np.add.at(edges, np.minimum(ends + 1, n), -1)
+    return np.cumsum(edges)[:n] > 0
 
 
 def tilt_only_acceleration(acc_g, static_mask) -> tuple[np.ndarray, np.ndarray]:

@@ -88,6 +88,7 @@ def fly_cmd(
 ) -> None:
     """Fly a scenario gate to gate in JSBSim, sense it, run the detector and the path estimators;
     write truth.parquet, samples.parquet, run.json and recording.rrd."""
+    from nav.evaluation import path_rows
     from scenarios import run_io
     from sim.flight import fly
     from sim.flight_metrics import flight_metrics
@@ -133,10 +134,8 @@ def fly_cmd(
             info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
             evaluation, s2_source = _detect_recording(rec, plan.seed)
             info["detector"] = evaluation.summary() | {"sigma2_from": s2_source}
-            from nav.evaluation import path_rows as _rows
-
             paths = _estimate_paths(track, rec)
-            path = _rows(paths, rec.preset)
+            path = path_rows(paths, rec.preset)
             info["path"] = path
             if rrd:
                 from scenarios.run_view import run_view
@@ -182,15 +181,11 @@ def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: d
 
 
 def _detect_recording(rec, seed: int):
-    """The seed's recommended detector (Table 9: NMV, W_s 1 s, T_sigma 4 sigma^2, T_th 4 s) on a
-    fresh Recording, sigma^2 from the bench calibration of the recording's own unit."""
-    import numpy as np
-
+    """The seed's recommended detector on a fresh Recording (scenarios.detector_report.recommended)."""
     from detector.evaluation import evaluate
-    from detector.flight_mode import DetectorParams, sigma2_from_preset
+    from scenarios.detector_report import recommended
 
-    p = DetectorParams(fs_hz=rec.odr_hz)
-    s2 = sigma2_from_preset(rec.preset, rec.odr_hz, rec.unit, p.window, np.random.default_rng([seed, 0xCA1]))
+    p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)
     labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
     return evaluate(rec.t_s, rec.acc_g, labels, p, s2), "bench calibration of the unit"
 

@@ -18,6 +18,14 @@ from detector.statistics import table2
 SIGMA2_SOURCES = ("preset", "rest")
 
 
+def recommended(preset: str, odr_hz: float, unit: dict | None, seed: int) -> tuple[DetectorParams, np.ndarray]:
+    """Seed 000's recommended detector (Table 9: NMV, W_s 1 s, T_sigma 4 sigma^2, T_th 4 s) at the
+    recording's rate, and sigma^2 from the bench calibration of its unit (a random stream of its
+    own, derived from the run's seed). The one place `fly`, `detect` and `path` get it from."""
+    p = DetectorParams(fs_hz=float(odr_hz))
+    return p, sigma2_from_preset(preset, float(odr_hz), unit, p.window, np.random.default_rng([seed, 0xCA1]))
+
+
 def calibrate(columns: dict, info: dict | None, params: DetectorParams, source: str, seed: int) -> tuple[np.ndarray, str]:
     """sigma^2 per axis and a sentence saying where it came from.
 
@@ -32,7 +40,7 @@ def calibrate(columns: dict, info: dict | None, params: DetectorParams, source: 
                                 "use --sigma2-from rest for a bare samples file")
         s = info["sensor"]
         s2 = sigma2_from_preset(s["preset"], float(s["odr_hz"]), s.get("unit"), params.window,
-                                np.random.default_rng([seed, 0xCA1]))
+                                np.random.default_rng([seed, 0xCA1]))  # as recommended(), any window
         return s2, f"bench calibration of this {s['preset']} unit (60 s static, quantisation floor)"
     static = columns.get("sensor_static")
     if static is None or not static.any():

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import numpy as np
 from rich.console import Console
 from rich.table import Table
 
@@ -19,11 +18,11 @@ def lever_arm_m(track, carrier) -> tuple[float, float, float]:
 
 def checks_of(seed: int):
     """The seed's recommended detector on a recording (for ZUPT and tilt-only static periods)."""
-    from detector.flight_mode import DetectorParams, detect, sigma2_from_preset
+    from detector.flight_mode import detect
+    from scenarios.detector_report import recommended
 
     def run(rec):
-        p = DetectorParams(fs_hz=rec.odr_hz)
-        s2 = sigma2_from_preset(rec.preset, rec.odr_hz, rec.unit, p.window, np.random.default_rng([seed, 0xCA1]))
+        p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)
         return detect(rec.t_s, rec.acc_g, p, s2), p.window
 
     return run

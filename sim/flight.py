@@ -86,7 +86,7 @@ def fly(
     # rest at the gate (a 0.2 m jump in 1/120 s is 3,000 m/s^2 of phantom acceleration to anything
     # that integrates the track, such as nav/).
     for _ in range(int(SETTLE_S * FDM_HZ)):
-        ac.fdm.run()
+        ac.step()
 
     nch = len(ac.channels)
     scales = ac.scales

@@ -75,7 +75,7 @@ def _ns(t_s) -> np.ndarray:
     return np.rint(np.asarray(t_s, float) * 1e9).astype(np.int64).astype("timedelta64[ns]")
 
 
-def blueprint():
+def _layout():
     import rerun.blueprint as rrb
 
     # every time-series and state view shows the whole run on its x-axis, whatever the time cursor
@@ -106,17 +106,27 @@ def blueprint():
         rrb.TextLogView(origin="/events", name="events"),
         row_shares=[3, 2, 2],
     )
-    # opened paused on sim_time, so the views show the whole flight rather than following the end
-    return rrb.Blueprint(rrb.Horizontal(series, side, column_shares=[3, 2]),
+    return rrb.Horizontal(series, side, column_shares=[3, 2])
+
+
+def blueprint():
+    """The embedded default blueprint: :func:`_layout`, opened paused on ``sim_time`` (so the views
+    show the whole flight rather than following its last minute)."""
+    import rerun.blueprint as rrb
+
+    return rrb.Blueprint(_layout(),
                          rrb.TimePanel(timeline="sim_time", play_state="paused", state="collapsed"),
                          rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"))
 
 
-VIEW_NAMES = (
-    "accelerometer (g)", "moving variance and T_sigma (g^2)", "detector state, phase, in-flight window",
-    "altitude (m)", "airspeed (m/s)", "vertical speed (m/s)", "N1 (%)", "load factor (g)",
-    "3D: aircraft and paths (ENU, m)", "route", "events",
-)
+def view_names() -> list[str]:
+    """The names of every view in :func:`blueprint`'s layout (walked, not listed twice)."""
+    def walk(part):
+        if hasattr(part, "contents") and not hasattr(part, "origin"):
+            return [n for c in part.contents for n in walk(c)]
+        return [str(part.name)]
+
+    return walk(_layout())
 
 
 def write_rrd(view: RunView, path: Path) -> Path:

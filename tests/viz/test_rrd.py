@@ -13,7 +13,7 @@ import numpy as np
 import pyarrow.parquet as pq
 import pytest
 
-from viz.rrd import STATE_NAMES, VIEW_NAMES
+from viz.rrd import STATE_NAMES, view_names
 
 
 def _chunks(rrd, store=None):
@@ -89,7 +89,7 @@ def test_blueprint_holds_every_view(pattern_run):
         if ent.startswith("/view/"):
             names += [x[0] if isinstance(x, list) else x for x in _column(batches, "ViewBlueprint:display_name")]
             kinds += [x[0] if isinstance(x, list) else x for x in _column(batches, "ViewBlueprint:class_identifier")]
-    assert set(VIEW_NAMES) <= set(names), set(VIEW_NAMES) - set(names)
+    assert set(view_names()) <= set(names), set(view_names()) - set(names)
     assert {"TimeSeries", "StateTimeline", "3D", "Map", "TextLog"} <= set(kinds)
 
 
@@ -143,13 +143,14 @@ def test_web_viewer_listens_on_loopback_only(pattern_run):
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(shutil.which("chromium") is None, reason="needs Debian's chromium (.ci/run installs it)")
 def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_path):
     """A real viewer: Rerun's web viewer in headless Chromium (software WebGL), driven over CDP by
     Playwright. The page must log no error from the viewer (the map's tile requests fail on a
     closed network: those, and only those, are tolerated), and the screenshot must not be blank."""
     from playwright.sync_api import sync_playwright
 
+    chromium = shutil.which("chromium")
+    assert chromium, "Debian's chromium is needed (.ci/run installs it: apt-get install chromium)"
     run, _ = pattern_run
     proc, ps, _ = _serve(run)
     msgs = []
@@ -160,7 +161,7 @@ def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_
             line += proc.stdout.readline()
         url = line[line.index("http://"):].split()[0]
         with sync_playwright() as pw:
-            b = pw.chromium.launch(executable_path=shutil.which("chromium"), headless=True, args=[
+            b = pw.chromium.launch(executable_path=chromium, headless=True, args=[
                 "--no-sandbox", "--disable-quic", "--no-first-run", "--disable-background-networking",
                 "--disable-component-update", "--disable-sync", "--use-angle=swiftshader",
                 "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist"])
