@@ -206,7 +206,11 @@ def _send(rr, rec, v: RunView) -> None:
     if v.route_lat_lon.shape[0]:
         rr.log("/map/route", rr.GeoLineStrings(lat_lon=[v.route_lat_lon], radii=rr.components.Radius.ui_points(2.0),
                                                colors=[[40, 120, 255]]), static=True, **kw)
-    for icao, name, lat, lon in v.airports:
+    # airports: one class per airport, its label from an annotation context (GeoPoints have no
+    # label field in Rerun 0.41); the entity path carries the ICAO code as well
+    rr.log("/map/airports", rr.AnnotationContext([
+        rr.ClassDescription(info=(i + 1, f"{icao} {name}", (255, 80, 40)))
+        for i, (icao, name, _, _) in enumerate(v.airports)]), static=True, **kw)
+    for i, (icao, _name, lat, lon) in enumerate(v.airports):
         rr.log(f"/map/airports/{icao}", rr.GeoPoints(lat_lon=[[lat, lon]], radii=rr.components.Radius.ui_points(8.0),
-                                                    colors=[[255, 80, 40]]), static=True, **kw)
-        rr.log(f"/map/airports/{icao}/name", rr.TextDocument(f"{icao} {name}"), static=True, **kw)
+                                                    class_ids=[i + 1]), static=True, **kw)
