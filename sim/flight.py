@@ -15,6 +15,7 @@ switched to the destination's at the top of climb (the aircraft is then far abov
 from __future__ import annotations
 
 import math
+import operator
 from array import array
 from collections.abc import Callable
 from pathlib import Path
@@ -89,16 +90,18 @@ def fly(
         ac.step()
 
     nch = len(ac.channels)
-    scales = ac.scales
-    scales_list = scales.tolist()
+    scales_list = ac.scales.tolist()
     get, nodes = ac.raw_getter()
     run = ac.fdm.run
+    mul = operator.mul
+    i_alt = ac.index["alt_m"]
     data = array("d")  # every step's raw channels, appended in place (no per-step NumPy work)
     ext = data.extend
     changes: list[tuple[int, int, int]] = [(0, pilot.phase_code, pilot.severity_code)]
     limit_steps = int(max_duration_s(plan) * FDM_HZ)
     step = 0
-    dest_terrain_set = False
+    terrain_m = plan.origin.elevation_m
+    dest_terrain_from = None  # first step whose state lies over the destination's terrain
     next_progress = 0.0
     while not pilot.done:
         # a control tick: sample, decide, step
@@ -106,13 +109,16 @@ def fly(
         ext(raw)
         t = step / FDM_HZ
         codes = (pilot.phase_code, pilot.severity_code)
-        pilot.tick([v * k for v, k in zip(raw, scales_list)], t)  # SI floats
+        x = list(map(mul, raw, scales_list))  # SI floats
+        x.append(x[i_alt] - terrain_m)  # the derived channels (sim.jsbsim_adapter.DERIVED_CHANNELS)
+        pilot.tick(x, t)
         if (pilot.phase_code, pilot.severity_code) != codes:
             # labels change at the sample whose state made the pilot change phase
             changes.append((step, pilot.phase_code, pilot.severity_code))
-        if not dest_terrain_set and pilot.phase in ("cruise", "descent", "approach"):
-            ac.set("position/terrain-elevation-asl-ft", plan.destination.elevation_m / FT_M)
-            dest_terrain_set = True
+        if dest_terrain_from is None and pilot.phase in ("cruise", "descent", "approach"):
+            terrain_m = plan.destination.elevation_m
+            ac.set("position/terrain-elevation-asl-ft", terrain_m / FT_M)
+            dest_terrain_from = step + 1
         if progress is not None and t >= next_progress:
             progress(t, pilot.phase)
             next_progress = t + 60.0
@@ -129,25 +135,70 @@ def fly(
                 phase=pilot.phase,
                 t_s=step / FDM_HZ,
             )
-    x = np.frombuffer(data, dtype=np.float64).reshape(-1, nch) * scales
+    raw_record = np.frombuffer(data, dtype=np.float64).reshape(-1, nch)
+    terrain = np.full(step, plan.origin.elevation_m)
+    if dest_terrain_from is not None:
+        terrain[dest_terrain_from:] = plan.destination.elevation_m
     starts = np.array([c[0] for c in changes] + [step])
     reps = np.diff(starts)
     phase_code = np.repeat(np.array([c[1] for c in changes], dtype=np.uint8), reps)
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
-    return _to_track(plan, ac, x, phase_code, turb_code, events)
+    return _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
 
 
-def _to_track(plan, ac, x, phase_code, turb_code, events) -> FlightTrack:
+def _gather(raw: np.ndarray, scales: np.ndarray, groups: dict[str, list[int]], block: int = 8192) -> dict[str, np.ndarray]:
+    """SI arrays from the (steps, channels) raw record: one (steps, len(idx)) array per group.
+
+    Filled in cache-sized blocks of steps, in one pass over the record: scaling the record whole
+    and then slicing columns would make a second 100+ MB array (fresh memory is what costs most
+    here) and read it once per output.
+    """
+    n = raw.shape[0]
+    out = {name: np.empty((n, len(idx))) for name, idx in groups.items()}
+    cols = {}
+    for name, idx in groups.items():
+        contiguous = idx == list(range(idx[0], idx[0] + len(idx)))
+        cols[name] = (slice(idx[0], idx[0] + len(idx)) if contiguous else idx, scales[idx])
+    for i in range(0, n, block):
+        blk = raw[i : i + block]
+        for name, (sel, k) in cols.items():
+            np.multiply(blk[:, sel], k, out=out[name][i : i + block])
+    return out
+
+
+def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> FlightTrack:
+    """Assemble the FlightTrack from the (steps, channels) raw record and the terrain per step."""
     ix = ac.index
-    n = x.shape[0]
-    col = lambda name: x[:, ix[name]]  # noqa: E731
+    ne = get_profile(plan.aircraft).n_engines
+    one = lambda name: [ix[name]]  # noqa: E731
+    three = lambda *names: [ix[k] for k in names]  # noqa: E731
+    eng = lambda key: [ix[f"{key}_{i}"] for i in range(ne)]  # noqa: E731
+    groups = {
+        name: one(name)
+        for name in (
+            "lat_deg", "lon_deg", "alt_m", "wow", "flap_norm", "gear_norm", "speedbrake_norm",
+            "ias_mps", "tas_mps", "mach", "alpha_rad",
+        )
+    }
+    groups |= {
+        "euler": three("phi_rad", "theta_rad", "psi_rad"),
+        "rates": three("p_radps", "q_radps", "r_radps"),
+        "ang_acc": three("pdot_radps2", "qdot_radps2", "rdot_radps2"),
+        "vel": three("v_north_mps", "v_east_mps", "v_down_mps"),
+        "sf": three("fx_mps2", "fy_mps2", "fz_mps2"),
+        "n1": eng("n1_pct"),
+        "n2": eng("n2_pct"),
+        "thrust": eng("thrust_n"),
+    }
+    g = _gather(raw, ac.scales, groups)
+    col = lambda name: g[name][:, 0]  # noqa: E731  (contiguous: the group is (n, 1))
+    n = raw.shape[0]
     t = np.arange(n) / FDM_HZ
     o = plan.origin
     pos = geodesy.geodetic_to_ned(col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m)
-    vel = np.stack([col("v_north_mps"), col("v_east_mps"), col("v_down_mps")], axis=1)
-    euler = np.stack([col("phi_rad"), col("theta_rad"), col("psi_rad")], axis=1)
-    ne = get_profile(plan.aircraft).n_engines
+    vel = g["vel"]
+    euler = g["euler"]
     t_push = next(e.t_s for e in events if e.name == "pushback")
     t_off = next(e.t_s for e in events if e.name == "engines_off")
     airborne_codes = np.array([PHASE_CODE[p] for p in AIRBORNE_PHASES])
@@ -158,28 +209,28 @@ def _to_track(plan, ac, x, phase_code, turb_code, events) -> FlightTrack:
         origin_lon_deg=o.lon_deg,
         origin_alt_m=o.elevation_m,
         t_s=t,
-        lat_deg=col("lat_deg").copy(),
-        lon_deg=col("lon_deg").copy(),
-        alt_m=col("alt_m").copy(),
-        agl_m=col("agl_m").copy(),
+        lat_deg=col("lat_deg"),
+        lon_deg=col("lon_deg"),
+        alt_m=col("alt_m"),
+        agl_m=col("alt_m") - terrain_m,
         pos_ned_m=pos,
         vel_ned_mps=vel,
         euler_rad=euler,
         quat_wxyz=euler_to_quat_wxyz(euler),
-        rates_radps=np.stack([col("p_radps"), col("q_radps"), col("r_radps")], axis=1),
-        ang_acc_radps2=np.stack([col("pdot_radps2"), col("qdot_radps2"), col("rdot_radps2")], axis=1),
-        specific_force_body_mps2=np.stack([col("fx_mps2"), col("fy_mps2"), col("fz_mps2")], axis=1),
-        n1_pct=np.stack([col(f"n1_pct_{i}") for i in range(ne)], axis=1),
-        n2_pct=np.stack([col(f"n2_pct_{i}") for i in range(ne)], axis=1),
-        thrust_n=np.stack([col(f"thrust_n_{i}") for i in range(ne)], axis=1),
+        rates_radps=g["rates"],
+        ang_acc_radps2=g["ang_acc"],
+        specific_force_body_mps2=g["sf"],
+        n1_pct=g["n1"],
+        n2_pct=g["n2"],
+        thrust_n=g["thrust"],
         wow=col("wow") > 0.5,
-        flap_norm=col("flap_norm").copy(),
-        gear_norm=col("gear_norm").copy(),
-        speedbrake_norm=col("speedbrake_norm").copy(),
-        ias_mps=col("ias_mps").copy(),
-        tas_mps=col("tas_mps").copy(),
-        mach=col("mach").copy(),
-        alpha_rad=col("alpha_rad").copy(),
+        flap_norm=col("flap_norm"),
+        gear_norm=col("gear_norm"),
+        speedbrake_norm=col("speedbrake_norm"),
+        ias_mps=col("ias_mps"),
+        tas_mps=col("tas_mps"),
+        mach=col("mach"),
+        alpha_rad=col("alpha_rad"),
         ground_speed_mps=np.hypot(vel[:, 0], vel[:, 1]),
         vertical_speed_mps=-vel[:, 2],
         phase_code=phase_code,

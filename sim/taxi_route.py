@@ -14,6 +14,7 @@ and a 90 degree left turn into the stand.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 
@@ -48,6 +49,11 @@ class Path2D:
         self.corners_s = tuple(float(s) for s, a in zip(self.s_at[1:-1], turn) if a > math.radians(20))
         self.stops = tuple(sorted(stops, key=lambda st: st.s_m))
         self._seg = 0
+        # plain-float copies for the per-tick scalar math (NumPy scalars cost ~10x a float here)
+        self._pts = self.points.tolist()
+        self._dir = self.seg_dir.tolist()
+        self._len = self.seg_len.tolist()
+        self._s = self.s_at.tolist()
 
     def s_of(self, name: str) -> float:
         return next(st.s_m for st in self.stops if st.name == name)
@@ -56,32 +62,30 @@ class Path2D:
         """Arc length of the nearest point (searching forward from the last segment) and signed
         cross-track distance (positive = right of the path)."""
         best = (math.inf, 0.0, 0.0, self._seg)
-        for i in range(self._seg, min(self._seg + 3, len(self.seg_len))):
-            px, py = self.points[i]
-            dx, dy = self.seg_dir[i]
+        for i in range(self._seg, min(self._seg + 3, len(self._len))):
+            px, py = self._pts[i]
+            dx, dy = self._dir[i]
             u = (x - px) * dx + (y - py) * dy
-            u_c = min(max(u, 0.0), self.seg_len[i])
+            u_c = min(max(u, 0.0), self._len[i])
             ex, ey = x - (px + u_c * dx), y - (py + u_c * dy)
             d2 = ex * ex + ey * ey
             if d2 < best[0] - 1e-9:
                 cross = dx * (y - py) - dy * (x - px)
-                best = (d2, self.s_at[i] + u_c, cross, i)
-        if best[1] >= self.s_at[best[3] + 1] - 1e-6 and best[3] + 1 < len(self.seg_len):
+                best = (d2, self._s[i] + u_c, cross, i)
+        if best[1] >= self._s[best[3] + 1] - 1e-6 and best[3] + 1 < len(self._len):
             best = (best[0], best[1], best[2], best[3] + 1)
         self._seg = best[3]
         return best[1], best[2]
 
     def point_at(self, s: float) -> tuple[float, float]:
         if s >= self.length_m:
-            i = len(self.seg_len) - 1
-            u = s - self.s_at[i]
+            i = len(self._len) - 1
         else:
-            i = int(np.searchsorted(self.s_at, s, side="right") - 1)
-            i = max(0, i)
-            u = s - self.s_at[i]
-        px, py = self.points[i]
-        dx, dy = self.seg_dir[i]
-        return float(px + u * dx), float(py + u * dy)
+            i = max(0, bisect.bisect_right(self._s, s) - 1)
+        u = s - self._s[i]
+        px, py = self._pts[i]
+        dx, dy = self._dir[i]
+        return px + u * dx, py + u * dy
 
 
 def pure_pursuit_steer_rad(
