@@ -235,25 +235,33 @@ class SensorChain:
         self._n_out = 0
 
     def __call__(self, f_sensor_g: np.ndarray, t0_s: float, rng: np.random.Generator) -> Measurement:
-        """Sense a chunk; ``t0_s`` is the time of the first sample of the whole stream."""
-        preset, unit = self.preset, self.unit
+        """Sense a chunk (N, 3); ``t0_s`` is the time of the first sample of the whole stream."""
         f = np.asarray(f_sensor_g, dtype=float)
         if f.ndim != 2 or f.shape[1] != 3:
             raise SensorError(f"specific force must be an (N, 3) array, got shape {f.shape}")
-        if not np.isfinite(f).all():
-            bad = int(np.flatnonzero(~np.isfinite(f).all(axis=1))[0])
+        return self.rows(np.ascontiguousarray(f.T), t0_s, rng)
+
+    def rows(self, f_rows_g: np.ndarray, t0_s: float, rng: np.random.Generator) -> Measurement:
+        """:meth:`__call__` for a chunk given as rows (3, N): sensor axes x, y, z, time along each
+        row (the layout the filters want; no transposed copy)."""
+        preset, unit = self.preset, self.unit
+        a = np.asarray(f_rows_g, dtype=float)
+        if a.ndim != 2 or a.shape[0] != 3:
+            raise SensorError(f"specific force rows must be a (3, N) array, got shape {a.shape}")
+        if not np.isfinite(a).all():
+            bad = int(np.flatnonzero(~np.isfinite(a).all(axis=0))[0])
             raise SensorError(f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken")
+        n_in = a.shape[1]
         # the anti-alias filter is linear and per axis, the cross-axis mixing a constant matrix and the
         # offset a constant: they commute, so filter and decimate first and mix at the output rate
-        a = f.T  # (3, N): contiguous time axis for the filter
         if self._sos is not None:
             from scipy.signal import sosfilt, sosfilt_zi
 
             if self._zi is None:  # start in the steady state of the first sample (no power-on transient)
                 self._zi = sosfilt_zi(self._sos)[:, None, :] * a[:, 0][None, :, None]
-            a, self._zi = sosfilt(self._sos, np.ascontiguousarray(a), axis=-1, zi=self._zi)
+            a, self._zi = sosfilt(self._sos, a, axis=-1, zi=self._zi)
         a = a[:, self._phase :: self.k].T @ self._mix + unit.offset_g
-        self._phase = (self._phase - f.shape[0]) % self.k
+        self._phase = (self._phase - n_in) % self.k
         t = t0_s + (self._n_out + np.arange(a.shape[0])) / preset.odr_hz
         self._n_out += a.shape[0]
         if preset.noise_g > 0:

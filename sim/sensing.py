@@ -112,12 +112,12 @@ def sense(
     # put-down shocks at the start of every resting / stowed segment that follows a carried one
     pulse = car.putdown_pulse_mps2(int(0.25 * fs), dt, spec)
 
-    # track channels at 120 Hz, stacked and interpolated per chunk in one gather
+    # track channels at 120 Hz as rows (channels first), interpolated per chunk row by row
     loc = prof.locations_m[car.LOCATION_OF[spec.placement]]
     qbar = 0.5 * isa_density_kgpm3(track.alt_m) * track.tas_mps**2
     ne = track.n1_pct.shape[1]
-    chans = np.column_stack(
-        [track.specific_force_at(loc), track.n1_pct, track.n2_pct, qbar, track.ground_speed_mps, track.wow]
+    chans = np.vstack(
+        [track.specific_force_at(loc).T, track.n1_pct.T, track.n2_pct.T, qbar, track.ground_speed_mps, track.wow]
     )
     mount = car.mount_sos(spec.placement, fs)
     mount_zi = [np.zeros((sos.shape[0], 2)) for sos in mount]
@@ -129,49 +129,52 @@ def sense(
         n = min(int(CHUNK_S * fs), n_total - c0)
         t = t_start + (c0 + np.arange(n)) * dt
         si = np.searchsorted(seg_t0, t, side="right") - 1
-        ks = range(int(si[0]), int(si[-1]) + 1)  # si is sorted: the segments this chunk touches
+        # si is sorted: the segments this chunk touches, each a contiguous run [a, b) of samples
+        ks = range(int(si[0]), int(si[-1]) + 1)
+        runs = np.searchsorted(si, np.arange(ks.start, ks.stop + 1), side="left")
+        f_sensor = np.empty((3, n))  # sensor axes as rows
         if not any(segs[k].on_board for k in ks):
             # the bag is off the aircraft for the whole chunk: no floor, vibration or mount to run
             # (the mount restarts in its steady state when the bag is next stowed)
             first_f = None
-            f_sensor = np.empty((n, 3))
-            for k in ks:
-                _off_board(segs, k, motion, pulse, si == k, t, fs, f_sensor)
-            meas.append(chain(f_sensor / G0, t_start, rng))
+            for k, a, b in zip(ks, runs[:-1], runs[1:]):
+                _off_board(segs, k, motion, pulse, a, b, t, fs, f_sensor)
+            f_sensor *= 1.0 / G0
+            meas.append(chain.rows(f_sensor, t_start, rng))
             continue
         pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
         i0 = pos.astype(np.int64)
-        w = (pos - i0)[:, None]
-        ch = chans[i0] * (1.0 - w) + chans[i0 + 1] * w
-        fl = ch[:, 0:3]
-        n1, n2 = ch[:, 3 : 3 + ne], ch[:, 3 + ne : 3 + 2 * ne]
-        qb, gs, wow = ch[:, 3 + 2 * ne], ch[:, 4 + 2 * ne], ch[:, 5 + 2 * ne] > 0.5
+        ch = _interp_rows(chans, i0, pos - i0)
+        fl = ch[0:3]
+        n1, n2 = ch[3 : 3 + ne], ch[3 + ne : 3 + 2 * ne]
+        qb, gs, wow = ch[3 + 2 * ne], ch[4 + 2 * ne], ch[5 + 2 * ne] > 0.5
         if n1.max() < 1.0 and gs.max() < 0.5:
-            vib_g = np.zeros((n, 3))  # engines stopped, aircraft at rest: no vibration to compute
+            floor = fl  # engines stopped, aircraft at rest: no vibration to compute
         else:
             vib_g, vstate = vibration_g(n1, n2, qb, gs, wow, fs, track.aircraft, vibration, vstate, rng)
-        floor = fl + vib_g * G0
-        bag = np.empty_like(floor)
+            vib_g *= G0
+            floor = vib_g
+            floor += fl
         from scipy.signal import sosfilt, sosfilt_zi
 
         if first_f is None:  # start the mounts in their steady state (DC gain 1)
             for j in range(3):
-                mount_zi[j] = sosfilt_zi(mount[j]) * floor[0, j]
+                mount_zi[j] = sosfilt_zi(mount[j]) * floor[j, 0]
             first_f = True
+        bag = np.empty_like(floor)
         for ax in range(3):
-            bag[:, ax], mount_zi[ax] = sosfilt(mount[ax], floor[:, ax], zi=mount_zi[ax])
-        f_sensor = np.empty((n, 3))
-        for k in ks:
+            bag[ax], mount_zi[ax] = sosfilt(mount[ax], floor[ax], zi=mount_zi[ax])
+        for k, a, b in zip(ks, runs[:-1], runs[1:]):
             s = segs[k]
-            sel = si == k
             if not s.on_board:
-                _off_board(segs, k, motion, pulse, sel, t, fs, f_sensor)
+                _off_board(segs, k, motion, pulse, a, b, t, fs, f_sensor)
                 continue
-            j = np.round((t[sel] - s.t0_s) * fs).astype(int)
-            f_frame = fl[sel] + motion[k][j] if s.state == "handled" else bag[sel]
+            j = np.round((t[a:b] - s.t0_s) * fs).astype(int)
+            f_frame = fl[:, a:b] + motion[k][j].T if s.state == "handled" else bag[:, a:b]
             _putdown(segs, k, pulse, j, f_frame)
-            f_sensor[sel] = f_frame @ s.orientation  # rows: R^T f, sensor <- frame
-        meas.append(chain(f_sensor / G0, t_start, rng))
+            np.matmul(s.orientation.T, f_frame, out=f_sensor[:, a:b])  # sensor <- frame: R^T f
+        f_sensor *= 1.0 / G0
+        meas.append(chain.rows(f_sensor, t_start, rng))
     t_out = np.concatenate([m.t_s for m in meas])
     counts = np.concatenate([m.counts for m in meas])
     acc = np.concatenate([m.acc_g for m in meas])
@@ -192,23 +195,36 @@ def sense(
     )
 
 
+def _interp_rows(rows: np.ndarray, i0: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Linear interpolation of every row of ``rows`` (channels, N) at fractional indices i0 + w."""
+    out = np.empty((rows.shape[0], i0.shape[0]))
+    i1 = i0 + 1
+    for c, r in enumerate(rows):
+        lo = r[i0]
+        np.multiply(r[i1] - lo, w, out=out[c])
+        out[c] += lo
+    return out
+
+
 def _putdown(segs, k, pulse, j, f_frame) -> None:
-    """Add the put-down shock at the start of a resting / stowed segment that follows a carry."""
+    """Add the put-down shock (frame z, ``f_frame`` rows x, y, z) at the start of a resting /
+    stowed segment that follows a carry."""
     if segs[k].state in ("resting", "stowed", "in_hold") and k > 0 and segs[k - 1].state in ("carried", "handled"):
         inside = j < pulse.shape[0]
-        f_frame[inside, 2] -= pulse[j[inside]]
+        f_frame[2, inside] -= pulse[j[inside]]
 
 
-def _off_board(segs, k, motion, pulse, sel, t, fs, f_sensor) -> None:
-    """Specific force in sensor axes of a bag off the aircraft (local N/E/Down frame)."""
+def _off_board(segs, k, motion, pulse, a, b, t, fs, f_sensor) -> None:
+    """Specific force (sensor axes as rows) of a bag off the aircraft (local N/E/Down frame),
+    for the samples [a, b) of the chunk."""
     s = segs[k]
-    j = np.round((t[sel] - s.t0_s) * fs).astype(int)
-    f_frame = np.zeros((j.shape[0], 3))
-    f_frame[:, 2] = -G0  # specific force of a body at rest in N/E/Down
+    j = np.round((t[a:b] - s.t0_s) * fs).astype(int)
+    f_frame = np.zeros((3, b - a))
+    f_frame[2] = -G0  # specific force of a body at rest in N/E/Down
     if k in motion:
-        f_frame += motion[k][j]
+        f_frame += motion[k][j].T
     _putdown(segs, k, pulse, j, f_frame)
-    f_sensor[sel] = f_frame @ s.orientation
+    np.matmul(s.orientation.T, f_frame, out=f_sensor[:, a:b])
 
 
 def _gyro(t: np.ndarray, segs, track: FlightTrack, spec: GyroSpec, rng: np.random.Generator) -> np.ndarray:

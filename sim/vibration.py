@@ -63,7 +63,7 @@ class VibrationState:
 
     phases: np.ndarray  # (n_engines, 3) radians: N1, 2*N1, N2
     detune: np.ndarray  # (n_engines,) relative spool-speed offset: real engines never run in sync
-    mode_zi: np.ndarray  # (n_sections, 2, 3 axes): state of the mode bank
+    mode_zi: np.ndarray  # (n_sections, 3 axes, 2): state of the mode bank
     joint_pos_m: float  # distance rolled since the last joint
 
 
@@ -74,7 +74,7 @@ def initial_state(n_engines: int, model: VibrationModel, rng: np.random.Generato
         # add with a fixed random phase (and could cancel). Real engines differ by a few tenths of
         # a percent, so each gets a fixed offset within +-0.3 % (the lines beat instead)
         detune=rng.uniform(-0.003, 0.003, n_engines),
-        mode_zi=np.zeros((_mode_bank(model.mode_hz, model.mode_q, 1200.0).shape[0], 2, 3)),
+        mode_zi=np.zeros((_mode_bank(model.mode_hz, model.mode_q, 1200.0).shape[0], 3, 2)),
         joint_pos_m=float(rng.uniform(0.0, model.joint_spacing_m)),
     )
 
@@ -91,33 +91,38 @@ def vibration_g(
     state: VibrationState,
     rng: np.random.Generator,
 ) -> tuple[np.ndarray, VibrationState]:
-    """Vibration (N, 3) in g, body axes, for one chunk of inputs at ``fs_hz``; returns the new state.
+    """Vibration (3, N) in g, body axes x, y, z as rows, for one chunk of inputs at ``fs_hz``;
+    returns the new state.
 
-    Inputs are per internal sample: N1 and N2 (N, n_engines) in %, dynamic pressure (N,) in Pa,
-    ground speed (N,) in m/s, weight on wheels (N,) bool.
+    Inputs are per internal sample, channels first: N1 and N2 (n_engines, N) in %, dynamic pressure
+    (N,) in Pa, ground speed (N,) in m/s, weight on wheels (N,) bool.
+
+    The line sines are evaluated in single precision (30x faster than double here): the phase, up
+    to 1e5 rad within a 60 s chunk, is accumulated in double and rounded to float32 only for the
+    sine, a phase error below 0.004 rad, i.e. below 20 ug on the strongest line (sensor noise:
+    2.23 mg).
     """
-    n = n1_pct.shape[0]
+    n = n1_pct.shape[1]
     rpm1, rpm2 = ENGINE_RPM[aircraft]
     dt = 1.0 / fs_hz
     share = np.asarray(model.axis_share)
-    out = np.zeros((n, 3))
+    level_e = _running_level(n1_pct)  # (n_engines, N)
     # engine lines: phase = integral of 2 pi f dt, continuous across chunks
     phases = state.phases.copy()
-    line = np.zeros(n)
-    for e in range(n1_pct.shape[1]):
+    line = np.zeros(n, dtype=np.float32)
+    for e in range(n1_pct.shape[0]):
         w1 = 2.0 * np.pi * dt * rpm1 / 6000.0 * (1.0 + state.detune[e])  # rad per sample per % N1
         w2 = 2.0 * np.pi * dt * rpm2 / 6000.0 * (1.0 + state.detune[e])
-        th1 = np.cumsum(n1_pct[:, e]) * w1  # fan rotation angle since the chunk start
-        th2 = np.cumsum(n2_pct[:, e]) * w2
-        k1 = _running_level(n1_pct[:, e])
-        line += k1 * (model.n1_line_g * np.sin(phases[e, 0] + th1) + model.n1_h2_g * np.sin(phases[e, 1] + 2.0 * th1))
-        line += model.n2_line_g * k1 * np.sin(phases[e, 2] + th2)
+        th1 = np.cumsum(n1_pct[e]) * w1  # fan rotation angle since the chunk start
+        th2 = np.cumsum(n2_pct[e]) * w2
+        wave = model.n1_line_g * np.sin((phases[e, 0] + th1).astype(np.float32))
+        wave += model.n1_h2_g * np.sin((phases[e, 1] + 2.0 * th1).astype(np.float32))
+        wave += model.n2_line_g * np.sin((phases[e, 2] + th2).astype(np.float32))
+        line += level_e[e] * wave
         if n:
             phases[e] = (phases[e] + np.array([th1[-1], 2.0 * th1[-1], th2[-1]])) % (2.0 * np.pi)
-    # engine lines reach the floor mostly vertically, a third laterally (fixed mixing)
-    out += line[:, None] * share[None, :]
     # structural modes: white noise through resonators, excitation level from power and airflow
-    power = np.mean(_running_level(n1_pct), axis=1)
+    power = level_e.mean(axis=0)
     level = model.mode_engine_g * power + model.mode_airflow_g * np.clip(qbar_pa / 15000.0, 0.0, 2.0)
     # runway: roughness and joint bumps feed the same modes while rolling
     rolling = on_ground & (ground_speed_mps > 0.5)
@@ -131,19 +136,21 @@ def vibration_g(
     # the modes as one parallel bank (each resonator normalised to unit output RMS for unit white
     # input), realised as one filter: one noise stream per axis drives all modes
     sos = _mode_bank(model.mode_hz, model.mode_q, fs_hz)
-    drive = rng.standard_normal((n, 3), dtype=np.float32) * (level + rough)[:, None]
-    drive[:, 2] += joints
-    y, mode_zi = sosfilt(sos, drive, axis=0, zi=state.mode_zi)
-    out += y * share[None, :]
-    return out, VibrationState(phases, state.detune, mode_zi, new_joint)
+    drive = rng.standard_normal((3, n), dtype=np.float32) * (level + rough)
+    drive[2] += joints
+    y, mode_zi = sosfilt(sos, drive, axis=-1, zi=state.mode_zi)
+    # engine lines reach the floor mostly vertically, a third laterally (fixed mixing); the modes
+    # likewise (axis_share)
+    y += line
+    y *= share[:, None]
+    return y, VibrationState(phases, state.detune, mode_zi, new_joint)
 
 
 def _running_level(n1_pct: np.ndarray) -> np.ndarray:
     """Engine excitation level: 0.5 + 0.5 N1/100 while running (N1 >= 15 %: idle is already
     clearly felt in the cabin), fading linearly to zero as the engine spools down below 15 %."""
     n1 = np.asarray(n1_pct, float)
-    running = 0.5 + 0.5 * n1 / 100.0
-    return np.where(n1 >= 15.0, running, running * np.clip(n1 / 15.0, 0.0, 1.0))
+    return (0.5 + 0.005 * n1) * np.clip(n1 / 15.0, 0.0, 1.0)
 
 
 @lru_cache(maxsize=16)
