@@ -120,6 +120,10 @@ SPEC: dict[str, dict[str, Key]] = {
         "deplaning_s": Key(float, "deplaning walk (or unloading)", 240.0, lo=0, hi=3600),
         "arrival_rest_s": Key(float, "resting at the destination (truly static)", 900.0, lo=0, hi=86400),
         "truck_s": Key(float, "road transport before and after (parcel)", 1200.0, lo=0, hi=86400),
+        "putdown_peak_g": Key(float, "peak of the shock when the bag is set down", 1.5, lo=0.05, hi=50),
+        "putdown_ms": Key(float, "duration of that shock", 40.0, lo=2, hi=1000),
+        "pickup_height_m": Key(float, "height the bag is lifted when picked up", 0.4, lo=0, hi=3),
+        "pickup_s": Key(float, "duration of the lift", 0.8, lo=0.1, hi=10),
     },
     "sensor": {
         "preset": Key(str, "accelerometer preset", "lis302dl-logged16", choices=tuple(SENSOR_PRESETS)),

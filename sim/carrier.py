@@ -1,5 +1,5 @@
 """The bag around and during the flight: its timeline (segments aligned to the FlightTrack's events),
-and the motion models that give its specific force (gait, put-down transients, the spring-damper
+and the motion models that give its specific force (gait, pick-up and put-down transients, the spring-damper
 mount that couples a stowed bag to the airframe).
 
 Timeline of a cabin handbag (the seed 000 case), in FlightTrack time (t = 0: aircraft parked at the
@@ -68,6 +68,8 @@ class CarrierSpec:
     gait_fore_aft_g: float = 0.12
     putdown_peak_g: float = 1.5
     putdown_ms: float = 40.0
+    pickup_height_m: float = 0.4  # lifted this far off its support when picked up
+    pickup_s: float = 0.8  # over this long (peak 0.37 g with the defaults)
 
     def validate(self) -> None:
         if self.kind not in KINDS:
@@ -83,6 +85,11 @@ class CarrierSpec:
                      "handling_s", "deplaning_s", "arrival_rest_s", "truck_s"):
             if getattr(self, name) < 0:
                 raise CarrierError(f"carrier {name} = {getattr(self, name)}: must be >= 0")
+        for name in ("putdown_peak_g", "putdown_ms", "pickup_s"):
+            if not getattr(self, name) > 0:
+                raise CarrierError(f"carrier {name} = {getattr(self, name)}: must be > 0")
+        if not self.pickup_height_m >= 0:
+            raise CarrierError(f"carrier pickup_height_m = {self.pickup_height_m}: must be >= 0")
 
 
 @dataclass(frozen=True, slots=True)
@@ -228,6 +235,21 @@ def putdown_pulse_mps2(n: int, dt: float, spec: CarrierSpec) -> np.ndarray:
     pulse = np.concatenate([lower, shock])[:n]
     p[: pulse.shape[0]] = pulse
     return p
+
+
+def pickup_pulse_mps2(dt: float, spec: CarrierSpec) -> np.ndarray:
+    """Picking the bag up, along the frame's down axis with the sign of :func:`putdown_pulse_mps2`
+    (positive: upward specific force): raised by ``pickup_height_m`` over ``pickup_s`` along a
+    minimum-jerk path (Flash and Hogan's model of a human reach, h = H (10 u^3 - 15 u^4 + 6 u^5)),
+    so it first pulls harder than gravity (accelerating up, peak 5.77 H / T^2: 0.37 g with the
+    defaults), then less, starting and ending without a jolt. The acceleration is the exact second
+    difference of that path, whose first and last steps are equal (it is point-symmetric), so the
+    impulses cancel to rounding: the lift leaves no net velocity (nav/ integrates it to a 0.4 m
+    rise, not a drift)."""
+    m = max(3, int(round(spec.pickup_s / dt)))
+    u = np.arange(m + 2) / (m + 1)
+    h = spec.pickup_height_m * u**3 * (10.0 - 15.0 * u + 6.0 * u * u)
+    return (h[2:] - 2.0 * h[1:-1] + h[:-2]) / (dt * dt)
 
 
 def mount_sos(placement: str, fs_hz: float) -> list[np.ndarray]:

@@ -109,8 +109,9 @@ def sense(
             motion[i] = car.road_accel_mps2(n, dt, rng)
         elif s.walking:
             motion[i] = car.gait_accel_mps2(np.arange(n) * dt, spec, rng)
-    # put-down shocks at the start of every resting / stowed segment that follows a carried one
-    pulse = car.putdown_pulse_mps2(int(0.25 * fs), dt, spec)
+    # put-down shocks at the start of every resting / stowed segment that follows a carried one,
+    # pick-up lifts at the start of every carried / handled segment that follows a resting one
+    pulse = (car.putdown_pulse_mps2(int(0.25 * fs), dt, spec), car.pickup_pulse_mps2(dt, spec))
 
     # track channels at 120 Hz as rows (channels first), interpolated per chunk row by row
     loc = prof.locations_m[car.LOCATION_OF[spec.placement]]
@@ -207,11 +208,20 @@ def _interp_rows(rows: np.ndarray, i0: np.ndarray, w: np.ndarray) -> np.ndarray:
 
 
 def _putdown(segs, k, pulse, j, f_frame) -> None:
-    """Add the put-down shock (frame z, ``f_frame`` rows x, y, z) at the start of a resting /
-    stowed segment that follows a carry."""
-    if segs[k].state in ("resting", "stowed", "in_hold") and k > 0 and segs[k - 1].state in ("carried", "handled"):
-        inside = j < pulse.shape[0]
-        f_frame[2, inside] -= pulse[j[inside]]
+    """Add the transients of segment ``k`` along the frame's down axis (``f_frame`` rows x, y, z):
+    the put-down shock at the start of a resting / stowed segment that follows a carry, the
+    pick-up lift at the start of a carry that follows a rest. ``pulse`` = (put-down, pick-up)."""
+    if k == 0:
+        return
+    state, before = segs[k].state, segs[k - 1].state
+    if state in ("resting", "stowed", "in_hold") and before in ("carried", "handled"):
+        p = pulse[0]
+    elif state in ("carried", "handled") and before in ("resting", "stowed", "in_hold"):
+        p = pulse[1]
+    else:
+        return
+    inside = j < p.shape[0]
+    f_frame[2, inside] -= p[j[inside]]
 
 
 def _off_board(segs, k, motion, pulse, a, b, t, fs, f_sensor) -> None:

@@ -75,11 +75,19 @@ def test_resting_orientation_norm_and_direction(pattern_rec):
 def test_drawn_offsets_move_the_resting_norm_by_at_most_their_size(fly_cached):
     _, tr = fly_cached("pattern")
     rec = sense(tr, CarrierSpec(), get_preset("lis302dl-logged16"), np.random.default_rng(3))
-    off = np.linalg.norm(rec.unit["offset_g"])
+    off = np.asarray(rec.unit["offset_g"])
+    cross = np.asarray(rec.unit["cross_axis"])
     seg = next(s for s in rec.segments if s.phase == "arrival_rest")
     sel = rec.sensor_static & (rec.t_s >= seg.t0_s)
-    # |(I + C) g + o| differs from 1 g by at most |o| + |C| (cross-axis <= 2 % per term)
-    assert abs(np.linalg.norm(rec.acc_g[sel].mean(axis=0)) - 1.0) <= off + 0.04
+    m = rec.acc_g[sel].mean(axis=0)
+    # exactly what this unit must read: (I + C) times the 1 g "up" in sensor axes, plus its offset
+    # (acc_g uses the unit's own sensitivity, so the gain error cancels). Tolerance: the mean of
+    # ~88,000 samples of 2.23 mg noise is good to 10 ug; 0.5 mg leaves room for the 0.07 mg steps.
+    np.testing.assert_allclose(m, (np.eye(3) + cross) @ -seg.orientation[2, :] + off, atol=5e-4)
+    # |(I + C) g + o| differs from 1 g by at most |o| + |C| (cross-axis <= 2 % per term). Over the
+    # preset's tolerances (offsets +-40 mg per axis, FACTS.md's assumption) only about half of all
+    # units rest within 2 % of 1 g; the worst are 7 % off (see the closing note).
+    assert abs(np.linalg.norm(m) - 1.0) <= np.linalg.norm(off) + 0.04
 
 
 def test_dropped_bag_saturates_at_the_range_and_never_beyond(fly_cached):
@@ -93,6 +101,33 @@ def test_dropped_bag_saturates_at_the_range_and_never_beyond(fly_cached):
     starts = np.array([s.t0_s for s in rec.segments])
     t_clip = rec.t_s[rec.clipped.any(axis=1)]
     assert np.all(np.min(np.abs(t_clip[:, None] - starts[None, :]), axis=1) < 0.25)
+
+
+def test_pick_up_lifts_the_bag_and_leaves_no_net_velocity(fly_cached):
+    """Every carry that starts from a rest begins with the lift (sim.carrier.pickup_pulse_mps2): on a
+    perfect sensor with the gait switched off, |a| - 1 g is the lift alone."""
+    from sim.accelerometer import UnitDraw
+    from sim.carrier import pickup_pulse_mps2
+
+    _, tr = fly_cached("pattern")
+    spec = dataclasses.replace(CarrierSpec(), gait_vertical_g=0.0, gait_lateral_g=0.0, gait_fore_aft_g=0.0)
+    rec = sense(tr, spec, get_preset("ideal"), np.random.default_rng(0), unit=UnitDraw())
+    peak_g = float(pickup_pulse_mps2(1 / 1200, spec).max()) / 9.80665
+    assert peak_g == pytest.approx(5.77 * spec.pickup_height_m / spec.pickup_s**2 / 9.80665, rel=0.01)  # min-jerk peak
+    a = np.linalg.norm(rec.acc_g, axis=1) - 1.0
+    lifts = 0
+    for k, seg in enumerate(rec.segments):
+        if k == 0 or seg.on_board or seg.state != "carried" or rec.segments[k - 1].state != "resting":
+            continue
+        sel = (rec.t_s >= seg.t0_s) & (rec.t_s < seg.t0_s + spec.pickup_s + 0.2)
+        x = a[sel]
+        # 100 Hz samples of a smooth 0.8 s pulse: the sampled extremes lie within 1 % of the peak
+        assert x.max() == pytest.approx(peak_g, rel=0.01) and x.min() == pytest.approx(-peak_g, rel=0.01)
+        assert x[0] >= 0 and x.argmax() < x.argmin()  # up first (no jolt: starts from ~0), then slowing
+        # net velocity change: the impulses cancel (sum * dt, to well under 1 mm/s)
+        assert abs(x.sum() * 9.80665 / rec.odr_hz) < 1e-3
+        lifts += 1
+    assert lifts >= 2  # the walk to the gate and the boarding walk (deplaning starts from the seat)
 
 
 def test_same_seed_same_recording_other_seed_other_noise_and_unit(fly_cached):
@@ -124,7 +159,6 @@ def test_bad_tracks_are_named(fly_cached):
 
 
 ENGINE_PHASES = ("taxi_out", "takeoff_roll", "climb", "cruise", "descent", "rollout", "taxi_in")
-RIGID_BODY_HZ = 5.0  # below this: the aircraft's own motion (turns, phugoid, turbulence, gusts)
 
 
 @pytest.fixture(scope="module")
@@ -139,25 +173,40 @@ def _psd(x, fs):
 
 @pytest.mark.slow
 def test_in_flight_spectra_peak_between_10_and_30_hz(default_rec):
-    """Seed 000 Fig. 6: peaks between 10 and 30 Hz in every flight stage, far above the static floor."""
+    """Seed 000 Fig. 6: peaks between 10 and 30 Hz in every flight stage, far above the static floor.
+
+    The largest value of the whole spectrum (every bin but DC; resolution 0.2 Hz) is taken, in calm
+    air. In the default scenario's light-turbulence segment (end of cruise, start of descent) the
+    largest peak is the turbulence itself, below 1 Hz: asserted separately, with the vibration peak
+    still standing 10 dB above the floor."""
     tr, rec = default_rec
     a = np.linalg.norm(rec.acc_g, axis=1)
     f, floor_psd = _psd(a[rec.sensor_static][:100_000], rec.odr_hz)
     floor = float(np.median(floor_psd[1:]))
-    band = f >= RIGID_BODY_HZ
+    db = lambda p: round(float(10 * np.log10(p / floor)), 1)  # noqa: E731
     report = {}
+    calm = rec.turbulence_severity == "none"
     for ph in ENGINE_PHASES:
-        sel = (rec.phase == ph) & (rec.bag_state == "stowed")
+        sel = (rec.phase == ph) & (rec.bag_state == "stowed") & calm
         f, p = _psd(a[sel], rec.odr_hz)
-        k = np.flatnonzero(band)[np.argmax(p[band])]
-        report[ph] = (round(float(f[k]), 1), round(10 * np.log10(p[k] / floor), 1))
+        k = 1 + int(np.argmax(p[1:]))
+        report[ph] = (round(float(f[k]), 1), db(p[k]))
         assert 10.0 <= f[k] <= 30.0, (ph, f[k])
-        assert p[k] >= 10 * floor, (ph, 10 * np.log10(p[k] / floor))
+        assert p[k] >= 10 * floor, (ph, db(p[k]))
+    # light turbulence: the gusts' own low-frequency peak dominates; the vibration peak remains
+    turb = (rec.bag_state == "stowed") & (rec.turbulence_severity == "light")
+    f, p = _psd(a[turb], rec.odr_hz)
+    k = 1 + int(np.argmax(p[1:]))
+    band = (f >= 10) & (f <= 30)
+    assert f[k] < 2.0
+    assert p[band].max() >= 10 * floor
+    report["light turbulence"] = (round(float(f[k]), 1), db(p[k]), "10-30 Hz:", db(p[band].max()))
     # engines off and the bag resting: no such peak (within 3 dB of the floor in 10-30 Hz)
     rest = rec.phase == "arrival_rest"
     f, p = _psd(a[rest], rec.odr_hz)
     assert p[(f >= 10) & (f <= 30)].max() < 2.0 * floor * 1.5
-    print(f"\nlargest peak above {RIGID_BODY_HZ} Hz (Hz, dB over static floor): {report}")
+    report["arrival_rest 10-30 Hz max"] = db(p[(f >= 10) & (f <= 30)].max())
+    print(f"\nlargest spectral peak (Hz, dB over the static floor): {report}")
 
 
 @pytest.mark.slow
