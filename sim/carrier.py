@@ -126,7 +126,7 @@ def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[fl
         stow_state = "stowed"
     else:
         t_stow = t_es - spec.stow_before_engine_start_s
-        pre = [("carried", "truck", spec.truck_s, False), ("handled", "boarding", spec.boarding_s, True)]
+        pre = [("carried", "truck", spec.truck_s, False), ("handled", "loading", spec.boarding_s, True)]
         stow_state = "in_hold"
     t = t_stow - sum(p[2] for p in pre)
     for state, phase, dur, walking in pre:
@@ -150,7 +150,7 @@ def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[fl
     segs.append(Segment(cur, t_deplane, stow_state, None, _rot(rng), True))
     post = [("carried", "deplaning", spec.deplaning_s, True)]
     if spec.kind == "parcel":
-        post = [("handled", "deplaning", spec.deplaning_s, True), ("carried", "truck", spec.truck_s, False)]
+        post = [("handled", "unloading", spec.deplaning_s, True), ("carried", "truck", spec.truck_s, False)]
     t = t_deplane
     for state, phase, dur, walking in post:
         segs.append(Segment(t, t + dur, state, phase, _rot(rng), False, walking))

@@ -24,7 +24,7 @@ FLIGHT_PHASES = (
     "shutdown",
     "parked",
 )
-CARRIER_PHASES = ("terminal_walk", "terminal_rest", "boarding", "deplaning", "arrival_rest", "truck")
+CARRIER_PHASES = ("terminal_walk", "terminal_rest", "boarding", "deplaning", "arrival_rest", "truck", "loading", "unloading")
 PHASES = FLIGHT_PHASES + CARRIER_PHASES
 PHASE_CODE = {name: i for i, name in enumerate(PHASES)}
 

@@ -161,17 +161,21 @@ class Pilot:
     # ------------------------------------------------------------------ tick
     @property
     def control_every(self) -> int:
-        """FDM steps between ticks: 40 Hz on the runway and below 1000 ft; 20 Hz taxiing;
-        10 Hz airborne above 1000 ft; 5 Hz en route (the loops' bandwidths are well below 1 Hz there, and the pilot is
-        most of flightmode's cost per step); 4 Hz standing still."""
-        if self.phase in ("gate", "parked") or self._hold_until is not None:
-            return 30  # standing still on the brakes: 4 Hz
+        """FDM steps between ticks: 40 Hz on the runway and below 1000 ft; 20 Hz pushing back;
+        10 Hz taxiing and airborne above 1000 ft; 5 Hz en route (the loops' bandwidths are well
+        below 1 Hz there, and the pilot is most of flightmode's cost per step); 4 Hz standing still
+        or waiting for an engine to spool up."""
+        if self.phase in ("gate", "parked", "engine_start") or self._hold_until is not None:
+            return 30  # standing still on the brakes (or waiting for a spool-up): 4 Hz
         if self._en_route:
             return 24  # 5 Hz
-        if self._airborne_high:
-            return 12  # 10 Hz: airborne above 1000 ft (climb-out, approach before the last 1000 ft)
-        if self.phase in ("engine_start", "pushback", "taxi_out", "taxi_in"):
-            return 6  # 20 Hz on the taxiways (turns are taken at 6-10 kt)
+        if self._airborne_high or self.phase in ("taxi_out", "taxi_in"):
+            # 10 Hz: airborne above 1000 ft (climb-out, approach before the last 1000 ft), and on
+            # the taxiways (at 20 kt the aircraft moves 1 m per tick; the steering loops' time
+            # constants are seconds)
+            return 12
+        if self.phase == "pushback":
+            return 6  # 20 Hz: the tug's speed loop
         return 3
 
     def tick(self, x, t: float) -> None:

@@ -260,7 +260,7 @@ def test_eobs_bursts_and_a_parcel_in_the_hold(fly_cached):
     gaps = np.diff(rec.t_s)
     assert np.isclose(gaps, 0.1).sum() > 0 and gaps.max() == pytest.approx(60.0 - 3.2, abs=1e-6)
     assert np.all((rec.counts >= 0) & (rec.counts <= 4095))
-    assert {"truck", "boarding", "deplaning", "arrival_rest"} <= set(rec.phase)
+    assert {"truck", "loading", "unloading", "arrival_rest"} <= set(rec.phase)
     assert "in_hold" in set(rec.bag_state) and "stowed" not in set(rec.bag_state)
     # the van is not static, the arrival rest is
     assert not rec.sensor_static[rec.phase == "truck"].any()
