@@ -1,7 +1,8 @@
 """Fly a :class:`sim.plan.FlightPlan` gate to gate in JSBSim and return its :class:`FlightTrack`.
 
 The FDM runs at 120 Hz; every step's state is recorded (the FlightTrack rate); the pilot ticks at
-40 Hz near the ground and 10 Hz en route (:attr:`sim.pilot.Pilot.control_every`). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type`` 3) seeded from
+4-40 Hz by phase (:attr:`sim.pilot.Pilot.control_every`: 40 Hz on the runway and below 1000 ft,
+5 Hz en route). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type`` 3) seeded from
 the plan's seed, so the same plan and seed give a bit-identical track (FACTS.md: JSBSim seeds 0 and
 1 are the same generator state; flightmode therefore passes ``seed + 2`` to JSBSim).
 
