@@ -6,8 +6,8 @@ The FDM runs at 120 Hz; every step's state is recorded (the FlightTrack rate); t
 the plan's seed, so the same plan and seed give a bit-identical track (FACTS.md: JSBSim seeds 0 and
 1 are the same generator state; flightmode therefore passes ``seed + 2`` to JSBSim).
 
-Severity mapping (documented, see :data:`sim.pilot.MILSPEC`): light = exceedance index 3 (1e-2)
-with 15 kt wind at 20 ft; moderate = index 4 (1e-3), 30 kt; severe = index 6 (1e-5), 45 kt.
+Severity mapping (documented, see :data:`sim.pilot.MILSPEC`): light = exceedance index 4 (1e-3)
+with 15 kt wind at 20 ft; moderate = index 6 (1e-5), 30 kt; severe = index 7 (1e-6), 45 kt.
 
 Terrain: JSBSim's terrain is one flat elevation. It is the origin's elevation on the ground and is
 switched to the destination's at the top of climb (the aircraft is then far above both).
