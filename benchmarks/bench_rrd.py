@@ -15,12 +15,11 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from _bench import best, report, timed
+from _bench import best, best_timed, report
 
 
 def main(name: str = "gva-lhr-a320") -> dict:
-    from detector.evaluation import evaluate
-    from detector.flight_mode import DetectorParams, sigma2_from_preset
+    from scenarios.detector_report import evaluate_recommended
     from nav.evaluation import estimate_paths
     from scenarios.path_report import lever_arm_m
     from scenarios.registry import resolve
@@ -32,13 +31,10 @@ def main(name: str = "gva-lhr-a320") -> dict:
     from viz.rrd import write_rrd
 
     plan, _, _ = resolve(name)
-    track, t_fly = timed(lambda: fly(plan))
+    track, t_fly = best_timed(lambda: fly(plan))
     rec = sense(track, CarrierSpec(**plan.extra.get("carrier", {})), get_preset("lis302dl-logged16"),
                 np.random.default_rng([plan.seed, 0x5E45E]))
-    p = DetectorParams(fs_hz=rec.odr_hz)
-    s2 = sigma2_from_preset(rec.preset, rec.odr_hz, rec.unit, p.window, np.random.default_rng(1))
-    ev = evaluate(rec.t_s, rec.acc_g, {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static,
-                                       "phase": rec.phase}, p, s2)
+    ev = evaluate_recommended(rec, plan.seed)
     paths = estimate_paths(track, rec, lever_arm_m(track, rec.carrier))
     view = run_view("bench", plan, track, rec, ev, paths)
     with tempfile.TemporaryDirectory() as d:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import sys
 
 import numpy as np
-from _bench import report, timed
+from _bench import best_timed, report
 
 
 def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16", repeats: int = 3) -> dict:
@@ -24,12 +24,10 @@ def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16", rep
 
     plan, _, _ = resolve(name)
     carrier = CarrierSpec(**plan.extra.get("carrier", {}))
-    t_fly = t_sense = float("inf")
-    for _ in range(repeats):  # the machine's noise (and first-touch memory) only ever adds time
-        track, t = timed(lambda: fly(plan))
-        t_fly = min(t_fly, t)
-        rec, t = timed(lambda: sense(track, carrier, get_preset(preset_name), np.random.default_rng(plan.seed)))
-        t_sense = min(t_sense, t)
+    track, t_fly = best_timed(lambda: fly(plan), repeats)
+    rec, t_sense = best_timed(
+        lambda: sense(track, carrier, get_preset(preset_name), np.random.default_rng(plan.seed)), repeats
+    )
     span = float(rec.t_s[-1] - rec.t_s[0])
     res = {
         "scenario": name,

@@ -132,8 +132,10 @@ def fly_cmd(
             info = run_io.run_info(plan, desc, str(path), track, metrics)
             info["wall_time_s"] = wall
             info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
-            evaluation, s2_source = _detect_recording(rec, plan.seed)
-            info["detector"] = evaluation.summary() | {"sigma2_from": s2_source}
+            from scenarios.detector_report import evaluate_recommended
+
+            evaluation = evaluate_recommended(rec, plan.seed)
+            info["detector"] = evaluation.summary() | {"sigma2_from": "bench calibration of the unit"}
             paths = _estimate_paths(track, rec)
             path = path_rows(paths, rec.preset)
             info["path"] = path
@@ -178,16 +180,6 @@ def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: d
     # carrier keeps the flight and changes only what it must
     rec = sense(track, carrier, preset, np.random.default_rng([seed, 0x5E45E]), gyro=GyroSpec() if gyro else None)
     return rec, time.perf_counter() - t0
-
-
-def _detect_recording(rec, seed: int):
-    """The seed's recommended detector on a fresh Recording (scenarios.detector_report.recommended)."""
-    from detector.evaluation import evaluate
-    from scenarios.detector_report import recommended
-
-    p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)
-    labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
-    return evaluate(rec.t_s, rec.acc_g, labels, p, s2), "bench calibration of the unit"
 
 
 def _estimate_paths(track, rec) -> dict:

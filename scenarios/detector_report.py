@@ -26,6 +26,15 @@ def recommended(preset: str, odr_hz: float, unit: dict | None, seed: int) -> tup
     return p, sigma2_from_preset(preset, float(odr_hz), unit, p.window, np.random.default_rng([seed, 0xCA1]))
 
 
+def evaluate_recommended(rec, seed: int):
+    """:func:`recommended` run on a fresh Recording and scored against its labels."""
+    from detector.evaluation import evaluate
+
+    p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)
+    labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
+    return evaluate(rec.t_s, rec.acc_g, labels, p, s2)
+
+
 def calibrate(columns: dict, info: dict | None, params: DetectorParams, source: str, seed: int) -> tuple[np.ndarray, str]:
     """sigma^2 per axis and a sentence saying where it came from.
 

@@ -17,11 +17,14 @@ from typing import Any
 
 from sim.accelerometer import PRESETS as SENSOR_PRESETS
 from sim.aircraft_profiles import PROFILES
+from sim.carrier import KINDS as CARRIER_KINDS
+from sim.carrier import PLACEMENTS, CarrierSpec
 from sim.errors import FlightmodeError, did_you_mean
 from sim.geodesy import great_circle_distance_m
 from sim.plan import SEVERITIES, FlightPlan, Runway, TaxiPlan, TurbulenceSegment
 
 NM_M = 1852.0
+_CARRIER = CarrierSpec()  # the [carrier] defaults are CarrierSpec's own (one place)
 
 
 class ScenarioError(FlightmodeError):
@@ -105,25 +108,24 @@ SPEC: dict[str, dict[str, Key]] = {
         "post_shutdown_s": Key(float, "time recorded after engines off", 30.0, lo=0, hi=86400),
     },
     "carrier": {
-        "kind": Key(str, "what carries the sensor", "handbag", choices=("handbag", "parcel")),
-        "placement": Key(str, "where it travels on board", "under_seat",
-                         choices=("under_seat", "overhead_bin", "lap", "hold")),
-        "terminal_walk_s": Key(float, "first walk through the terminal", 240.0, lo=0, hi=86400),
-        "terminal_rest_s": Key(float, "resting in the terminal (truly static)", 600.0, lo=0, hi=86400),
-        "gate_walk_s": Key(float, "walk to the gate", 120.0, lo=0, hi=86400),
-        "gate_rest_s": Key(float, "resting at the gate (truly static)", 900.0, lo=0, hi=86400),
-        "boarding_s": Key(float, "boarding walk (or loading, for a parcel)", 150.0, lo=0, hi=3600),
-        "stow_before_engine_start_s": Key(float, "bag stowed this long before engine start", 60.0, lo=0, hi=3600),
-        "handled_in_cruise": Key(int, "times the bag is taken out and put back in cruise", 1, lo=0, hi=20),
-        "handling_s": Key(float, "duration of one handling", 30.0, lo=1, hi=600),
-        "deplane_after_engines_off_s": Key(float, "wait on board after engines off", 120.0, lo=0, hi=3600),
-        "deplaning_s": Key(float, "deplaning walk (or unloading)", 240.0, lo=0, hi=3600),
-        "arrival_rest_s": Key(float, "resting at the destination (truly static)", 900.0, lo=0, hi=86400),
-        "truck_s": Key(float, "road transport before and after (parcel)", 1200.0, lo=0, hi=86400),
-        "putdown_peak_g": Key(float, "peak of the shock when the bag is set down", 1.5, lo=0.05, hi=50),
-        "putdown_ms": Key(float, "duration of that shock", 40.0, lo=2, hi=1000),
-        "pickup_height_m": Key(float, "height the bag is lifted when picked up", 0.4, lo=0, hi=3),
-        "pickup_s": Key(float, "duration of the lift", 0.8, lo=0.1, hi=10),
+        "kind": Key(str, "what carries the sensor", _CARRIER.kind, choices=CARRIER_KINDS),
+        "placement": Key(str, "where it travels on board", _CARRIER.placement, choices=tuple(PLACEMENTS)),
+        "terminal_walk_s": Key(float, "first walk through the terminal", _CARRIER.terminal_walk_s, lo=0, hi=86400),
+        "terminal_rest_s": Key(float, "resting in the terminal (truly static)", _CARRIER.terminal_rest_s, lo=0, hi=86400),
+        "gate_walk_s": Key(float, "walk to the gate", _CARRIER.gate_walk_s, lo=0, hi=86400),
+        "gate_rest_s": Key(float, "resting at the gate (truly static)", _CARRIER.gate_rest_s, lo=0, hi=86400),
+        "boarding_s": Key(float, "boarding walk (or loading, for a parcel)", _CARRIER.boarding_s, lo=0, hi=3600),
+        "stow_before_engine_start_s": Key(float, "bag stowed this long before engine start", _CARRIER.stow_before_engine_start_s, lo=0, hi=3600),
+        "handled_in_cruise": Key(int, "times the bag is taken out and put back in cruise", _CARRIER.handled_in_cruise, lo=0, hi=20),
+        "handling_s": Key(float, "duration of one handling", _CARRIER.handling_s, lo=1, hi=600),
+        "deplane_after_engines_off_s": Key(float, "wait on board after engines off", _CARRIER.deplane_after_engines_off_s, lo=0, hi=3600),
+        "deplaning_s": Key(float, "deplaning walk (or unloading)", _CARRIER.deplaning_s, lo=0, hi=3600),
+        "arrival_rest_s": Key(float, "resting at the destination (truly static)", _CARRIER.arrival_rest_s, lo=0, hi=86400),
+        "truck_s": Key(float, "road transport before and after (parcel)", _CARRIER.truck_s, lo=0, hi=86400),
+        "putdown_peak_g": Key(float, "peak of the shock when the bag is set down", _CARRIER.putdown_peak_g, lo=0.05, hi=50),
+        "putdown_ms": Key(float, "duration of that shock", _CARRIER.putdown_ms, lo=2, hi=1000),
+        "pickup_height_m": Key(float, "height the bag is lifted when picked up", _CARRIER.pickup_height_m, lo=0, hi=3),
+        "pickup_s": Key(float, "duration of the lift", _CARRIER.pickup_s, lo=0.1, hi=10),
     },
     "sensor": {
         "preset": Key(str, "accelerometer preset", "lis302dl-logged16", choices=tuple(SENSOR_PRESETS)),

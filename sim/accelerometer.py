@@ -29,7 +29,7 @@ preset ``lis302dl-logged16`` models seed 000's logger: the same part, stored at 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -88,45 +88,38 @@ class AccelerometerPreset:
 # LIS302DL, +-2 g: 8-bit two's complement, 18 mg/digit typ. (16.2-19.8), reads to about +-2.3 g,
 # ODR 100 or 400 Hz, bandwidth ODR/2, noise 2.23 mg (seed 000 Table 1). Offsets +-40 mg, cross-axis
 # +-2 %: FACTS.md assumptions. Sensitivity tolerance +-10 % is the datasheet's 16.2-19.8 mg/digit.
-_LIS_COMMON = dict(
+_LIS302DL = AccelerometerPreset(
+    name="lis302dl",
+    description="ST LIS302DL, +-2 g, native 8-bit output (18 mg/digit), ODR 100 Hz",
+    odr_hz=100.0,
     allowed_odr_hz=(100.0, 400.0),
+    range_g=2.3,
+    lsb_g=0.018,
+    bits=8,
+    zero_count=0,
     noise_g=2.23e-3,
+    bandwidth_hz=50.0,
     offset_tol_g=0.040,
     sensitivity_tol=0.10,
     cross_axis_tol=0.02,
-    zero_count=0,
 )
 
 PRESETS: dict[str, AccelerometerPreset] = {
-    "lis302dl": AccelerometerPreset(
-        name="lis302dl",
-        description="ST LIS302DL, +-2 g, native 8-bit output (18 mg/digit), ODR 100 Hz",
-        odr_hz=100.0,
-        range_g=2.3,
-        lsb_g=0.018,
-        bits=8,
-        bandwidth_hz=50.0,
-        **_LIS_COMMON,
-    ),
-    "lis302dl-8g": AccelerometerPreset(
+    "lis302dl": _LIS302DL,
+    "lis302dl-8g": replace(
+        _LIS302DL,
         name="lis302dl-8g",
         description="ST LIS302DL, +-8 g, native 8-bit output (72 mg/digit), ODR 100 Hz",
-        odr_hz=100.0,
         range_g=9.2,
         lsb_g=0.072,
-        bits=8,
-        bandwidth_hz=50.0,
-        **{**_LIS_COMMON, "offset_tol_g": 0.060},
+        offset_tol_g=0.060,
     ),
-    "lis302dl-logged16": AccelerometerPreset(
+    "lis302dl-logged16": replace(
+        _LIS302DL,
         name="lis302dl-logged16",
         description="LIS302DL as seed 000 logged it: 100 Hz stored at 16 bits over +-2.3 g (0.07 mg steps)",
-        odr_hz=100.0,
-        range_g=2.3,
         lsb_g=4.6 / 2**16,
         bits=16,
-        bandwidth_hz=50.0,
-        **_LIS_COMMON,
     ),
     # e-obs GPS-acceleration tag (seed 003): 12-bit ADC 0..4095, zero-g about 2048 per axis,
     # a = (n - n0) * 0.0022 g for tags numbered > 2241 (section 6), so the range is about +-4.5 g;
@@ -314,11 +307,8 @@ def eobs_burst(byte_count: int, n_axes: int, newer_firmware: bool = True) -> tup
 def eobs_preset(acc_interval_s: float, byte_count: int, odr_per_axis_hz: float = 10.0, n_axes: int = 3,
                 newer_firmware: bool = True) -> AccelerometerPreset:
     """The ``eobs`` preset with bursts set as on the tag: ACC INTERVAL and ACC BYTE COUNT."""
-    import dataclasses
-
     per_axis, _, _ = eobs_burst(byte_count, n_axes, newer_firmware)
-    p = dataclasses.replace(PRESETS["eobs"], odr_hz=odr_per_axis_hz, burst_interval_s=acc_interval_s,
-                            burst_samples=per_axis)
+    p = replace(PRESETS["eobs"], odr_hz=odr_per_axis_hz, burst_interval_s=acc_interval_s, burst_samples=per_axis)
     p.validate()
     return p
 

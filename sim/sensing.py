@@ -22,6 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.signal import sosfilt, sosfilt_zi
 
 from sim import carrier as car
 from sim.accelerometer import AccelerometerPreset, SensorChain, SensorError, UnitDraw, draw_unit
@@ -111,7 +112,7 @@ def sense(
             motion[i] = car.gait_accel_mps2(np.arange(n) * dt, spec, rng)
     # put-down shocks at the start of every resting / stowed segment that follows a carried one,
     # pick-up lifts at the start of every carried / handled segment that follows a resting one
-    pulse = (car.putdown_pulse_mps2(int(0.25 * fs), dt, spec), car.pickup_pulse_mps2(dt, spec))
+    transients = (car.putdown_pulse_mps2(int(0.25 * fs), dt, spec), car.pickup_pulse_mps2(dt, spec))
 
     # track channels at 120 Hz as rows (channels first), interpolated per chunk row by row
     loc = prof.locations_m[car.LOCATION_OF[spec.placement]]
@@ -122,10 +123,10 @@ def sense(
     )
     mount = car.mount_sos(spec.placement, fs)
     mount_zi = [np.zeros((sos.shape[0], 2)) for sos in mount]
-    vstate = initial_state(ne, vibration, rng)
+    mount_running = False
+    vstate = initial_state(ne, vibration, fs, rng)
     chain = SensorChain(preset, unit, fs)
     meas = []
-    first_f = None
     for c0 in range(0, n_total, int(CHUNK_S * fs)):
         n = min(int(CHUNK_S * fs), n_total - c0)
         t = t_start + (c0 + np.arange(n)) * dt
@@ -133,46 +134,28 @@ def sense(
         # si is sorted: the segments this chunk touches, each a contiguous run [a, b) of samples
         ks = range(int(si[0]), int(si[-1]) + 1)
         runs = np.searchsorted(si, np.arange(ks.start, ks.stop + 1), side="left")
-        f_sensor = np.empty((3, n))  # sensor axes as rows
-        if not any(segs[k].on_board for k in ks):
+        if any(segs[k].on_board for k in ks):
+            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mount, mount_zi,
+                                             mount_running)
+            mount_running = True
+        else:
             # the bag is off the aircraft for the whole chunk: no floor, vibration or mount to run
             # (the mount restarts in its steady state when the bag is next stowed)
-            first_f = None
-            for k, a, b in zip(ks, runs[:-1], runs[1:]):
-                _off_board(segs, k, motion, pulse, a, b, t, fs, f_sensor)
-            f_sensor *= 1.0 / G0
-            meas.append(chain.rows(f_sensor, t_start, rng))
-            continue
-        pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
-        i0 = pos.astype(np.int64)
-        ch = _interp_rows(chans, i0, pos - i0)
-        fl = ch[0:3]
-        n1, n2 = ch[3 : 3 + ne], ch[3 + ne : 3 + 2 * ne]
-        qb, gs, wow = ch[3 + 2 * ne], ch[4 + 2 * ne], ch[5 + 2 * ne] > 0.5
-        if n1.max() < 1.0 and gs.max() < 0.5:
-            floor = fl  # engines stopped, aircraft at rest: no vibration to compute
-        else:
-            vib_g, vstate = vibration_g(n1, n2, qb, gs, wow, fs, track.aircraft, vibration, vstate, rng)
-            vib_g *= G0
-            floor = vib_g
-            floor += fl
-        from scipy.signal import sosfilt, sosfilt_zi
-
-        if first_f is None:  # start the mounts in their steady state (DC gain 1)
-            for j in range(3):
-                mount_zi[j] = sosfilt_zi(mount[j]) * floor[j, 0]
-            first_f = True
-        bag = np.empty_like(floor)
-        for ax in range(3):
-            bag[ax], mount_zi[ax] = sosfilt(mount[ax], floor[ax], zi=mount_zi[ax])
+            mount_running = False
+        f_sensor = np.empty((3, n))  # sensor axes as rows
         for k, a, b in zip(ks, runs[:-1], runs[1:]):
             s = segs[k]
-            if not s.on_board:
-                _off_board(segs, k, motion, pulse, a, b, t, fs, f_sensor)
-                continue
             j = np.round((t[a:b] - s.t0_s) * fs).astype(int)
-            f_frame = fl[:, a:b] + motion[k][j].T if s.state == "handled" else bag[:, a:b]
-            _putdown(segs, k, pulse, j, f_frame)
+            if not s.on_board:  # local N/E/Down frame: at rest the specific force is 1 g up
+                f_frame = np.zeros((3, b - a))
+                f_frame[2] = -G0
+                if k in motion:
+                    f_frame += motion[k][j].T
+            elif s.state == "handled":  # held in the cabin: the floor's force plus the arm's motion
+                f_frame = fl[:, a:b] + motion[k][j].T
+            else:  # stowed: through the mount
+                f_frame = bag[:, a:b]
+            _transients(segs, k, transients, j, f_frame)
             np.matmul(s.orientation.T, f_frame, out=f_sensor[:, a:b])  # sensor <- frame: R^T f
         f_sensor *= 1.0 / G0
         meas.append(chain.rows(f_sensor, t_start, rng))
@@ -196,10 +179,14 @@ def sense(
     )
 
 
-def _interp_rows(rows: np.ndarray, i0: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """Linear interpolation of every row of ``rows`` (channels, N) at fractional indices i0 + w."""
-    out = np.empty((rows.shape[0], i0.shape[0]))
+def _track_rows_at(rows: np.ndarray, track: FlightTrack, t: np.ndarray) -> np.ndarray:
+    """Rows (channels, track.n) of per-FDM-step values, linearly interpolated at the times ``t``
+    (held at the track's ends)."""
+    pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
+    i0 = pos.astype(np.int64)
     i1 = i0 + 1
+    w = pos - i0
+    out = np.empty((rows.shape[0], t.shape[0]))
     for c, r in enumerate(rows):
         lo = r[i0]
         np.multiply(r[i1] - lo, w, out=out[c])
@@ -207,44 +194,52 @@ def _interp_rows(rows: np.ndarray, i0: np.ndarray, w: np.ndarray) -> np.ndarray:
     return out
 
 
-def _putdown(segs, k, pulse, j, f_frame) -> None:
+def _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mount, mount_zi, mount_running):
+    """One chunk on board: the floor's specific force at the bag's place (rows x, y, z, body axes,
+    m/s^2) from the track plus airframe vibration, and the bag's through the mount. Updates
+    ``mount_zi`` in place (started in its steady state unless ``mount_running``); returns the floor
+    without vibration (what a handled bag's arm adds to), the bag's, and the new vibration state."""
+    ch = _track_rows_at(chans, track, t)
+    fl = ch[0:3]
+    n1, n2 = ch[3 : 3 + ne], ch[3 + ne : 3 + 2 * ne]
+    qb, gs, wow = ch[3 + 2 * ne], ch[4 + 2 * ne], ch[5 + 2 * ne] > 0.5
+    if n1.max() < 1.0 and gs.max() < 0.5:
+        floor = fl  # engines stopped, aircraft at rest: no vibration to compute
+    else:
+        floor, vstate = vibration_g(n1, n2, qb, gs, wow, fs, track.aircraft, vibration, vstate, rng)
+        floor *= G0
+        floor += fl
+    if not mount_running:  # start the mounts in their steady state (DC gain 1)
+        for ax in range(3):
+            mount_zi[ax] = sosfilt_zi(mount[ax]) * floor[ax, 0]
+    bag = np.empty_like(floor)
+    for ax in range(3):
+        bag[ax], mount_zi[ax] = sosfilt(mount[ax], floor[ax], zi=mount_zi[ax])
+    return fl, bag, vstate
+
+
+def _transients(segs, k, transients, j, f_frame) -> None:
     """Add the transients of segment ``k`` along the frame's down axis (``f_frame`` rows x, y, z):
     the put-down shock at the start of a resting / stowed segment that follows a carry, the
-    pick-up lift at the start of a carry that follows a rest. ``pulse`` = (put-down, pick-up)."""
+    pick-up lift at the start of a carry that follows a rest. ``transients`` = (put-down, pick-up)."""
     if k == 0:
         return
     state, before = segs[k].state, segs[k - 1].state
     if state in ("resting", "stowed", "in_hold") and before in ("carried", "handled"):
-        p = pulse[0]
+        p = transients[0]
     elif state in ("carried", "handled") and before in ("resting", "stowed", "in_hold"):
-        p = pulse[1]
+        p = transients[1]
     else:
         return
     inside = j < p.shape[0]
     f_frame[2, inside] -= p[j[inside]]
 
 
-def _off_board(segs, k, motion, pulse, a, b, t, fs, f_sensor) -> None:
-    """Specific force (sensor axes as rows) of a bag off the aircraft (local N/E/Down frame),
-    for the samples [a, b) of the chunk."""
-    s = segs[k]
-    j = np.round((t[a:b] - s.t0_s) * fs).astype(int)
-    f_frame = np.zeros((3, b - a))
-    f_frame[2] = -G0  # specific force of a body at rest in N/E/Down
-    if k in motion:
-        f_frame += motion[k][j].T
-    _putdown(segs, k, pulse, j, f_frame)
-    np.matmul(s.orientation.T, f_frame, out=f_sensor[:, a:b])
-
-
 def _gyro(t: np.ndarray, segs, track: FlightTrack, spec: GyroSpec, rng: np.random.Generator) -> np.ndarray:
     """Gyroscope output (M, 3) in deg/s at the output instants ``t`` (sensor axes)."""
     seg_t0 = np.array([s.t0_s for s in segs])
     si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
-    pos = np.clip((t - track.t_s[0]) * track.fs_hz, 0.0, track.n - 1.000001)
-    i0 = pos.astype(np.int64)
-    w = (pos - i0)[:, None]
-    body = np.degrees(track.rates_radps[i0] * (1.0 - w) + track.rates_radps[i0 + 1] * w)
+    body = np.degrees(_track_rows_at(track.rates_radps.T, track, t)).T
     fs = 1.0 / float(np.median(np.diff(t))) if t.shape[0] > 1 else 1.0
     out = np.zeros((t.shape[0], 3))
     for k, seg in enumerate(segs):

@@ -7,11 +7,11 @@ f = a - g in body axes: a level aircraft at rest reads f_z = -9.81 m/s^2.
 
 from __future__ import annotations
 
-import hashlib
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
+from sim.digest import digest
 from sim.labels import PHASES, SEVERITIES
 
 
@@ -100,16 +100,8 @@ class FlightTrack:
         )
 
     def digest(self) -> str:
-        """SHA-256 over every array and the events: equal digests mean bit-identical tracks."""
-        h = hashlib.sha256()
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if isinstance(v, np.ndarray):
-                h.update(f.name.encode())
-                h.update(np.ascontiguousarray(v).tobytes())
-            else:
-                h.update(repr(v).encode())
-        return h.hexdigest()
+        """Equal digests mean bit-identical tracks (:func:`sim.digest.digest`)."""
+        return digest(self)
 
 
 def euler_to_quat_wxyz(euler_rad: np.ndarray) -> np.ndarray:

@@ -67,14 +67,14 @@ class VibrationState:
     joint_pos_m: float  # distance rolled since the last joint
 
 
-def initial_state(n_engines: int, model: VibrationModel, rng: np.random.Generator) -> VibrationState:
+def initial_state(n_engines: int, model: VibrationModel, fs_hz: float, rng: np.random.Generator) -> VibrationState:
     return VibrationState(
         phases=rng.uniform(0.0, 2 * np.pi, (n_engines, 3)),
         # the FDM runs both engines at identical N1; with identical frequencies the two lines would
         # add with a fixed random phase (and could cancel). Real engines differ by a few tenths of
         # a percent, so each gets a fixed offset within +-0.3 % (the lines beat instead)
         detune=rng.uniform(-0.003, 0.003, n_engines),
-        mode_zi=np.zeros((_mode_bank(model.mode_hz, model.mode_q, 1200.0).shape[0], 3, 2)),
+        mode_zi=np.zeros((_mode_bank(model.mode_hz, model.mode_q, fs_hz).shape[0], 3, 2)),
         joint_pos_m=float(rng.uniform(0.0, model.joint_spacing_m)),
     )
 
