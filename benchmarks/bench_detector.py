@@ -21,7 +21,7 @@ from _bench import best, report
 
 
 def main(hours: float = 2.0) -> dict:
-    from detector.flight_mode import DetectorParams, FlightModeDetector, detect
+    from flightmode.detector.flight_mode import DetectorParams, FlightModeDetector, detect
 
     p = DetectorParams()
     n = int(hours * 3600 * p.fs_hz)

@@ -17,10 +17,10 @@ from _bench import best_timed, report
 
 
 def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
-    from scenarios.registry import resolve
-    from sim.aircraft_profiles import get_profile
-    from sim.flight import FDM_HZ, SETTLE_S, fly
-    from sim.jsbsim_adapter import JSBSimAircraft
+    from flightmode.scenarios.registry import resolve
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.simulate import FDM_HZ, SETTLE_S, fly
+    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
 
     plan, _, _ = resolve(name)
     prof = get_profile(plan.aircraft)

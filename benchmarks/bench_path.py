@@ -18,7 +18,7 @@ from _bench import best, report
 
 
 def main() -> dict:
-    from nav.spline_path import recurrence_path, tridiagonal_path
+    from flightmode.nav.spline_path import recurrence_path, tridiagonal_path
 
     fs = 100.0
     rng = np.random.default_rng(0)

@@ -19,16 +19,16 @@ from _bench import best, best_timed, report
 
 
 def main(name: str = "gva-lhr-a320") -> dict:
-    from scenarios.detector_report import evaluate_recommended
-    from nav.evaluation import estimate_paths
-    from scenarios.path_report import lever_arm_m
-    from scenarios.registry import resolve
-    from scenarios.run_view import run_view
-    from sim.accelerometer import get_preset
-    from sim.carrier import CarrierSpec
-    from sim.flight import fly
-    from sim.sensing import sense
-    from viz.rrd import write_rrd
+    from flightmode.scenarios.detector_report import evaluate_recommended
+    from flightmode.nav.evaluation import estimate_paths
+    from flightmode.scenarios.path_report import lever_arm_m
+    from flightmode.scenarios.registry import resolve
+    from flightmode.scenarios.run_view import run_view
+    from flightmode.sim.sensor.accelerometer import get_preset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.flight.simulate import fly
+    from flightmode.sim.sensor.sensing import sense
+    from flightmode.viz.rrd import write_rrd
 
     plan, _, _ = resolve(name)
     track, t_fly = best_timed(lambda: fly(plan))

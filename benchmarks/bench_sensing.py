@@ -16,11 +16,11 @@ from _bench import best_timed, report
 
 
 def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16", repeats: int = 3) -> dict:
-    from scenarios.registry import resolve
-    from sim.accelerometer import get_preset
-    from sim.carrier import CarrierSpec
-    from sim.flight import fly
-    from sim.sensing import FS_INTERNAL_HZ, sense
+    from flightmode.scenarios.registry import resolve
+    from flightmode.sim.sensor.accelerometer import get_preset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.flight.simulate import fly
+    from flightmode.sim.sensor.sensing import FS_INTERNAL_HZ, sense
 
     plan, _, _ = resolve(name)
     carrier = CarrierSpec(**plan.extra.get("carrier", {}))

@@ -33,8 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from detector.flight_mode import Checks, DetectorParams, detect, final_static
-from detector.moving_variance import DetectorError, moving_variance
+from flightmode.detector.flight_mode import Checks, DetectorParams, detect, final_static
+from flightmode.detector.moving_variance import DetectorError, moving_variance
 
 
 @dataclass(frozen=True, slots=True)

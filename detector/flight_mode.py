@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from detector.moving_variance import DetectorError, MovingVariance
+from flightmode.detector.moving_variance import DetectorError, MovingVariance
 
 
 @dataclass(frozen=True, slots=True)
@@ -110,7 +110,7 @@ def sigma2_from_preset(preset: str, odr_hz: float, unit: dict | None, window: in
     floor. ``unit`` is the drawn unit of a Recording (``Recording.unit``); None is a nominal unit."""
     import dataclasses as dc
 
-    from sim.accelerometer import UnitDraw, bench_static, get_preset
+    from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
 
     p = get_preset(preset)
     if odr_hz != p.odr_hz:

@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import lfilter
 
-from sim.errors import FlightmodeError
+from flightmode.errors import FlightmodeError
 
 
 class DetectorError(FlightmodeError):

@@ -24,8 +24,8 @@ import math
 
 import numpy as np
 
-from nav import frames
-from nav.spline_path import NavError, RecurrencePath, recurrence_path, tridiagonal_path
+from flightmode.nav import frames
+from flightmode.nav.spline_path import NavError, RecurrencePath, recurrence_path, tridiagonal_path
 
 
 def errors(t_s, est, truth) -> dict:

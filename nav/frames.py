@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from nav.spline_path import NavError
+from flightmode.nav.spline_path import NavError
 
 OMEGA_E_RADPS = 7.292115e-5  # WGS84 Earth rotation rate
 G0_MPS2 = 9.80665  # the g in which accelerometer samples are expressed
@@ -53,7 +53,7 @@ def gravity_ned_mps2(lat_deg, lon_deg, alt_m) -> np.ndarray:
     specific force at rest to 1e-8 m/s^2, tests/nav). WGS84 *normal* gravity (Somigliana with the
     free-air gradient) differs from it by about 5e-5 m/s^2 (5 micro-g) here, which a double
     integration turns into ~600 m after 85 minutes: the gravity model matters at this level."""
-    from sim.geodesy import geodetic_to_ecef
+    from flightmode.sim.flight.geodesy import geodetic_to_ecef
 
     e = geodetic_to_ecef(lat_deg, lon_deg, alt_m)
     x, y, z = e[..., 0], e[..., 1], e[..., 2]

@@ -29,7 +29,7 @@ import numpy as np
 from scipy.interpolate import PPoly
 from scipy.linalg import solve_banded
 
-from sim.errors import FlightmodeError
+from flightmode.errors import FlightmodeError
 
 
 class NavError(FlightmodeError):

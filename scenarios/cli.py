@@ -24,9 +24,9 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 from rich.text import Text
 
-from scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
-from scenarios.spec import load_scenario, route_length_m, spec_text
-from sim.errors import FlightmodeError
+from flightmode.scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
+from flightmode.scenarios.spec import load_scenario, route_length_m, spec_text
+from flightmode.errors import FlightmodeError
 
 app = typer.Typer(
     add_completion=False,
@@ -88,10 +88,10 @@ def fly_cmd(
 ) -> None:
     """Fly a scenario gate to gate in JSBSim, sense it, run the detector and the path estimators;
     write truth.parquet, samples.parquet, run.json and recording.rrd."""
-    from nav.evaluation import path_rows
-    from scenarios import run_io
-    from sim.flight import fly
-    from sim.flight_metrics import flight_metrics
+    from flightmode.nav.evaluation import path_rows
+    from flightmode.scenarios import run_io
+    from flightmode.sim.flight.simulate import fly
+    from flightmode.sim.flight.flight_metrics import flight_metrics
 
     try:
         plan, desc, path = resolve(scenario)
@@ -132,7 +132,7 @@ def fly_cmd(
             info = run_io.run_info(plan, desc, str(path), track, metrics)
             info["wall_time_s"] = wall
             info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
-            from scenarios.detector_report import evaluate_recommended
+            from flightmode.scenarios.detector_report import evaluate_recommended
 
             evaluation = evaluate_recommended(rec, plan.seed)
             info["detector"] = evaluation.summary() | {"sigma2_from": "bench calibration of the unit"}
@@ -140,8 +140,8 @@ def fly_cmd(
             path = path_rows(paths, rec.preset)
             info["path"] = path
             if rrd:
-                from scenarios.run_view import run_view
-                from viz.rrd import write_rrd
+                from flightmode.scenarios.run_view import run_view
+                from flightmode.viz.rrd import write_rrd
 
                 t_rrd = time.perf_counter()
                 write_rrd(run_view(rid, plan, track, rec, evaluation, paths), stage / "recording.rrd")
@@ -166,9 +166,9 @@ def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: d
     """Sense a track with the scenario's carrier and sensor (``sensor`` overrides the preset)."""
     import numpy as np
 
-    from sim.accelerometer import get_preset
-    from sim.carrier import CarrierSpec
-    from sim.sensing import GyroSpec, sense
+    from flightmode.sim.sensor.accelerometer import get_preset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.sensor.sensing import GyroSpec, sense
 
     sens = dict(extra.get("sensor") or {"preset": "lis302dl-logged16", "odr_hz": None})
     preset = get_preset(sensor or sens["preset"])
@@ -184,8 +184,8 @@ def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: d
 
 def _estimate_paths(track, rec) -> dict:
     """The seed 002 estimators on this recording, truth-aided (nav.evaluation)."""
-    from nav.evaluation import estimate_paths
-    from scenarios.path_report import lever_arm_m
+    from flightmode.nav.evaluation import estimate_paths
+    from flightmode.scenarios.path_report import lever_arm_m
 
     return estimate_paths(track, rec, lever_arm_m(track, rec.carrier))
 
@@ -225,10 +225,10 @@ def detect_cmd(
     """Run the flight-mode detector over a recording and print how it did against the truth."""
     import numpy as np
 
-    from detector.evaluation import evaluate
-    from detector.flight_mode import DetectorParams
-    from scenarios import detector_report as dr
-    from scenarios import run_io
+    from flightmode.detector.evaluation import evaluate
+    from flightmode.detector.flight_mode import DetectorParams
+    from flightmode.scenarios import detector_report as dr
+    from flightmode.scenarios import run_io
 
     try:
         cols, info = run_io.read_samples(source)
@@ -259,9 +259,9 @@ def path_cmd(
     sensors: Annotated[str, typer.Option("--sensors", help="Comma-separated presets to compare; 'run' is the run's own sensor.")] = "run,ideal",
 ) -> None:
     """Rebuild the bag's path from acceleration (seed 002 cubic splines) and print its errors."""
-    from scenarios import run_io
-    from scenarios.path_report import path_rows, print_rows
-    from sim.carrier import CarrierSpec
+    from flightmode.scenarios import run_io
+    from flightmode.scenarios.path_report import path_rows, print_rows
+    from flightmode.sim.sensor.carrier import CarrierSpec
 
     try:
         track, info = run_io.read_track(run_dir)
@@ -292,7 +292,7 @@ def view_cmd(
     """Open a recording in a new Rerun viewer (native), or serve the web viewer on 127.0.0.1."""
     import subprocess
 
-    from viz import viewer
+    from flightmode.viz import viewer
 
     try:
         rrd = viewer.resolve_rrd(source)
@@ -335,8 +335,8 @@ def sense_cmd(
     gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
 ) -> None:
     """Re-sense an existing flight with another sensor or carrier into a new run folder."""
-    from scenarios import run_io
-    from scenarios.spec import SPEC, Key, _check_value
+    from flightmode.scenarios import run_io
+    from flightmode.scenarios.spec import SPEC, Key, _check_value
 
     try:
         track, info = run_io.read_track(run_dir)
@@ -347,7 +347,7 @@ def sense_cmd(
             k, v = item.split("=", 1)
             keys = SPEC["carrier"]
             if k not in keys:
-                from sim.errors import did_you_mean
+                from flightmode.errors import did_you_mean
 
                 raise FlightmodeError(f"--carrier {k}: unknown carrier key{did_you_mean(k, keys)}; keys: {', '.join(keys)}")
             key: Key = keys[k]

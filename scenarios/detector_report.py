@@ -10,10 +10,10 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from detector import evaluation as ev
-from detector.flight_mode import DetectorParams, calibrate_sigma2, sigma2_from_preset
-from detector.moving_variance import DetectorError
-from detector.statistics import table2
+from flightmode.detector import evaluation as ev
+from flightmode.detector.flight_mode import DetectorParams, calibrate_sigma2, sigma2_from_preset
+from flightmode.detector.moving_variance import DetectorError
+from flightmode.detector.statistics import table2
 
 SIGMA2_SOURCES = ("preset", "rest")
 
@@ -28,7 +28,7 @@ def recommended(preset: str, odr_hz: float, unit: dict | None, seed: int) -> tup
 
 def evaluate_recommended(rec, seed: int):
     """:func:`recommended` run on a fresh Recording and scored against its labels."""
-    from detector.evaluation import evaluate
+    from flightmode.detector.evaluation import evaluate
 
     p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)
     labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
@@ -61,7 +61,7 @@ def calibrate(columns: dict, info: dict | None, params: DetectorParams, source: 
         sel = static
     lsb = None
     if info is not None and info.get("sensor"):
-        from sim.accelerometer import get_preset
+        from flightmode.sim.sensor.accelerometer import get_preset
 
         lsb = get_preset(info["sensor"]["preset"]).lsb_g
     return calibrate_sigma2(columns["acc_g"][sel], params.window, lsb), f"{int(sel.sum())} truly static samples before the flight"

@@ -6,20 +6,20 @@ from __future__ import annotations
 from rich.console import Console
 from rich.table import Table
 
-from nav.evaluation import evaluate
+from flightmode.nav.evaluation import evaluate
 
 
 def lever_arm_m(track, carrier) -> tuple[float, float, float]:
-    from sim.aircraft_profiles import get_profile
-    from sim.carrier import LOCATION_OF
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.sensor.carrier import LOCATION_OF
 
     return get_profile(track.aircraft).locations_m[LOCATION_OF[carrier.placement]]
 
 
 def checks_of(seed: int):
     """The seed's recommended detector on a recording (for ZUPT and tilt-only static periods)."""
-    from detector.flight_mode import detect
-    from scenarios.detector_report import recommended
+    from flightmode.detector.flight_mode import detect
+    from flightmode.scenarios.detector_report import recommended
 
     def run(rec):
         p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)

@@ -5,15 +5,15 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
-from scenarios.spec import ScenarioError, load_scenario
-from sim.errors import did_you_mean
-from sim.plan import FlightPlan
+from flightmode.scenarios.spec import ScenarioError, load_scenario
+from flightmode.errors import did_you_mean
+from flightmode.sim.flight.plan import FlightPlan
 
 DEFAULT_SCENARIO = "gva-lhr-a320"
 
 
 def builtin_names() -> list[str]:
-    lib = resources.files("scenarios.library")
+    lib = resources.files("flightmode.scenarios.library")
     return sorted(p.name[:-5] for p in lib.iterdir() if p.name.endswith(".toml"))
 
 
@@ -24,7 +24,7 @@ def builtin_path(name: str) -> Path:
             f"unknown scenario '{name}'{did_you_mean(name, names)}; built-in scenarios: {', '.join(names)} "
             "(or give the path of a .toml file)"
         )
-    return Path(str(resources.files("scenarios.library").joinpath(f"{name}.toml")))
+    return Path(str(resources.files("flightmode.scenarios.library").joinpath(f"{name}.toml")))
 
 
 def resolve(name_or_path: str) -> tuple[FlightPlan, str, Path]:

@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from sim.labels import PHASES, SEVERITIES
-from sim.plan import FlightPlan
-from sim.track import FlightTrack
+from flightmode.labels import PHASES, SEVERITIES
+from flightmode.sim.flight.plan import FlightPlan
+from flightmode.sim.flight.track import FlightTrack
 
 
 def run_id(plan: FlightPlan) -> str:
@@ -104,7 +104,7 @@ def recording_table(rec):
     """A Recording as a pyarrow Table: one row per sample, raw counts, g and the labels."""
     import pyarrow as pa
 
-    from sim.carrier import BAG_STATES
+    from flightmode.sim.sensor.carrier import BAG_STATES
 
     cols = {"t_s": pa.array(rec.t_s)}
     for i, ax in enumerate("xyz"):
@@ -139,7 +139,7 @@ def read_samples(path: Path) -> tuple[dict, dict | None]:
     (``phase`` as strings); ``run_info`` is the run.json beside it, or None if there is none."""
     import pyarrow.parquet as pq
 
-    from sim.errors import FlightmodeError
+    from flightmode.errors import FlightmodeError
 
     path = Path(path)
     file = path / "samples.parquet" if path.is_dir() else path
@@ -174,8 +174,8 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
     """Rebuild the FlightTrack of a run folder from truth.parquet and run.json."""
     import pyarrow.parquet as pq
 
-    from sim.errors import FlightmodeError
-    from sim.track import Event, euler_to_quat_wxyz
+    from flightmode.errors import FlightmodeError
+    from flightmode.sim.flight.track import Event, euler_to_quat_wxyz
 
     run_dir = Path(run_dir)
     if not (run_dir / "truth.parquet").is_file() or not (run_dir / "run.json").is_file():

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from sim.aircraft_profiles import get_profile
-from sim.labels import CARRIER_PHASES
+from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.labels import CARRIER_PHASES
 
 NED_TO_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 
@@ -20,7 +20,7 @@ def _changes(t: np.ndarray, labels: np.ndarray) -> tuple[np.ndarray, list[str]]:
 def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
     from scipy.spatial.transform import Rotation
 
-    from viz.rrd import RunView
+    from flightmode.viz.rrd import RunView
 
     c = evaluation.checks
     state = np.where(c.final_static, 2, np.where(c.temporary_static, 1, 0)).astype(np.int8)

@@ -15,13 +15,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from sim.accelerometer import PRESETS as SENSOR_PRESETS
-from sim.aircraft_profiles import PROFILES
-from sim.carrier import KINDS as CARRIER_KINDS
-from sim.carrier import PLACEMENTS, CarrierSpec
-from sim.errors import FlightmodeError, did_you_mean
-from sim.geodesy import great_circle_distance_m
-from sim.plan import SEVERITIES, FlightPlan, Runway, TaxiPlan, TurbulenceSegment
+from flightmode.sim.sensor.accelerometer import PRESETS as SENSOR_PRESETS
+from flightmode.sim.flight.aircraft_profiles import PROFILES
+from flightmode.sim.sensor.carrier import KINDS as CARRIER_KINDS
+from flightmode.sim.sensor.carrier import PLACEMENTS, CarrierSpec
+from flightmode.errors import FlightmodeError, did_you_mean
+from flightmode.sim.flight.geodesy import great_circle_distance_m
+from flightmode.sim.flight.plan import SEVERITIES, FlightPlan, Runway, TaxiPlan, TurbulenceSegment
 
 NM_M = 1852.0
 _CARRIER = CarrierSpec()  # the [carrier] defaults are CarrierSpec's own (one place)
@@ -261,7 +261,7 @@ CLIMB_GRADIENT = 0.06  # a typical airliner climb gradient (6 %, about 1800 ft/m
 
 def route_length_m(plan: FlightPlan) -> float:
     """Origin threshold -> waypoints -> approach fix -> destination threshold, along great circles."""
-    from sim.geodesy import destination_point
+    from flightmode.sim.flight.geodesy import destination_point
 
     d = plan.destination
     fix = destination_point(d.lat_deg, d.lon_deg, (d.heading_deg + 180.0) % 360.0, plan.approach_fix_nm * NM_M)

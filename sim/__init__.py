@@ -1,2 +1,3 @@
-"""Simulation room: the only ``import jsbsim`` (in :mod:`sim.jsbsim_adapter`), the pilot, and the
-FlightTrack. Nothing is imported here at package import time."""
+"""Simulation: :mod:`flightmode.sim.flight` (JSBSim flies the aircraft, the FlightTrack) and
+:mod:`flightmode.sim.sensor` (what the bag's sensors record, the Recording). One-way: the sensor side
+reads a track; the flight side never imports the sensor side."""

@@ -9,8 +9,8 @@ import pytest
 @pytest.fixture(scope="session")
 def fly_cached():
     """fly_cached(name, seed=None, **plan_changes) -> (plan, track), memoised for the session."""
-    from scenarios.registry import resolve
-    from sim.flight import fly
+    from flightmode.scenarios.registry import resolve
+    from flightmode.sim.flight.simulate import fly
 
     cache: dict = {}
 
@@ -33,7 +33,7 @@ def pattern_run(tmp_path_factory):
     """A run folder written by `flightmode fly pattern` (the CLI, end to end), once per session."""
     from typer.testing import CliRunner
 
-    from scenarios.cli import app
+    from flightmode.scenarios.cli import app
 
     out = tmp_path_factory.mktemp("runs")
     r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(out)])
@@ -46,7 +46,7 @@ def default_run(tmp_path_factory):
     """`flightmode fly` (the default scenario, end to end, recording.rrd included), once per session."""
     from typer.testing import CliRunner
 
-    from scenarios.cli import app
+    from flightmode.scenarios.cli import app
 
     out = tmp_path_factory.mktemp("runs")
     r = CliRunner().invoke(app, ["fly", "--out", str(out)])

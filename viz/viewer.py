@@ -15,7 +15,7 @@ import socket
 import sys
 from pathlib import Path
 
-from sim.errors import FlightmodeError
+from flightmode.errors import FlightmodeError
 
 LOOPBACK = "127.0.0.1"
 

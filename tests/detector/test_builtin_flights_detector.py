@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from detector.evaluation import evaluate
-from detector.flight_mode import DetectorParams, sigma2_from_preset
+from flightmode.detector.evaluation import evaluate
+from flightmode.detector.flight_mode import DetectorParams, sigma2_from_preset
 
 SCENARIOS = ["pattern", "gva-lhr-a320", "hel-zrh-f100", "ist-osl-737", "lhr-jfk-787"]
 
@@ -17,9 +17,9 @@ SCENARIOS = ["pattern", "gva-lhr-a320", "hel-zrh-f100", "ist-osl-737", "lhr-jfk-
 @pytest.mark.slow
 @pytest.mark.parametrize("name", SCENARIOS)
 def test_recommended_detector_is_silent_in_flight_and_answers_after(name, fly_cached):
-    from sim.accelerometer import get_preset
-    from sim.carrier import CarrierSpec
-    from sim.sensing import sense
+    from flightmode.sim.sensor.accelerometer import get_preset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.sensor.sensing import sense
 
     plan, tr = fly_cached(name)
     rec = sense(tr, CarrierSpec(**(plan.extra.get("carrier") or {})), get_preset("lis302dl-logged16"),

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from detector import evaluation as ev
-from detector.flight_mode import DetectorParams, detect, sigma2_from_preset
-from detector.moving_variance import DetectorError
+from flightmode.detector import evaluation as ev
+from flightmode.detector.flight_mode import DetectorParams, detect, sigma2_from_preset
+from flightmode.detector.moving_variance import DetectorError
 
 P = DetectorParams()
 SIG = 2.23e-3  # seed 000 Table 1 noise, g

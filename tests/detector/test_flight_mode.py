@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from detector.flight_mode import DetectorParams, FlightModeDetector, calibrate_sigma2, detect
-from detector.moving_variance import DetectorError
+from flightmode.detector.flight_mode import DetectorParams, FlightModeDetector, calibrate_sigma2, detect
+from flightmode.detector.moving_variance import DetectorError
 
 SIG = 2.23e-3
 P = DetectorParams()  # NMV, W_s 1 s, k 4, T_th 4 s, 100 Hz
@@ -105,9 +105,9 @@ def _flight_check(rec):
 
 
 def test_pattern_flight_has_no_false_static_and_a_quick_response(fly_cached):
-    from sim.accelerometer import get_preset
-    from sim.carrier import CarrierSpec
-    from sim.sensing import sense
+    from flightmode.sim.sensor.accelerometer import get_preset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.sensor.sensing import sense
 
     _, tr = fly_cached("pattern")
     rec = sense(tr, CarrierSpec(), get_preset("lis302dl-logged16"), np.random.default_rng(1))

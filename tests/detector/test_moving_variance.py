@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from detector.moving_variance import DetectorError, MovingVariance, moving_variance
+from flightmode.detector.moving_variance import DetectorError, MovingVariance, moving_variance
 
 
 def _two_pass_nmv(x, n):

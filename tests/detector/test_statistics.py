@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from detector.moving_variance import moving_variance
-from detector.statistics import implied_sigma_mv, nmv_moments, pm_exact, pm_gaussian, table2
+from flightmode.detector.moving_variance import moving_variance
+from flightmode.detector.statistics import implied_sigma_mv, nmv_moments, pm_exact, pm_gaussian, table2
 
 SEED_TABLE2 = {2.0: 6e-3, 2.5: 8e-6, 3.0: 2e-11, 4.0: 6e-19}  # seed 000 Table 2
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from nav import frames
-from nav.evaluation import predicted_random_walk_m, random_walk_exponent, zupt_path
-from nav.spline_path import NavError, recurrence_path, tridiagonal_path
+from flightmode.nav import frames
+from flightmode.nav.evaluation import predicted_random_walk_m, random_walk_exponent, zupt_path
+from flightmode.nav.spline_path import NavError, recurrence_path, tridiagonal_path
 
 SIG_MPS2 = 2.23e-3 * 9.80665  # the LIS302DL noise (seed 000 Table 1) in m/s^2
 
@@ -103,10 +103,10 @@ def test_default_flight_sensor_noise_grows_as_the_random_walk(fly_cached):
     """The same flight sensed twice with a perfect unit (no offsets): the ideal part and the LIS302DL
     logger. Their difference isolates noise and quantisation; its recurrence path error grows as
     t^p with p near 1.5 (one realisation over 80 minutes: +-0.35) and never far above the law."""
-    from nav.evaluation import span
-    from sim.accelerometer import UnitDraw, get_preset
-    from sim.carrier import CarrierSpec
-    from sim.sensing import sense
+    from flightmode.nav.evaluation import span
+    from flightmode.sim.sensor.accelerometer import UnitDraw, get_preset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.sensor.sensing import sense
 
     _, tr = fly_cached("gva-lhr-a320")
     recs = [sense(tr, CarrierSpec(), get_preset(p), np.random.default_rng(1), unit=UnitDraw())

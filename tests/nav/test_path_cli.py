@@ -6,7 +6,7 @@ import json
 
 from typer.testing import CliRunner
 
-from scenarios.cli import app
+from flightmode.scenarios.cli import app
 
 
 def test_fly_reports_the_path_error_and_stores_it(pattern_run):

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nav.spline_path import NavError, RecurrencePath, recurrence_path, tridiagonal_path
+from flightmode.nav.spline_path import NavError, RecurrencePath, recurrence_path, tridiagonal_path
 
 
 def test_free_fall_example_of_section_iv_both_methods():

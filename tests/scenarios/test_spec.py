@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
-from scenarios.spec import ScenarioError, load_scenario, parse_scenario
+from flightmode.scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
+from flightmode.scenarios.spec import ScenarioError, load_scenario, parse_scenario
 
 REQUIRED_BUILTINS = {"gva-lhr-a320", "hel-zrh-f100", "ist-osl-737", "lhr-jfk-787", "pattern"}
 
@@ -127,7 +127,7 @@ def test_unknown_builtin_name_suggests_the_nearest():
 def test_cli_fly_bad_file_exits_nonzero_with_one_line_and_no_traceback(tmp_path, edit, expected):
     p = _write(tmp_path, edit(builtin_path("pattern").read_text()))
     r = subprocess.run(
-        [sys.executable, "-m", "scenarios.cli", "fly", str(p), "--out", str(tmp_path / "out")],
+        [sys.executable, "-m", "flightmode.scenarios.cli", "fly", str(p), "--out", str(tmp_path / "out")],
         capture_output=True, text=True, cwd=tmp_path,
     )
     assert r.returncode == 2
@@ -138,7 +138,7 @@ def test_cli_fly_bad_file_exits_nonzero_with_one_line_and_no_traceback(tmp_path,
 
 
 def test_spec_lists_every_section():
-    from scenarios.spec import SPEC, spec_text
+    from flightmode.scenarios.spec import SPEC, spec_text
 
     text = spec_text()
     for sec in SPEC:

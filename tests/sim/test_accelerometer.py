@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.signal import welch
 
-from sim.accelerometer import PRESETS, SensorError, UnitDraw, draw_unit, get_preset, measure
+from flightmode.sim.sensor.accelerometer import PRESETS, SensorError, UnitDraw, draw_unit, get_preset, measure
 
 SIGMA_G = 2.23e-3  # seed 000 Table 1
 
@@ -125,7 +125,7 @@ def test_every_preset_validates():
 
 
 def test_chunked_sensing_equals_one_piece():
-    from sim.accelerometer import SensorChain
+    from flightmode.sim.sensor.accelerometer import SensorChain
 
     p = get_preset("lis302dl")
     f = np.random.default_rng(3).normal(0, 0.05, (12000, 3)) + [0, 0, 1]
@@ -141,7 +141,7 @@ def test_eobs_burst_table_and_worked_examples():
     """Seed 003 section 9: byte count 800 on firmware up to rv4_s1 gives 747 data bytes, 768 bytes of
     memory and 498 samples, 249 per axis with two axes; section 10: 1197 on newer firmware gives
     792 samples, 7.92 s at 100 Hz in total."""
-    from sim.accelerometer import eobs_burst, eobs_preset
+    from flightmode.sim.sensor.accelerometer import eobs_burst, eobs_preset
 
     assert eobs_burst(800, 2, newer_firmware=False) == (249, 747, 768)
     per_axis, data, mem = eobs_burst(1197, 3, newer_firmware=True)

@@ -2,7 +2,7 @@
 
 import pytest
 
-from sim.jsbsim_adapter import FT_M, JSBSimAircraft
+from flightmode.sim.flight.jsbsim_adapter import FT_M, JSBSimAircraft
 
 
 @pytest.mark.parametrize("model,n_eng", [("A320", 2), ("737", 2)])

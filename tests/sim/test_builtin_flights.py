@@ -26,8 +26,8 @@ def _wrap(wrap_type):
 @pytest.mark.slow
 @pytest.mark.parametrize("name", SCENARIOS)
 def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_property):
-    from sim.aircraft_profiles import get_profile
-    from sim.flight_metrics import flight_metrics
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.flight_metrics import flight_metrics
 
     plan, tr = fly_cached(name)
     m = flight_metrics(tr, plan)
@@ -72,7 +72,7 @@ def test_turbulence_intensity_rises_with_severity(fly_cached):
     """Three cruise segments of the default flight: the standard deviation of the vertical load
     factor must rise from light to moderate to severe, and each segment's peak change must fall in
     its ICAO/FAA band (FACTS.md). One seeded realisation per segment (240 s, ~28,000 samples)."""
-    from sim.plan import TurbulenceSegment
+    from flightmode.sim.flight.plan import TurbulenceSegment
 
     segs = (
         TurbulenceSegment(900.0, 240.0, "light"),

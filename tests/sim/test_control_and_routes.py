@@ -4,9 +4,9 @@ import math
 
 import pytest
 
-from sim.control import PID, rate_limit
-from sim.plan import TaxiPlan
-from sim.taxi_route import Path2D, gate_position_out, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
+from flightmode.sim.flight.control import PID, rate_limit
+from flightmode.sim.flight.plan import TaxiPlan
+from flightmode.sim.flight.taxi_route import Path2D, gate_position_out, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
 
 
 def test_pid_clamps_and_does_not_wind_up():

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from sim import geodesy
-from sim.plan import Runway
+from flightmode.sim.flight import geodesy
+from flightmode.sim.flight.plan import Runway
 
 
 def test_ned_of_origin_is_zero_and_up_is_minus_down():

@@ -10,9 +10,9 @@ import sys
 import numpy as np
 import pytest
 
-from sim.errors import FlightError
-from sim.labels import PHASE_CODE
-from sim.plan import TurbulenceSegment
+from flightmode.errors import FlightError
+from flightmode.labels import PHASE_CODE
+from flightmode.sim.flight.plan import TurbulenceSegment
 
 
 def test_pattern_flies_gate_to_gate(fly_cached):
@@ -55,14 +55,14 @@ def test_labels_follow_the_events(fly_cached):
 
 
 def test_same_seed_is_bit_identical_in_process_and_across_processes(fly_cached):
-    from scenarios.registry import resolve
-    from sim.flight import fly
+    from flightmode.scenarios.registry import resolve
+    from flightmode.sim.flight.simulate import fly
 
     plan, tr = fly_cached("pattern")
     again = fly(plan)
     assert again.digest() == tr.digest()
     code = (
-        "from scenarios.registry import resolve; from sim.flight import fly; "
+        "from flightmode.scenarios.registry import resolve; from flightmode.sim.flight.simulate import fly; "
         "plan,_,_ = resolve('pattern'); print(fly(plan).digest())"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -94,9 +94,9 @@ def test_another_seed_gives_different_turbulence_only(fly_cached):
 
 
 def test_exceeding_a_limit_raises_flight_error_naming_phase_time_and_cause(monkeypatch):
-    import sim.aircraft_profiles as ap
-    from scenarios.registry import resolve
-    from sim.flight import fly
+    import flightmode.sim.flight.aircraft_profiles as ap
+    from flightmode.scenarios.registry import resolve
+    from flightmode.sim.flight.simulate import fly
 
     # a pilot allowed 60 degrees of bank breaks the 45-degree limit in the first turn
     monkeypatch.setitem(ap.PROFILES, "737", dataclasses.replace(ap.PROFILES["737"], turn_bank_deg=60.0))

@@ -21,7 +21,7 @@ def _inet_sockets(proc: psutil.Process):
 
 
 def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
-    from sim.jsbsim_adapter import _private_model_copy
+    from flightmode.sim.flight.jsbsim_adapter import _private_model_copy
 
     path = _private_model_copy("737", tmp_path)
     root = ET.parse(path / "737" / "737.xml").getroot()
@@ -36,7 +36,7 @@ def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
 
 
 def test_loading_and_stepping_the_737_opens_no_socket(tmp_path):
-    from sim.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
 
     me = psutil.Process()
     before = {(c.laddr, c.type) for c in _inet_sockets(me)}
@@ -50,8 +50,8 @@ def test_loading_and_stepping_the_737_opens_no_socket(tmp_path):
 
 
 def test_unknown_model_suggests_the_nearest():
-    from sim.errors import AircraftError
-    from sim.jsbsim_adapter import JSBSimAircraft
+    from flightmode.errors import AircraftError
+    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
 
     with pytest.raises(AircraftError, match=r"unknown JSBSim aircraft model 'A3200'.*did you mean \"A320\""):
         JSBSimAircraft("A3200", 1 / 120, 2)
@@ -62,7 +62,7 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
     work.mkdir()
     tmp_before = set(p.name for p in Path(tempfile.gettempdir()).iterdir())
     proc = subprocess.Popen(
-        [sys.executable, "-m", "scenarios.cli", "fly", "pattern", "--out", "out"],
+        [sys.executable, "-m", "flightmode.scenarios.cli", "fly", "pattern", "--out", "out"],
         cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
     )
     ps = psutil.Process(proc.pid)
@@ -92,8 +92,8 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
 def test_failed_flight_leaves_nothing_behind(tmp_path, monkeypatch):
     from typer.testing import CliRunner
 
-    import sim.aircraft_profiles as ap
-    from scenarios.cli import app
+    import flightmode.sim.flight.aircraft_profiles as ap
+    from flightmode.scenarios.cli import app
 
     monkeypatch.setitem(ap.PROFILES, "737", dataclasses.replace(ap.PROFILES["737"], turn_bank_deg=60.0))
     out = tmp_path / "out"
@@ -108,7 +108,7 @@ def test_parquet_truth_round_trip(tmp_path, fly_cached):
     import numpy as np
     import pyarrow.parquet as pq
 
-    from scenarios import run_io
+    from flightmode.scenarios import run_io
 
     plan, tr = fly_cached("pattern")
     path = run_io.write_truth(tmp_path, tr)

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.signal import welch
 
-from sim.accelerometer import SensorError, UnitDraw, get_preset
-from sim.carrier import CarrierSpec
-from sim.sensing import sense
+from flightmode.sim.sensor.accelerometer import SensorError, UnitDraw, get_preset
+from flightmode.sim.sensor.carrier import CarrierSpec
+from flightmode.sim.sensor.sensing import sense
 
 
 @pytest.fixture(scope="module")
@@ -106,8 +106,8 @@ def test_dropped_bag_saturates_at_the_range_and_never_beyond(fly_cached):
 def test_pick_up_lifts_the_bag_and_leaves_no_net_velocity(fly_cached):
     """Every carry that starts from a rest begins with the lift (sim.carrier.pickup_pulse_mps2): on a
     perfect sensor with the gait switched off, |a| - 1 g is the lift alone."""
-    from sim.accelerometer import UnitDraw
-    from sim.carrier import pickup_pulse_mps2
+    from flightmode.sim.sensor.accelerometer import UnitDraw
+    from flightmode.sim.sensor.carrier import pickup_pulse_mps2
 
     _, tr = fly_cached("pattern")
     spec = dataclasses.replace(CarrierSpec(), gait_vertical_g=0.0, gait_lateral_g=0.0, gait_fore_aft_g=0.0)
@@ -152,7 +152,7 @@ def test_bad_tracks_are_named(fly_cached):
     with pytest.raises(SensorError, match="specific_force_body_mps2 has NaN"):
         sense(dataclasses.replace(tr, specific_force_body_mps2=f), CarrierSpec(), get_preset("ideal"),
               np.random.default_rng(0))
-    from sim.carrier import CarrierError
+    from flightmode.sim.sensor.carrier import CarrierError
 
     with pytest.raises(CarrierError, match="placement 'under_sea'.*did you mean \"under_seat\""):
         sense(tr, CarrierSpec(placement="under_sea"), get_preset("ideal"), np.random.default_rng(0))
@@ -223,7 +223,7 @@ def test_100_hz_odr_aliases_the_fan_line_400_hz_records_it(fly_cached):
     f_n1 = float(tr.n1_pct[i0 : i0 + w, 0].mean()) / 100.0 * 5000.0 / 60.0  # CFM56-5B, FACTS.md
     # a parcel in the hold (stiff mount) and a noiseless part; the line is isolated exactly as the
     # difference between two recordings with the same random streams, with and without engine lines
-    from sim.vibration import VibrationModel
+    from flightmode.sim.sensor.vibration import VibrationModel
 
     spec = CarrierSpec(kind="parcel", placement="hold")
     no_lines = VibrationModel(n1_line_g=0.0, n1_h2_g=0.0, n2_line_g=0.0)
@@ -271,7 +271,7 @@ def test_cli_sense_writes_a_new_run_folder(tmp_path):
     from typer.testing import CliRunner
 
     import pyarrow.parquet as pq
-    from scenarios.cli import app
+    from flightmode.scenarios.cli import app
 
     r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(tmp_path)])
     assert r.exit_code == 0, r.output
@@ -287,7 +287,7 @@ def test_cli_sense_writes_a_new_run_folder(tmp_path):
 
 
 def test_optional_gyroscope_sees_the_aircraft_turn_in_sensor_axes(fly_cached):
-    from sim.sensing import GyroSpec
+    from flightmode.sim.sensor.sensing import GyroSpec
 
     _, tr = fly_cached("pattern")
     spec = GyroSpec(noise_dps=0.0, bias_tol_dps=0.0)

@@ -3,11 +3,11 @@
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from sim.track import euler_to_quat_wxyz
+from flightmode.sim.flight.track import euler_to_quat_wxyz
 
 
 def _track_like(f, w, wdot):
-    from sim.track import FlightTrack
+    from flightmode.sim.flight.track import FlightTrack
 
     n = f.shape[0]
     z = np.zeros(n)
@@ -48,7 +48,7 @@ def test_euler_quaternion_matches_scipy():
 
 
 def test_named_bag_locations_exist_for_every_profile():
-    from sim.aircraft_profiles import PROFILES
+    from flightmode.sim.flight.aircraft_profiles import PROFILES
 
     for prof in PROFILES.values():
         loc = prof.locations_m

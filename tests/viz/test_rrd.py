@@ -13,7 +13,7 @@ import numpy as np
 import pyarrow.parquet as pq
 import pytest
 
-from viz.rrd import STATE_NAMES, view_names
+from flightmode.viz.rrd import STATE_NAMES, view_names
 
 
 def _chunks(rrd, store=None):
@@ -56,7 +56,7 @@ def test_default_flight_rrd_round_trip(default_run):
     for i in (0, 1234, s.num_rows // 2, s.num_rows - 1):
         assert acc_v[i].tolist() == [s[f"acc_{a}_g"][i].as_py() for a in "xyz"]
     # the detector's state sequence is the detector's own output (re-run here on the samples)
-    from detector.flight_mode import DetectorParams, detect
+    from flightmode.detector.flight_mode import DetectorParams, detect
 
     d = info["detector"]
     c = detect(t, np.column_stack([s[f"acc_{a}_g"].to_numpy() for a in "xyz"]),
@@ -108,7 +108,7 @@ def _listening(proc):
 def _serve(run):
     import psutil
 
-    proc = subprocess.Popen([sys.executable, "-m", "scenarios.cli", "view", str(run), "--web"],
+    proc = subprocess.Popen([sys.executable, "-m", "flightmode.scenarios.cli", "view", str(run), "--web"],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     ps = psutil.Process(proc.pid)
     deadline = time.time() + 30

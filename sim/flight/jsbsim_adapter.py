@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sim.errors import AircraftError, did_you_mean
+from flightmode.errors import AircraftError, did_you_mean
 
 FT_M = 0.3048
 KT_MPS = 1852.0 / 3600.0

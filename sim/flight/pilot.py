@@ -19,15 +19,15 @@ from __future__ import annotations
 
 import math
 
-from sim import geodesy
-from sim.aircraft_profiles import AircraftProfile
-from sim.control import PID, clamp, rate_limit
-from sim.errors import FlightError
-from sim.jsbsim_adapter import FT_M, KT_MPS
-from sim.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITY_CODE
-from sim.geodesy import RunwayFrame
-from sim.plan import FlightPlan
-from sim.taxi_route import Path2D, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
+from flightmode.sim.flight import geodesy
+from flightmode.sim.flight.aircraft_profiles import AircraftProfile
+from flightmode.sim.flight.control import PID, clamp, rate_limit
+from flightmode.errors import FlightError
+from flightmode.sim.flight.jsbsim_adapter import FT_M, KT_MPS
+from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITY_CODE
+from flightmode.sim.flight.geodesy import RunwayFrame
+from flightmode.sim.flight.plan import FlightPlan
+from flightmode.sim.flight.taxi_route import Path2D, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
 
 NM_M = 1852.0
 LBF_N = 4.4482216152605

@@ -23,16 +23,16 @@ from pathlib import Path
 
 import numpy as np
 
-from sim import geodesy
-from sim.aircraft_profiles import get_profile
-from sim.errors import FlightError
-from sim.jsbsim_adapter import FT_M, JSBSimAircraft
-from sim.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
-from sim.geodesy import RunwayFrame
-from sim.pilot import Pilot
-from sim.plan import FlightPlan
-from sim.taxi_route import gate_position_out
-from sim.track import Event, FlightTrack, euler_to_quat_wxyz
+from flightmode.sim.flight import geodesy
+from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.errors import FlightError
+from flightmode.sim.flight.jsbsim_adapter import FT_M, JSBSimAircraft
+from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
+from flightmode.sim.flight.geodesy import RunwayFrame
+from flightmode.sim.flight.pilot import Pilot
+from flightmode.sim.flight.plan import FlightPlan
+from flightmode.sim.flight.taxi_route import gate_position_out
+from flightmode.sim.flight.track import Event, FlightTrack, euler_to_quat_wxyz
 
 FDM_HZ = 120.0
 KG_LB = 2.20462262185

@@ -11,10 +11,10 @@ import math
 
 import numpy as np
 
-from sim.geodesy import RunwayFrame
-from sim.labels import PHASE_CODE
-from sim.plan import FlightPlan
-from sim.track import FlightTrack
+from flightmode.sim.flight.geodesy import RunwayFrame
+from flightmode.labels import PHASE_CODE
+from flightmode.sim.flight.plan import FlightPlan
+from flightmode.sim.flight.track import FlightTrack
 
 FT_M = 0.3048
 

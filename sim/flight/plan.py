@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from sim.labels import SEVERITIES  # noqa: F401  (re-exported for validation)
+from flightmode.labels import SEVERITIES  # noqa: F401  (re-exported for validation)
 
 
 @dataclass(frozen=True, slots=True)

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sim.plan import TaxiPlan
+from flightmode.sim.flight.plan import TaxiPlan
 
 CONNECTOR_X_M = -60.0
 HOLD_SHORT_Y_M = -75.0

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from sim.errors import FlightmodeError, did_you_mean
+from flightmode.errors import FlightmodeError, did_you_mean
 
 G0 = 9.80665
 PLACEMENTS = {  # natural frequency (Hz) and damping ratio of the bag-on-support mount, per axis

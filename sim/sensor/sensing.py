@@ -24,13 +24,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import sosfilt, sosfilt_zi
 
-from sim import carrier as car
-from sim.accelerometer import AccelerometerPreset, SensorChain, SensorError, UnitDraw, draw_unit
-from sim.aircraft_profiles import get_profile
-from sim.labels import PHASE_CODE
-from sim.recording import Recording
-from sim.track import FlightTrack
-from sim.vibration import VibrationModel, initial_state, vibration_g
+from flightmode.sim.sensor import carrier as car
+from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, SensorError, UnitDraw, draw_unit
+from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.labels import PHASE_CODE
+from flightmode.sim.sensor.recording import Recording
+from flightmode.sim.flight.track import FlightTrack
+from flightmode.sim.sensor.vibration import VibrationModel, initial_state, vibration_g
 
 FS_INTERNAL_HZ = 1200.0
 CHUNK_S = 60.0

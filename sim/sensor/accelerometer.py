@@ -33,7 +33,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from sim.errors import FlightmodeError, did_you_mean
+from flightmode.errors import FlightmodeError, did_you_mean
 
 
 class SensorError(FlightmodeError):

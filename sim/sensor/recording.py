@@ -6,9 +6,9 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from sim.carrier import BAG_STATES, CarrierSpec
-from sim.digest import digest
-from sim.labels import PHASES, SEVERITIES
+from flightmode.sim.sensor.carrier import BAG_STATES, CarrierSpec
+from flightmode.digest import digest
+from flightmode.labels import PHASES, SEVERITIES
 
 
 @dataclass(frozen=True, slots=True)

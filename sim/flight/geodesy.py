@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from sim.plan import Runway
+    from flightmode.sim.flight.plan import Runway
 
 WGS84_A_M = 6378137.0
 WGS84_F = 1.0 / 298.257223563

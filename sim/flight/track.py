@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sim.digest import digest
-from sim.labels import PHASES, SEVERITIES
+from flightmode.digest import digest
+from flightmode.labels import PHASES, SEVERITIES
 
 
 @dataclass(frozen=True, slots=True)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from sim.errors import AircraftError, did_you_mean
+from flightmode.errors import AircraftError, did_you_mean
 
 
 @dataclass(frozen=True, slots=True)
