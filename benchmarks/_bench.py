@@ -32,3 +32,36 @@ def report(res: dict) -> None:
     width = max(len(k) for k in res)
     for k, v in res.items():
         print(f"{k:>{width}}: {v:,.4g}" if isinstance(v, float) else f"{k:>{width}}: {v}")
+
+
+def fly_scenario(name: str):
+    """(scenario, its track flown as ``flightmode.run`` flies it, wall s)."""
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.scenario import Scenario
+
+    sc = Scenario.resolve(name)
+    track, t = timed(lambda: pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight")))
+    return sc, track, t
+
+
+def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
+    """The baseline of the flight benchmarks: the scenario's JSBSim model (loaded through flightmode's
+    adapter: the same private copy and settings) placed at the origin and stepped with bare
+    ``fdm.run()`` ``steps`` times, no property reads, no pilot; loading is not timed. Best of
+    ``repeats``."""
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+
+    plan = scenario.plan
+    prof = get_profile(plan.aircraft)
+
+    def bare() -> float:
+        ac = JSBSimAircraft(plan.aircraft, 1.0 / plan.fdm_hz, prof.n_engines)
+        ac.init_on_ground(plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg)
+        run = ac.fdm.run
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            run()
+        return time.perf_counter() - t0
+
+    return min(bare() for _ in range(repeats))

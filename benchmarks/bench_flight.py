@@ -11,32 +11,16 @@ property reads and no pilot. Reported: both wall times (best of 3 each) and thei
 from __future__ import annotations
 
 import sys
-import time
 
-from _bench import best_timed, report
+from _bench import bare_stepping_s, best_timed, fly_scenario, report
 
 
 def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
-    from flightmode.scenarios.registry import resolve
-    from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.simulate import FDM_HZ, SETTLE_S, fly
-    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.simulate import SETTLE_S
 
-    plan, _, _ = resolve(name)
-    prof = get_profile(plan.aircraft)
-    track, t_fly = best_timed(lambda: fly(plan), repeats)
-    n = track.n + int(SETTLE_S * FDM_HZ)  # fly() also steps the gear settling before t = 0
-
-    def bare() -> float:
-        ac = JSBSimAircraft(plan.aircraft, 1.0 / FDM_HZ, prof.n_engines)
-        ac.init_on_ground(plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg)
-        run = ac.fdm.run
-        t0 = time.perf_counter()  # loading the model is not timed: only the stepping
-        for _ in range(n):
-            run()
-        return time.perf_counter() - t0
-
-    t_bare = min(bare() for _ in range(repeats))
+    (sc, track, _), t_fly = best_timed(lambda: fly_scenario(name), repeats)
+    n = track.n + int(SETTLE_S * sc.plan.fdm_hz)  # fly() also steps the gear settling before t = 0
+    t_bare = bare_stepping_s(sc, n, repeats)
     res = {
         "scenario": name,
         "steps": n,

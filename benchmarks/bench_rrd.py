@@ -3,7 +3,7 @@ and the file size per flight-hour at 100 Hz (goal: <= 60 MB).
 
     python benchmarks/bench_rrd.py [SCENARIO]
 
-Timed here: ``sim.flight.fly`` (JSBSim and the pilot), and ``viz.rrd.write_rrd`` of the assembled
+Timed here: ``pipeline.fly`` (JSBSim and the pilot), and ``viz.rrd.write_rrd`` of the assembled
 RunView (sensing, the detector and nav run before, untimed). Size per hour: the .rrd's bytes divided
 by the accelerometer recording's duration in hours (the bag records from the terminal to arrival).
 """
@@ -14,29 +14,18 @@ import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
-from _bench import best, best_timed, report
+from _bench import best, best_timed, fly_scenario, report
 
 
 def main(name: str = "gva-lhr-a320") -> dict:
-    from flightmode.scenarios.detector_report import evaluate_recommended
-    from flightmode.nav.evaluation import estimate_paths
-    from flightmode.scenarios.path_report import lever_arm_m
-    from flightmode.scenarios.registry import resolve
+    from flightmode.scenarios import pipeline
     from flightmode.scenarios.run_view import run_view
-    from flightmode.sim.sensor.accelerometer import get_preset
-    from flightmode.sim.sensor.carrier import CarrierSpec
-    from flightmode.sim.flight.simulate import fly
-    from flightmode.sim.sensor.sensing import sense
     from flightmode.viz.rrd import write_rrd
 
-    plan, _, _ = resolve(name)
-    track, t_fly = best_timed(lambda: fly(plan))
-    rec = sense(track, CarrierSpec(**plan.extra.get("carrier", {})), get_preset("lis302dl-logged16"),
-                np.random.default_rng([plan.seed, 0x5E45E]))
-    ev = evaluate_recommended(rec, plan.seed)
-    paths = estimate_paths(track, rec, lever_arm_m(track, rec.carrier))
-    view = run_view("bench", plan, track, rec, ev, paths)
+    (sc, track, _), t_fly = best_timed(lambda: fly_scenario(name))
+    r = pipeline.run(sc, track=track, stages=("fly", "sense", "detect", "path"))
+    rec = r.recording
+    view = run_view("bench", sc.plan, track, rec, r.detection, r.path.estimates)
     with tempfile.TemporaryDirectory() as d:
         t_rrd = best(lambda: write_rrd(view, Path(d) / "recording.rrd"))
         size = (Path(d) / "recording.rrd").stat().st_size

@@ -2,8 +2,8 @@
 
     python benchmarks/bench_sensing.py [SCENARIO] [PRESET]
 
-Both timed here, best of 3 each (as in bench_flight): ``sim.flight.fly`` (JSBSim and the pilot) and
-``sim.sensing.sense`` (carrier timeline, vibration, mount, accelerometer chain at 1200 Hz internal
+Both timed here, best of 3 each (as in bench_flight): ``pipeline.fly`` (JSBSim and the pilot) and
+``pipeline.sense`` (carrier timeline, vibration, mount, accelerometer chain at 1200 Hz internal
 rate, labels).
 """
 
@@ -11,23 +11,16 @@ from __future__ import annotations
 
 import sys
 
-import numpy as np
-from _bench import best_timed, report
+from _bench import best_timed, fly_scenario, report
 
 
 def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16", repeats: int = 3) -> dict:
-    from flightmode.scenarios.registry import resolve
-    from flightmode.sim.sensor.accelerometer import get_preset
-    from flightmode.sim.sensor.carrier import CarrierSpec
-    from flightmode.sim.flight.simulate import fly
-    from flightmode.sim.sensor.sensing import FS_INTERNAL_HZ, sense
+    from flightmode.scenarios import pipeline
+    from flightmode.sim.sensor.sensing import FS_INTERNAL_HZ
 
-    plan, _, _ = resolve(name)
-    carrier = CarrierSpec(**plan.extra.get("carrier", {}))
-    track, t_fly = best_timed(lambda: fly(plan), repeats)
-    rec, t_sense = best_timed(
-        lambda: sense(track, carrier, get_preset(preset_name), np.random.default_rng(plan.seed)), repeats
-    )
+    (sc, track, _), t_fly = best_timed(lambda: fly_scenario(name), repeats)
+    streams = pipeline.streams_of(sc.seed).child("sensor")
+    rec, t_sense = best_timed(lambda: pipeline.sense(track, sc.carrier, preset_name, streams), repeats)
     span = float(rec.t_s[-1] - rec.t_s[0])
     res = {
         "scenario": name,

@@ -102,26 +102,6 @@ def calibrate_sigma2(acc_g: np.ndarray, window: int, lsb_g: float | None = None)
     return np.maximum(s2, floor)
 
 
-def sigma2_from_preset(preset: str, odr_hz: float, unit: dict | None, window: int,
-                       rng: np.random.Generator, duration_s: float = 60.0) -> np.ndarray:
-    """sigma^2 per axis as a tracker would calibrate it on the bench (seed 000 section 5.1: the
-    noise of static measurements): ``duration_s`` of the unit lying still
-    (:func:`sim.accelerometer.bench_static`), then :func:`calibrate_sigma2` with the quantisation
-    floor. ``unit`` is the drawn unit of a Recording (``Recording.unit``); None is a nominal unit."""
-    import dataclasses as dc
-
-    from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
-
-    p = get_preset(preset)
-    if odr_hz != p.odr_hz:
-        p = dc.replace(p, odr_hz=float(odr_hz))
-    u = UnitDraw() if unit is None else UnitDraw(
-        np.asarray(unit["offset_g"], float), np.asarray(unit["sensitivity_err"], float),
-        np.asarray(unit["cross_axis"], float))
-    m = bench_static(p, u, rng, duration_s)
-    return calibrate_sigma2(m.acc_g, window, p.lsb_g)
-
-
 class FlightModeDetector:
     """Streaming detector. ``push(t_s, acc_g)`` returns the checks completed by that chunk."""
 

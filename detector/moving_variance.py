@@ -34,11 +34,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import lfilter
 
-from flightmode.errors import FlightmodeError
+from flightmode.errors import DetectorError
 
-
-class DetectorError(FlightmodeError):
-    """Bad detector input or parameters."""
 
 
 class MovingVariance:

@@ -1,7 +1,18 @@
-"""The one small error hierarchy of flightmode (DESIGN.md, "Conventions").
+"""The one small error hierarchy of flightmode.
 
-Every room raises a subclass of :class:`FlightmodeError`; messages name what is wrong, the value,
-what is allowed, and how to fix it.
+Every room raises a subclass of :class:`FlightmodeError`; a message names what is wrong (the file,
+the key path, the value), what is allowed, and how to fix it, with the nearest valid name for a
+misspelling (:func:`did_you_mean`). The command line prints one on one line and exits with status 2.
+
+    FlightmodeError
+    +-- ScenarioError        a scenario (file, built-in name, override) that cannot be flown as written
+    +-- AircraftError        an aircraft with no profile, or a model JSBSim cannot load
+    +-- FlightDivergedError  a flight that failed: NaN, divergence, a crash, an exceeded limit
+    +-- SensorError          a sensor preset, parameter or stream that cannot be sensed as asked
+    |   +-- CarrierError     a carrier (the bag's life) that cannot be laid on the flight
+    +-- DetectorError        detector parameters or an input stream the detector cannot use
+    +-- NavError             a path estimate that cannot be made from the input given
+    +-- InputDataError       a file or folder that is not what flightmode wrote (run folder, Parquet)
 """
 
 from __future__ import annotations
@@ -14,11 +25,15 @@ class FlightmodeError(Exception):
     """Base of every error flightmode raises on purpose."""
 
 
+class ScenarioError(FlightmodeError):
+    """A scenario that cannot be flown as written."""
+
+
 class AircraftError(FlightmodeError):
     """An aircraft model that flightmode has no profile for, or that JSBSim cannot load."""
 
 
-class FlightError(FlightmodeError):
+class FlightDivergedError(FlightmodeError):
     """A simulated flight that failed: NaN, divergence, a crash, an exceeded limit.
 
     Carries the phase and simulated time at which it happened.
@@ -29,6 +44,33 @@ class FlightError(FlightmodeError):
         self.phase = phase
         self.t_s = t_s
         super().__init__(f"flight failed in phase '{phase}' at t = {t_s:.2f} s: {cause}")
+
+    def __reduce__(self):  # picklable across processes (Dask workers) despite keyword-only arguments
+        return (_flight_diverged, (self.cause, self.phase, self.t_s))
+
+
+def _flight_diverged(cause: str, phase: str, t_s: float) -> FlightDivergedError:
+    return FlightDivergedError(cause, phase=phase, t_s=t_s)
+
+
+class SensorError(FlightmodeError):
+    """A sensor preset, parameter or input stream that cannot be sensed as asked."""
+
+
+class CarrierError(SensorError):
+    """A carrier specification that cannot be laid on the flight."""
+
+
+class DetectorError(FlightmodeError):
+    """Detector parameters or an input stream that the detector cannot use."""
+
+
+class NavError(FlightmodeError):
+    """A path estimate that cannot be made from the input given."""
+
+
+class InputDataError(FlightmodeError):
+    """A file or folder that is not what flightmode wrote, or is damaged."""
 
 
 def did_you_mean(name: str, allowed: Iterable[str]) -> str:

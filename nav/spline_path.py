@@ -29,11 +29,8 @@ import numpy as np
 from scipy.interpolate import PPoly
 from scipy.linalg import solve_banded
 
-from flightmode.errors import FlightmodeError
+from flightmode.errors import NavError
 
-
-class NavError(FlightmodeError):
-    """Bad input to the path estimator."""
 
 
 def _check(t_s, acc, min_samples: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -1,18 +1,21 @@
-"""The ``flightmode`` command line (Typer + Rich).
+"""The ``flightmode`` command line (Typer + Rich): a thin shell over the library
+(:mod:`flightmode.scenarios.pipeline` and the rooms); anything it does, ``import flightmode`` can do.
 
-    flightmode scenarios [--spec]                 list the built-in scenarios (or the file spec)
-    flightmode fly [SCENARIO] [--seed N] [--out DIR]   fly one gate to gate; default gva-lhr-a320
-    flightmode sense RUN_DIR [--sensor P] [--carrier K=V]   re-sense a flight
-    flightmode detect RUN_DIR_OR_SAMPLES [--method] [--window-s] [--k] [--time-threshold-s]
-                      [--weight] [--tables]       the flight-mode detector's figures
+    flightmode scenarios [--spec | --phases]      the built-in scenarios, the file format, the pilot's phases
+    flightmode fly [SCENARIO] [--seed N] [--out DIR] [--sensor P] [--gyro] [--no-rrd]
+    flightmode sense RUN_DIR [--sensor P] [--carrier K=V ...] [--out DIR] [--gyro]
+    flightmode detect RUN_DIR_OR_SAMPLES [--method] [--window-s] [--k] [--time-threshold-s] [--weight]
+                      [--sigma2-from] [--tables]
+    flightmode path RUN_DIR [--sensors run,ideal,...]
+    flightmode view RUN_DIR_OR_RRD [--web]
 
-Errors that flightmode raises on purpose (bad scenario, unknown aircraft, failed flight) print one
-line on stderr and exit with status 2, with no traceback.
+Errors that flightmode raises on purpose (bad scenario, unknown aircraft, failed flight, a file that
+is not a run) print one line on stderr and exit with status 2, with no traceback. Only Typer and
+Rich are imported to start; each command imports what it needs.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 import time
 from pathlib import Path
@@ -20,13 +23,12 @@ from typing import Annotated, Optional
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 from rich.text import Text
 
-from flightmode.scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
-from flightmode.scenarios.spec import load_scenario, route_length_m, spec_text
 from flightmode.errors import FlightmodeError
+
+DEFAULT_SCENARIO = "gva-lhr-a320"  # the same as flightmode.scenarios.scenario.DEFAULT_SCENARIO (tested)
 
 app = typer.Typer(
     add_completion=False,
@@ -37,9 +39,16 @@ console = Console()
 err_console = Console(stderr=True)
 
 
-def _die(e: Exception) -> None:
-    from rich.text import Text
+@app.callback()
+def _start() -> None:
+    """Physics-simulated accelerometer data for a package in an airliner, and its flight-mode detector."""
+    # fresh consoles for each invocation: they read the terminal's width (COLUMNS) when made
+    global console, err_console
+    console = Console()
+    err_console = Console(stderr=True)
 
+
+def _die(e: Exception) -> None:
     # user text (scenario paths, [section].key names) must not be read as Rich markup
     err_console.print(Text.assemble(("error:", "bold red"), " ", str(e)), highlight=False, soft_wrap=True)
     raise typer.Exit(code=2)
@@ -48,28 +57,45 @@ def _die(e: Exception) -> None:
 @app.command("scenarios")
 def scenarios_cmd(
     spec: Annotated[bool, typer.Option("--spec", help="Print every section and key a scenario file may hold.")] = False,
+    phases: Annotated[bool, typer.Option("--phases", help="Print the pilot's phase transition table.")] = False,
 ) -> None:
     """List the built-in scenarios with a one-line description each."""
     if spec:
+        from flightmode.scenarios.spec import spec_text
+
         console.print(spec_text(), highlight=False, markup=False)
         return
+    if phases:
+        from flightmode.sim.flight.phases import TRANSITIONS
+
+        table = Table(title="the pilot's phase transitions (sim.flight.phases.TRANSITIONS)")
+        for c in ("from phase", "condition", "to phase"):
+            table.add_column(c)
+        for tr in TRANSITIONS:
+            table.add_row(tr.source, Text.assemble((tr.condition, "bold"), ": ", tr.doc), tr.target or "(end of the flight)")
+        console.print(table)
+        return
+    from flightmode.scenarios.scenario import Scenario, builtin_names
+
     table = Table(title="built-in scenarios", show_lines=False)
     table.add_column("name", style="bold")
     table.add_column("aircraft")
     table.add_column("description")
     for name in builtin_names():
         try:
-            plan, desc = load_scenario(builtin_path(name))
+            sc = Scenario.builtin(name)
         except FlightmodeError as e:  # a broken built-in must not hide the others
             table.add_row(name, "?", Text(str(e), style="red"))
             continue
         marker = " (default)" if name == DEFAULT_SCENARIO else ""
-        table.add_row(name + marker, plan.aircraft, Text(desc))
+        table.add_row(name + marker, sc.aircraft, Text(sc.description))
     console.print(table)
 
 
 def _estimate_duration_s(plan) -> float:
     """Rough gate-to-gate duration, only for the progress bar's scale."""
+    from flightmode.scenarios.spec import route_length_m
+
     ground = plan.gate_wait_s + 120.0 + plan.taxi_out.length_m / 8.0 + sum(plan.taxi_out.holds_s)
     ground += plan.taxi_out.lineup_hold_s + plan.taxi_in.length_m / 8.0 + sum(plan.taxi_in.holds_s)
     return ground + route_length_m(plan) / 190.0 + 300.0 + plan.post_shutdown_s
@@ -88,115 +114,68 @@ def fly_cmd(
 ) -> None:
     """Fly a scenario gate to gate in JSBSim, sense it, run the detector and the path estimators;
     write truth.parquet, samples.parquet, run.json and recording.rrd."""
-    from flightmode.nav.evaluation import path_rows
-    from flightmode.scenarios import run_io
-    from flightmode.sim.flight.simulate import fly
-    from flightmode.sim.flight.flight_metrics import flight_metrics
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.scenario import Scenario
 
     try:
-        plan, desc, path = resolve(scenario)
+        sc = Scenario.resolve(scenario)
         if seed is not None:
-            if not 0 <= seed <= 2**31 - 3:
-                raise FlightmodeError(f"--seed {seed}: must be between 0 and {2**31 - 3}")
-            plan = dataclasses.replace(plan, seed=seed)
-        rid = run_io.run_id(plan)
-        console.print(Text.assemble((plan.name, "bold"), f" seed {plan.seed}: {desc}"), highlight=False)
-        total = _estimate_duration_s(plan)
-        t0 = time.perf_counter()
-        with run_io.staged_run_dir(out, rid) as stage:
-            with Progress(
-                TextColumn("[progress.description]{task.description}"),
-                BarColumn(),
-                TextColumn("{task.fields[sim]}"),
-                TimeElapsedColumn(),
-                console=console,
-                transient=False,
-            ) as progress:
-                task = progress.add_task("flying", total=total, sim="")
+            sc = sc.replace(seed=seed)
+        console.print(Text.assemble((sc.name, "bold"), f" seed {sc.seed}: {sc.description}"), highlight=False)
+        total = _estimate_duration_s(sc.plan)
+        with Progress(
+            TextColumn("[progress.description]{task.description}"),
+            BarColumn(),
+            TextColumn("{task.fields[sim]}"),
+            TimeElapsedColumn(),
+            console=console,
+            transient=False,
+        ) as progress:
+            task = progress.add_task("flying", total=total, sim="")
 
-                def on_progress(t_s: float, phase: str) -> None:
-                    progress.update(
-                        task,
-                        completed=min(t_s, total * 0.99),
-                        description=f"{phase:>13}",
-                        sim=f"{t_s / 60:6.1f} sim-min",
-                    )
+            def on_progress(t_s: float, phase: str) -> None:
+                progress.update(task, completed=min(t_s, total * 0.99), description=f"{phase:>13}",
+                                sim=f"{t_s / 60:6.1f} sim-min")
 
-                track = fly(plan, workdir=stage, progress=on_progress)
-                progress.update(task, completed=total, description="parked", sim=f"{track.duration_s / 60:6.1f} sim-min")
-            wall = time.perf_counter() - t0
-            metrics = flight_metrics(track, plan)
-            run_io.write_truth(stage, track)
-            rec, sense_wall = _sense(track, plan.extra, plan.seed, sensor, gyro=gyro)
-            run_io.write_samples(stage, rec)
-            info = run_io.run_info(plan, desc, str(path), track, metrics)
-            info["wall_time_s"] = wall
-            info["sensor"] = rec.summary() | {"wall_time_s": sense_wall}
-            from flightmode.scenarios.detector_report import evaluate_recommended
+            def on_stage(stage: str) -> None:
+                if stage != "fly":
+                    progress.update(task, completed=total, description=f"{stage:>13}")
 
-            evaluation = evaluate_recommended(rec, plan.seed)
-            info["detector"] = evaluation.summary() | {"sigma2_from": "bench calibration of the unit"}
-            paths = _estimate_paths(track, rec)
-            path = path_rows(paths, rec.preset)
-            info["path"] = path
-            if rrd:
-                from flightmode.scenarios.run_view import run_view
-                from flightmode.viz.rrd import write_rrd
-
-                t_rrd = time.perf_counter()
-                write_rrd(run_view(rid, plan, track, rec, evaluation, paths), stage / "recording.rrd")
-                info["rrd_wall_time_s"] = time.perf_counter() - t_rrd
-            run_io.write_run_json(stage, info)
-        _print_summary(plan, track, metrics, wall)
-        _print_sensor(rec)
-        _print_detector_line(evaluation)
-        _print_path_line(path)
-        files = "truth.parquet, samples.parquet, run.json" + (", recording.rrd" if rrd else "")
-        console.print(Text.assemble("wrote ", (str(Path(out) / rid), "bold"), f" ({files})"), highlight=False)
-        if rrd:
-            where = Path(out) / rid / "recording.rrd"
+            result = pipeline.run(sc, sensor=sensor, out=out, gyro=gyro, rrd=rrd, progress=on_progress,
+                                  on_stage=on_stage)
+            progress.update(task, completed=total, description="done",
+                            sim=f"{result.track.duration_s / 60:6.1f} sim-min")
+        _print_summary(sc.plan, result.track, result.metrics, result.wall_s["fly"])
+        _print_sensor(result.recording)
+        _print_detector_line(result.detection)
+        _print_path_lines(result.path)
+        rid = Path(out) / result.run_id
+        files = ", ".join(p.name for p in result.written.values())
+        console.print(Text.assemble("wrote ", (str(rid), "bold"), f" ({files})"), highlight=False)
+        if "rrd" in result.written:
+            where = result.written["rrd"]
             console.print(Text.assemble("recording: ", (str(where), "bold"), "; open it with: ",
                                         (f"flightmode view {where}", "bold")), highlight=False)
     except FlightmodeError as e:
         _die(e)
 
 
-def _sense(track, extra: dict, seed: int, sensor: str | None, carrier_changes: dict | None = None,
-           gyro: bool = False):
-    """Sense a track with the scenario's carrier and sensor (``sensor`` overrides the preset)."""
-    import numpy as np
-
-    from flightmode.sim.sensor.accelerometer import get_preset
-    from flightmode.sim.sensor.carrier import CarrierSpec
-    from flightmode.sim.sensor.sensing import GyroSpec, sense
-
-    sens = dict(extra.get("sensor") or {"preset": "lis302dl-logged16", "odr_hz": None})
-    preset = get_preset(sensor or sens["preset"])
-    if sens.get("odr_hz") and not sensor:
-        preset = dataclasses.replace(preset, odr_hz=float(sens["odr_hz"]))
-    carrier = CarrierSpec(**{**(extra.get("carrier") or {}), **(carrier_changes or {})})
-    t0 = time.perf_counter()
-    # a stream of its own, derived from the scenario seed: re-sensing with another preset or
-    # carrier keeps the flight and changes only what it must
-    rec = sense(track, carrier, preset, np.random.default_rng([seed, 0x5E45E]), gyro=GyroSpec() if gyro else None)
-    return rec, time.perf_counter() - t0
-
-
-def _estimate_paths(track, rec) -> dict:
-    """The seed 002 estimators on this recording, truth-aided (nav.evaluation)."""
-    from flightmode.nav.evaluation import estimate_paths
-    from flightmode.scenarios.path_report import lever_arm_m
-
-    return estimate_paths(track, rec, lever_arm_m(track, rec.carrier))
-
-
-def _print_path_line(rows: list[dict]) -> None:
-    by = {r["method"].split(" ")[0]: r for r in rows}
+def _print_path_lines(path) -> None:
+    """The path errors, aided first, and the unaided error beside what the random-walk law predicts."""
+    by = {r["method"].split(" ")[0]: r for r in path.rows}
     tri, rec = by["tridiagonal"], by["recurrence"]
     console.print(
-        f"path from acceleration (truth-aided frames): tridiagonal with the gate positions max error "
-        f"{tri['max_m']:,.0f} m; recurrence from the gate final {rec['final_m']:,.0f} m, max {rec['max_m']:,.0f} m "
-        "(flightmode path RUN_DIR for the table)",
+        f"path from acceleration (seed 002 cubic splines, frames from the truth), over the {path.span_s / 60:.0f} min "
+        f"the bag is stowed: aided by the two gate positions (tridiagonal), max error {tri['max_m']:,.0f} m",
+        highlight=False,
+    )
+    console.print(
+        f"  unaided dead reckoning from the gate at rest (recurrence): final error {rec['final_m']:,.0f} m. Integrating "
+        f"twice drifts: white noise as t^1.5 (this sensor's alone: {path.random_walk_m:,.0f} m RMS after "
+        f"{path.span_s / 60:.0f} min), a constant offset b as b t^2 / 2 (this unit's zero-g offset alone: "
+        f"{path.offset_drift_m:,.0f} m). flightmode path RUN_DIR prints the table.",
         highlight=False,
     )
 
@@ -227,8 +206,10 @@ def detect_cmd(
 
     from flightmode.detector.evaluation import evaluate
     from flightmode.detector.flight_mode import DetectorParams
+    from flightmode.detector.recommended import labels_of
     from flightmode.scenarios import detector_report as dr
     from flightmode.scenarios import run_io
+    from flightmode.scenarios.pipeline import stream_sigma2
 
     try:
         cols, info = run_io.read_samples(source)
@@ -240,9 +221,8 @@ def detect_cmd(
         p = DetectorParams(fs_hz=fs, window_s=window_s, k_sigma=k, time_threshold_s=time_threshold_s,
                            method=method, weight=weight)
         p.validate()
-        labels = dr.labels_of(cols)
-        seed = int(info["seed"]) if info else 0
-        s2, s2_source = dr.calibrate(cols, info, p, sigma2_from, seed)
+        labels = labels_of(cols)
+        s2, s2_source = stream_sigma2(sigma2_from, cols, info, p.window)
         title = f"{source}" + (f": {info['sensor']['preset']} at {fs:g} Hz" if info and info.get("sensor") else "")
         console.print(Text(title, style="bold"), highlight=False)
         e = evaluate(t, a, labels, p, s2)
@@ -257,17 +237,17 @@ def detect_cmd(
 def path_cmd(
     run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`.")],
     sensors: Annotated[str, typer.Option("--sensors", help="Comma-separated presets to compare; 'run' is the run's own sensor.")] = "run,ideal",
+    as_json: Annotated[bool, typer.Option("--json", help="Print the rows as JSON instead of a table.")] = False,
 ) -> None:
     """Rebuild the bag's path from acceleration (seed 002 cubic splines) and print its errors."""
-    from flightmode.scenarios import run_io
+    from flightmode.scenarios import pipeline, run_io
     from flightmode.scenarios.path_report import path_rows, print_rows
-    from flightmode.sim.sensor.carrier import CarrierSpec
 
     try:
         track, info = run_io.read_track(run_dir)
-        extra = info["plan"].get("extra") or {}
-        seed = int(info["seed"])
-        run_preset = (info.get("sensor") or {}).get("preset")
+        sc = run_io.run_scenario(info, str(run_dir))
+        run_preset = (info.get("sensor") or {}).get("preset") or sc.sensor.preset
+        streams = pipeline.streams_of(int(info["seed"]))
         recs = {}
         for name in [s.strip() for s in sensors.split(",") if s.strip()]:
             preset = run_preset if name == "run" else name
@@ -275,10 +255,14 @@ def path_cmd(
                 continue
             # re-sensing is deterministic: the run's own preset gives its samples.parquet again,
             # with the carrier timeline (orientations) that the truth-aided frames need
-            recs[preset], _ = _sense(track, extra, seed, preset)
-        carrier = CarrierSpec(**(extra.get("carrier") or {}))
-        rows = path_rows(track, recs, carrier, seed)
-        print_rows(console, rows, f"{info['run_id']}: path errors against the truth (bag seat position)")
+            recs[preset] = pipeline.sense(track, sc.carrier, preset, streams.child("sensor"))
+        rows = path_rows(track, recs, sc.carrier, streams)
+        if as_json:
+            import json
+
+            typer.echo(json.dumps(rows, indent=1))
+        else:
+            print_rows(console, rows, f"{info['run_id']}: path errors against the truth (bag seat position)")
     except FlightmodeError as e:
         _die(e)
 
@@ -326,6 +310,16 @@ def _print_sensor(rec) -> None:
     )
 
 
+def _print_sensor(rec) -> None:
+    s = rec.summary()
+    console.print(
+        f"sensed with {s['preset']} at {s['odr_hz']:g} Hz: {s['samples']:,} samples over "
+        f"{s['duration_s'] / 60:.1f} min ({rec.carrier.kind}, {rec.carrier.placement}); "
+        f"truly static {100 * s['static_fraction']:.0f} % of the time, {s['clipped_samples']} clipped samples",
+        highlight=False,
+    )
+
+
 @app.command("sense")
 def sense_cmd(
     run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`.")],
@@ -335,43 +329,67 @@ def sense_cmd(
     gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
 ) -> None:
     """Re-sense an existing flight with another sensor or carrier into a new run folder."""
-    from flightmode.scenarios import run_io
-    from flightmode.scenarios.spec import SPEC, Key, _check_value
+    from flightmode.scenarios import pipeline, run_io
+    from flightmode.sim.sensor.sensing import GyroSpec
 
     try:
         track, info = run_io.read_track(run_dir)
-        changes = {}
-        for item in carrier or []:
-            if "=" not in item:
-                raise FlightmodeError(f"--carrier {item!r}: write KEY=VALUE, e.g. placement=hold")
-            k, v = item.split("=", 1)
-            keys = SPEC["carrier"]
-            if k not in keys:
-                from flightmode.errors import did_you_mean
-
-                raise FlightmodeError(f"--carrier {k}: unknown carrier key{did_you_mean(k, keys)}; keys: {', '.join(keys)}")
-            key: Key = keys[k]
-            val = v if key.type is str else (int(v) if key.type is int else float(v))
-            changes[k] = _check_value("--carrier", k, key, val)
-        extra = info["plan"].get("extra") or {}
-        rec, wall = _sense(track, extra, int(info["seed"]), sensor, changes, gyro=gyro)
+        sc = run_io.run_scenario(info, str(run_dir))
+        changes = dict(_key_value(item) for item in carrier or [])
+        if changes:
+            sc = sc.replace(carrier=changes)  # validated as strictly as a scenario file
+        if sensor is not None:
+            sc = sc.replace(sensor={"preset": sensor, "odr_hz": None})
+        t0 = time.perf_counter()
+        # the run's own sensor streams: the same preset and carrier give its samples.parquet again
+        rec = pipeline.sense(track, sc.carrier, sc.sensor, pipeline.streams_of(sc.seed).child("sensor"),
+                             gyro=GyroSpec() if gyro else None)
+        wall = time.perf_counter() - t0
         tag = "-".join([rec.preset] + [f"{k}-{v}" for k, v in sorted(changes.items())])
         rid = f"{info['run_id']}-{tag}"
         with run_io.staged_run_dir(out or Path(run_dir).parent, rid) as stage:
             run_io.write_samples(stage, rec)
             new = dict(info)
             new["run_id"] = rid
+            new["scenario_toml"] = sc.to_toml()
+            new["scenario_sha256"] = sc.digest()
             new["truth"] = dict(info["truth"], path=str(Path(run_dir).resolve() / "truth.parquet"))
-            new["sensor"] = rec.summary() | {"wall_time_s": wall}
+            new["sensor"] = rec.summary()
+            new["wall_time_s"] = {"sense": wall}
+            for stale in ("detector", "path", "path_laws_m"):  # of the other recording
+                new.pop(stale, None)
             run_io.write_run_json(stage, new)
         _print_sensor(rec)
         console.print(Text.assemble("wrote ", (str((out or Path(run_dir).parent) / rid), "bold"), " (samples.parquet, run.json)"))
-    except (FlightmodeError, ValueError) as e:
+    except FlightmodeError as e:
         _die(e)
 
 
+def _key_value(item: str) -> tuple[str, object]:
+    """``KEY=VALUE`` of a --carrier option, the value typed as the scenario spec declares it."""
+    from flightmode.errors import ScenarioError, did_you_mean
+    from flightmode.scenarios.spec import SPEC
+
+    if "=" not in item:
+        raise ScenarioError(f"--carrier {item!r}: write KEY=VALUE, e.g. placement=hold")
+    k, v = item.split("=", 1)
+    keys = SPEC["carrier"]
+    if k not in keys:
+        raise ScenarioError(f"--carrier {k}: unknown carrier key{did_you_mean(k, keys)}; keys: {', '.join(keys)}")
+    want = keys[k].type
+    if want is str:
+        return k, v
+    try:
+        return k, (int(v) if want is int else float(v))
+    except ValueError:
+        raise ScenarioError(f"--carrier {k}={v!r}: must be {'an integer' if want is int else 'a number'} "
+                            f"({keys[k].doc})") from None
+
+
 def _print_summary(plan, track, m: dict, wall_s: float) -> None:
-    kt = 1.0 / 0.514444
+    from flightmode.units import KT_MPS
+
+    kt = 1.0 / KT_MPS
     t = Table(title=f"{plan.name}: {plan.aircraft}, {plan.origin.icao} {plan.origin.name} -> "
               f"{plan.destination.icao} {plan.destination.name}", show_header=False)
     t.add_column("quantity")

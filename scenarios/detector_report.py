@@ -1,6 +1,7 @@
-"""Detector figures for the command line: run the detector over a labelled stream and print them as
-Rich tables (per-recording scores; with ``tables`` also seed 000's Table 2, 3, 4/5 forms and the
-turn-on response of Fig. 18). Used by ``flightmode detect`` and ``flightmode fly``."""
+"""Detector figures for the command line, formatted only: an evaluation (per-recording scores) as Rich
+tables, and with ``tables`` seed 000's Table 2, 3, 4/5 forms and the turn-on response of Fig. 18
+(computed by :mod:`flightmode.detector.evaluation` and :mod:`flightmode.detector.statistics`). Used
+by ``flightmode detect``."""
 
 from __future__ import annotations
 
@@ -11,68 +12,9 @@ from rich.console import Console
 from rich.table import Table
 
 from flightmode.detector import evaluation as ev
-from flightmode.detector.flight_mode import DetectorParams, calibrate_sigma2, sigma2_from_preset
-from flightmode.detector.moving_variance import DetectorError
+from flightmode.detector.flight_mode import DetectorParams
+from flightmode.errors import DetectorError
 from flightmode.detector.statistics import table2
-
-SIGMA2_SOURCES = ("preset", "rest")
-
-
-def recommended(preset: str, odr_hz: float, unit: dict | None, seed: int) -> tuple[DetectorParams, np.ndarray]:
-    """Seed 000's recommended detector (Table 9: NMV, W_s 1 s, T_sigma 4 sigma^2, T_th 4 s) at the
-    recording's rate, and sigma^2 from the bench calibration of its unit (a random stream of its
-    own, derived from the run's seed). The one place `fly`, `detect` and `path` get it from."""
-    p = DetectorParams(fs_hz=float(odr_hz))
-    return p, sigma2_from_preset(preset, float(odr_hz), unit, p.window, np.random.default_rng([seed, 0xCA1]))
-
-
-def evaluate_recommended(rec, seed: int):
-    """:func:`recommended` run on a fresh Recording and scored against its labels."""
-    from flightmode.detector.evaluation import evaluate
-
-    p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)
-    labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
-    return evaluate(rec.t_s, rec.acc_g, labels, p, s2)
-
-
-def calibrate(columns: dict, info: dict | None, params: DetectorParams, source: str, seed: int) -> tuple[np.ndarray, str]:
-    """sigma^2 per axis and a sentence saying where it came from.
-
-    ``preset``: the recording's own unit on the bench (:func:`sigma2_from_preset`), the seed's
-    procedure; needs the run.json beside the samples. ``rest``: the recording's truly static
-    samples before the flight (the terminal rest), as a tracker calibrating in place would."""
-    if source not in SIGMA2_SOURCES:
-        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}")
-    if source == "preset":
-        if info is None or "sensor" not in info:
-            raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
-                                "use --sigma2-from rest for a bare samples file")
-        s = info["sensor"]
-        s2 = sigma2_from_preset(s["preset"], float(s["odr_hz"]), s.get("unit"), params.window,
-                                np.random.default_rng([seed, 0xCA1]))  # as recommended(), any window
-        return s2, f"bench calibration of this {s['preset']} unit (60 s static, quantisation floor)"
-    static = columns.get("sensor_static")
-    if static is None or not static.any():
-        raise DetectorError("--sigma2-from rest: the stream has no truly static samples")
-    first_window = np.flatnonzero(columns["in_flight_window"])[0] if columns["in_flight_window"].any() else len(static)
-    sel = static.copy()
-    sel[first_window:] = False  # only what a tracker could see before the flight
-    if sel.sum() < params.window:
-        sel = static
-    lsb = None
-    if info is not None and info.get("sensor"):
-        from flightmode.sim.sensor.accelerometer import get_preset
-
-        lsb = get_preset(info["sensor"]["preset"]).lsb_g
-    return calibrate_sigma2(columns["acc_g"][sel], params.window, lsb), f"{int(sel.sum())} truly static samples before the flight"
-
-
-def labels_of(columns: dict) -> dict:
-    missing = [k for k in ("in_flight_window", "sensor_static", "phase") if k not in columns]
-    if missing:
-        raise DetectorError(f"the samples have no {', '.join(missing)} column(s): evaluation needs the truth labels")
-    return {k: columns[k] for k in ("in_flight_window", "sensor_static", "phase")}
-
 
 def _e(x) -> str:
     if x is None or (isinstance(x, float) and math.isnan(x)):

@@ -16,20 +16,25 @@ def lever_arm_m(track, carrier) -> tuple[float, float, float]:
     return get_profile(track.aircraft).locations_m[LOCATION_OF[carrier.placement]]
 
 
-def checks_of(seed: int):
-    """The seed's recommended detector on a recording (for ZUPT and tilt-only static periods)."""
+def checks_of(streams):
+    """The seed's recommended detector on a recording (for ZUPT and tilt-only static periods), sigma^2
+    from the bench calibration of its unit on the run's own ``detector/bench`` stream (so the run's
+    own sensor gets exactly the detector ``flightmode fly`` ran)."""
     from flightmode.detector.flight_mode import detect
-    from flightmode.scenarios.detector_report import recommended
+    from flightmode.detector.recommended import recommended_params
+    from flightmode.scenarios.pipeline import unit_sigma2
 
     def run(rec):
-        p, s2 = recommended(rec.preset, rec.odr_hz, rec.unit, seed)
+        p = recommended_params(rec.odr_hz)
+        s2 = unit_sigma2(rec.preset, rec.odr_hz, rec.unit, p.window, streams.rng("detector/bench"))
         return detect(rec.t_s, rec.acc_g, p, s2), p.window
 
     return run
 
 
-def path_rows(track, recordings: dict, carrier, seed: int) -> list[dict]:
-    return evaluate(track, recordings, lever_arm_m(track, carrier), checks_of(seed))
+def path_rows(track, recordings: dict, carrier, streams) -> list[dict]:
+    """nav.evaluation rows for ``recordings`` ({label: Recording}) of one run (``streams``: the run's)."""
+    return evaluate(track, recordings, lever_arm_m(track, carrier), checks_of(streams))
 
 
 def _m(x: float) -> str:

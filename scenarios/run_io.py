@@ -1,8 +1,9 @@
-"""Run folders: ``OUT/<scenario>-s<seed>/`` with ``truth.parquet`` and ``run.json``.
+"""Run folders: ``OUT/<scenario>-s<seed>/`` with ``truth.parquet``, ``samples.parquet``,
+``run.json`` and ``recording.rrd`` (written by :func:`flightmode.scenarios.pipeline.write`).
 
-The dataset edge (DESIGN.md): arrays become Parquet here and nowhere else. A run folder is built in
-a hidden staging folder beside it and renamed into place only when complete, so a failed or
-interrupted run leaves nothing half-written (the staging folder is removed on failure).
+The dataset edge: arrays become Parquet here and nowhere else. A run folder is built in a hidden
+staging folder beside it and renamed into place only when complete, so a failed or interrupted run
+leaves nothing half-written (the staging folder is removed on failure).
 """
 
 from __future__ import annotations
@@ -20,12 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from flightmode.labels import PHASES, SEVERITIES
-from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.track import FlightTrack
-
-
-def run_id(plan: FlightPlan) -> str:
-    return f"{plan.name}-s{plan.seed}"
 
 
 @contextmanager
@@ -139,19 +135,19 @@ def read_samples(path: Path) -> tuple[dict, dict | None]:
     (``phase`` as strings); ``run_info`` is the run.json beside it, or None if there is none."""
     import pyarrow.parquet as pq
 
-    from flightmode.errors import FlightmodeError
+    from flightmode.errors import InputDataError
 
     path = Path(path)
     file = path / "samples.parquet" if path.is_dir() else path
     if not file.is_file():
-        raise FlightmodeError(f"{path}: no samples.parquet (make a run folder with `flightmode fly`)")
+        raise InputDataError(f"{path}: no samples.parquet (make a run folder with `flightmode fly`)")
     try:
         t = pq.read_table(file)
     except Exception as e:  # pyarrow raises several types for a file that is not Parquet
-        raise FlightmodeError(f"{file}: not a readable Parquet file ({e})") from None
+        raise InputDataError(f"{file}: not a readable Parquet file ({e})") from None
     need = {"t_s", "acc_x_g", "acc_y_g", "acc_z_g"}
     if not need <= set(t.column_names):
-        raise FlightmodeError(f"{file}: not a flightmode samples file (columns {sorted(need)} missing)")
+        raise InputDataError(f"{file}: not a flightmode samples file (columns {sorted(need)} missing)")
     col = lambda n: t[n].to_numpy(zero_copy_only=False)  # noqa: E731
     out = {
         "t_s": np.asarray(col("t_s"), float),
@@ -166,25 +162,50 @@ def read_samples(path: Path) -> tuple[dict, dict | None]:
         if name in t.column_names:
             out[name] = np.asarray(t[name].to_pylist(), dtype=object)
     info_path = file.parent / "run.json"
-    info = json.loads(info_path.read_text()) if info_path.is_file() else None
+    info = _read_json(info_path) if info_path.is_file() else None
     return out, info
+
+
+def _read_json(path: Path) -> dict:
+    from flightmode.errors import InputDataError
+
+    try:
+        info = json.loads(path.read_text(encoding="utf-8"))
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise InputDataError(f"{path}: not a readable run.json ({e})") from None
+    if not isinstance(info, dict):
+        raise InputDataError(f"{path}: not a flightmode run.json (not an object)")
+    return info
+
+
+def run_scenario(info: dict, source: str):
+    """The Scenario of a run folder's run.json (its ``scenario_toml``)."""
+    from flightmode.errors import InputDataError
+    from flightmode.scenarios.scenario import Scenario
+
+    if "scenario_toml" not in info:
+        raise InputDataError(f"{source}: run.json has no scenario_toml: written by an older flightmode; fly it again")
+    return Scenario.from_toml_text(info["scenario_toml"], f"{source} (scenario_toml)")
 
 
 def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
     """Rebuild the FlightTrack of a run folder from truth.parquet and run.json."""
     import pyarrow.parquet as pq
 
-    from flightmode.errors import FlightmodeError
+    from flightmode.errors import InputDataError
     from flightmode.sim.flight.track import Event, euler_to_quat_wxyz
 
     run_dir = Path(run_dir)
     if not (run_dir / "truth.parquet").is_file() or not (run_dir / "run.json").is_file():
-        raise FlightmodeError(
+        raise InputDataError(
             f"{run_dir}: not a flight run folder (needs truth.parquet and run.json; "
             "make one with `flightmode fly`)"
         )
-    info = json.loads((run_dir / "run.json").read_text())
-    t = pq.read_table(run_dir / "truth.parquet")
+    info = _read_json(run_dir / "run.json")
+    try:
+        t = pq.read_table(run_dir / "truth.parquet")
+    except Exception as e:  # pyarrow raises several types for a file that is not Parquet
+        raise InputDataError(f"{run_dir / 'truth.parquet'}: not a readable Parquet file ({e})") from None
     c = {name: t[name].to_numpy(zero_copy_only=False) for name in t.column_names}
     ne = sum(1 for k in c if k.startswith("n1_pct_e"))
     f64 = lambda *names: np.stack([np.asarray(c[n], dtype=float) for n in names], axis=1)  # noqa: E731
@@ -263,17 +284,33 @@ def _json_default(o):
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
-def run_info(plan: FlightPlan, description: str, source: str, track: FlightTrack, metrics: dict) -> dict:
-    return {
-        "run_id": run_id(plan),
-        "scenario": plan.name,
-        "description": description,
-        "scenario_file": source,
-        "seed": plan.seed,
-        "aircraft": plan.aircraft,
+def run_info(result) -> dict:
+    """run.json of a :class:`~flightmode.scenarios.pipeline.RunResult`: the scenario (as TOML text,
+    reads back with ``Scenario.from_toml_text``), seed, versions, plan, events, the flight's figures,
+    the track's SHA-256, and each later stage's summary."""
+    sc, track = result.scenario, result.track
+    info = {
+        "run_id": result.run_id,
+        "scenario": sc.name,
+        "description": sc.description,
+        "scenario_file": sc.source,
+        "scenario_sha256": sc.digest(),
+        "scenario_toml": sc.to_toml(),
+        "seed": result.seed,
+        "aircraft": sc.aircraft,
         "versions": package_versions(),
-        "plan": asdict(plan),
+        "plan": asdict(sc.plan),
         "events": [{"t_s": e.t_s, "name": e.name, "detail": e.detail} for e in track.events],
-        "summary": metrics,
+        "summary": result.metrics,
         "truth": {"rows": track.n, "fs_hz": track.fs_hz, "sha256": track.digest()},
+        "wall_time_s": dict(result.wall_s),
     }
+    if result.recording is not None:
+        info["sensor"] = result.recording.summary()
+    if result.detection is not None:
+        info["detector"] = result.detection.summary() | {"sigma2_from": "bench calibration of the unit"}
+    if result.path is not None:
+        info["path"] = result.path.rows
+        info["path_laws_m"] = {"random_walk": result.path.random_walk_m, "offset": result.path.offset_drift_m,
+                               "span_s": result.path.span_s}
+    return info

@@ -1,10 +1,11 @@
-"""Scenario files (TOML): their specification, validation and conversion to a :class:`FlightPlan`.
+"""The scenario file format (TOML): every section and key, and their validation.
 
 Every key is declared in :data:`SPEC` with its type, bounds, default and meaning; ``flightmode
 scenarios --spec`` prints it. Validation is strict: unknown sections or keys, wrong types, values out
 of range, an aircraft with no profile, and airports too close for the cruise asked all raise a
-:class:`ScenarioError` whose one-line message names the file, the key path, the value, what is
-allowed and, for a misspelt name, the nearest valid one.
+:class:`~flightmode.errors.ScenarioError` whose one-line message names the file, the key path, the
+value, what is allowed and, for a misspelt name, the nearest valid one. The typed object built from
+a valid document is :class:`flightmode.scenarios.scenario.Scenario`.
 """
 
 from __future__ import annotations
@@ -19,16 +20,13 @@ from flightmode.sim.sensor.accelerometer import PRESETS as SENSOR_PRESETS
 from flightmode.sim.flight.aircraft_profiles import PROFILES
 from flightmode.sim.sensor.carrier import KINDS as CARRIER_KINDS
 from flightmode.sim.sensor.carrier import PLACEMENTS, CarrierSpec
-from flightmode.errors import FlightmodeError, did_you_mean
+from flightmode.errors import ScenarioError, did_you_mean
 from flightmode.sim.flight.geodesy import great_circle_distance_m
-from flightmode.sim.flight.plan import SEVERITIES, FlightPlan, Runway, TaxiPlan, TurbulenceSegment
+from flightmode.sim.flight.plan import SEVERITIES, FlightPlan
+from flightmode.units import NM_M
 
-NM_M = 1852.0
 _CARRIER = CarrierSpec()  # the [carrier] defaults are CarrierSpec's own (one place)
 
-
-class ScenarioError(FlightmodeError):
-    """A scenario file that cannot be flown as written."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -70,8 +68,10 @@ SPEC: dict[str, dict[str, Key]] = {
         "name": Key(str, "scenario name (also the run folder prefix)"),
         "description": Key(str, "one line shown by `flightmode scenarios`"),
         "aircraft": Key(str, "JSBSim aircraft model with a flightmode profile", choices=tuple(sorted(PROFILES))),
-        "seed": Key(int, "random seed (turbulence, sensor noise)", 1, lo=0, hi=2**31 - 3),
+        "seed": Key(int, "the run's random seed: every random stream (turbulence, the bag, the sensor unit and "
+                         "its noise) is derived from it by name", 1, lo=0, hi=2**63 - 1),
         "gate_wait_s": Key(float, "time parked at the gate, engines off, before engine start", 120.0, lo=0, hi=86400),
+        "fdm_hz": Key(int, "JSBSim integration rate, Hz: the FlightTrack's sample rate", 120, lo=60, hi=480),
     },
     "origin": _runway_keys("departure"),
     "destination": _runway_keys("arrival"),
@@ -122,6 +122,9 @@ SPEC: dict[str, dict[str, Key]] = {
         "deplaning_s": Key(float, "deplaning walk (or unloading)", _CARRIER.deplaning_s, lo=0, hi=3600),
         "arrival_rest_s": Key(float, "resting at the destination (truly static)", _CARRIER.arrival_rest_s, lo=0, hi=86400),
         "truck_s": Key(float, "road transport before and after (parcel)", _CARRIER.truck_s, lo=0, hi=86400),
+        "gait_vertical_g": Key(float, "walking: vertical step-frequency amplitude", _CARRIER.gait_vertical_g, lo=0, hi=2),
+        "gait_lateral_g": Key(float, "walking: lateral amplitude (half the step frequency)", _CARRIER.gait_lateral_g, lo=0, hi=2),
+        "gait_fore_aft_g": Key(float, "walking: fore-aft amplitude", _CARRIER.gait_fore_aft_g, lo=0, hi=2),
         "putdown_peak_g": Key(float, "peak of the shock when the bag is set down", _CARRIER.putdown_peak_g, lo=0.05, hi=50),
         "putdown_ms": Key(float, "duration of that shock", _CARRIER.putdown_ms, lo=2, hi=1000),
         "pickup_height_m": Key(float, "height the bag is lifted when picked up", _CARRIER.pickup_height_m, lo=0, hi=3),
@@ -149,7 +152,8 @@ def _check_value(source: str, path: str, key: Key, value: Any) -> Any:
         value = int(value)
     if not isinstance(value, want) or isinstance(value, bool):
         name = want.__name__ if isinstance(want, type) else "/".join(t.__name__ for t in want)
-        raise _fail(source, path, value, f"must be a {name} ({key.doc})")
+        article = "an" if name[0] in "aeiou" else "a"
+        raise _fail(source, path, value, f"must be {article} {name} ({key.doc})")
     if isinstance(value, float) and not math.isfinite(value):
         raise _fail(source, path, value, "must be finite")
     if key.choices is not None and value not in key.choices:
@@ -184,8 +188,13 @@ def _section(source: str, name: str, table: Any) -> dict[str, Any]:
     return out
 
 
-def parse_scenario(doc: dict[str, Any], source: str = "<scenario>") -> tuple[FlightPlan, str]:
-    """Validate a parsed TOML document; return the flight plan and the description."""
+def validate_doc(doc: dict[str, Any], source: str = "<scenario>") -> dict[str, Any]:
+    """Check a parsed TOML document key by key against :data:`SPEC`; return it normalised: every
+    section present, every key filled (defaults; ``None`` for an absent optional key), numbers as the
+    declared type, ``turbulence`` a list of such sections. Cross-key checks (the route length, the
+    sensor's rates) are :func:`check_scenario`'s."""
+    if not isinstance(doc, dict):
+        raise ScenarioError(f"{source}: a scenario must be a table of sections, got {type(doc).__name__}")
     for sec in doc:
         if sec not in SPEC:
             raise _fail(source, f"[{sec}]", "...", f"unknown section; allowed: {', '.join(SPEC)}", did_you_mean(sec, SPEC))
@@ -197,63 +206,32 @@ def parse_scenario(doc: dict[str, Any], source: str = "<scenario>") -> tuple[Fli
     turb_tables = doc.get("turbulence", [])
     if not isinstance(turb_tables, list):
         raise _fail(source, "[turbulence]", "...", "must be an array of tables: write [[turbulence]]")
-    turbulence = []
-    for i, t in enumerate(turb_tables):
-        tv = _section(source, "turbulence", t)
-        turbulence.append(TurbulenceSegment(tv["start_s"], tv["duration_s"], tv["severity"]))
+    v["turbulence"] = [_section(source, "turbulence", t) for t in turb_tables]
 
     for side in ("taxi_out", "taxi_in"):
+        holds = []
         for j, h in enumerate(v[side]["holds_s"]):
-            _check_value(source, f"[{side}].holds_s[{j}]", Key(float, "a hold time in seconds", lo=0, hi=86400), h)
+            holds.append(_check_value(source, f"[{side}].holds_s[{j}]", Key(float, "a hold time in seconds", lo=0, hi=86400), h))
+        v[side]["holds_s"] = holds
     waypoints = []
     for j, wp in enumerate(v["route"]["waypoints"]):
         if not (isinstance(wp, list) and len(wp) == 2):
             raise _fail(source, f"[route].waypoints[{j}]", wp, "must be [lat_deg, lon_deg]")
         lat = _check_value(source, f"[route].waypoints[{j}][0]", Key(float, "latitude", lo=-90, hi=90), wp[0])
         lon = _check_value(source, f"[route].waypoints[{j}][1]", Key(float, "longitude", lo=-180, hi=180), wp[1])
-        waypoints.append((lat, lon))
+        waypoints.append([lat, lon])
+    v["route"]["waypoints"] = waypoints
+    return v
 
-    def runway(sec: str) -> Runway:
-        r = v[sec]
-        return Runway(r["icao"], r["runway"], r["threshold_lat_deg"], r["threshold_lon_deg"], r["elevation_m"],
-                      r["heading_deg"], r["length_m"], r["width_m"])
 
-    def taxi(sec: str) -> TaxiPlan:
-        t = v[sec]
-        return TaxiPlan(t["length_m"], tuple(float(h) for h in t["holds_s"]), t["lineup_hold_s"],
-                        t["taxiway_offset_m"], t["apron_depth_m"])
-
-    s = v["scenario"]
-    plan = FlightPlan(
-        name=s["name"],
-        aircraft=s["aircraft"],
-        origin=runway("origin"),
-        destination=runway("destination"),
-        taxi_out=taxi("taxi_out"),
-        taxi_in=taxi("taxi_in"),
-        cruise_alt_m=v["cruise"]["altitude_m"],
-        cruise_mach=v["cruise"]["mach"],
-        gate_wait_s=s["gate_wait_s"],
-        takeoff_thrust_norm=v["takeoff"]["thrust_norm"],
-        takeoff_flaps_norm=v["takeoff"]["flaps_norm"],
-        landing_flaps_norm=v["approach"]["landing_flaps_norm"],
-        waypoints=tuple(waypoints),
-        turbulence=tuple(turbulence),
-        descent_angle_deg=v["descent"]["angle_deg"],
-        glideslope_deg=v["approach"]["glideslope_deg"],
-        approach_fix_nm=v["approach"]["fix_nm"],
-        autobrake_decel_mps2=v["landing"]["autobrake_decel_mps2"],
-        post_shutdown_s=v["shutdown"]["post_shutdown_s"],
-        seed=s["seed"],
-        extra={"carrier": v["carrier"], "sensor": v["sensor"]},
-    )
+def check_scenario(source: str, plan: FlightPlan, sensor_preset: str, sensor_odr_hz: float | None) -> None:
+    """The checks across keys: the route is long enough for the cruise asked, the sensor part has the
+    output data rate asked."""
     _check_distance(source, plan)
-    sensor = v["sensor"]
-    allowed = SENSOR_PRESETS[sensor["preset"]].allowed_odr_hz
-    if sensor["odr_hz"] is not None and sensor["odr_hz"] not in allowed:
-        raise _fail(source, "[sensor].odr_hz", sensor["odr_hz"],
-                    f"the {sensor['preset']} part has only {', '.join(f'{f:g}' for f in allowed)} Hz")
-    return plan, s["description"]
+    allowed = SENSOR_PRESETS[sensor_preset].allowed_odr_hz
+    if sensor_odr_hz is not None and sensor_odr_hz not in allowed:
+        raise _fail(source, "[sensor].odr_hz", sensor_odr_hz,
+                    f"the {sensor_preset} part has only {', '.join(f'{f:g}' for f in allowed)} Hz")
 
 
 CLIMB_GRADIENT = 0.06  # a typical airliner climb gradient (6 %, about 1800 ft/min at 300 kt)
@@ -296,19 +274,24 @@ def _check_distance(source: str, plan: FlightPlan) -> None:
         )
 
 
-def load_scenario(path: Path) -> tuple[FlightPlan, str]:
-    """Read and validate a scenario file."""
+def read_toml(path: Path) -> dict[str, Any]:
+    """Read a scenario file's TOML document (not yet validated)."""
     path = Path(path)
     source = str(path)
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ScenarioError(f"{source}: no such scenario file") from None
+    except (IsADirectoryError, UnicodeDecodeError) as e:
+        raise ScenarioError(f"{source}: not a readable TOML text file ({e.__class__.__name__})") from None
+    return parse_toml(text, source)
+
+
+def parse_toml(text: str, source: str) -> dict[str, Any]:
     try:
-        doc = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise ScenarioError(f"{source}: TOML syntax error: {e}") from None
-    return parse_scenario(doc, source)
 
 
 def spec_text() -> str:

@@ -1,31 +1,78 @@
-"""Shared fixtures: flights are expensive, so each (scenario, seed) is flown once per session."""
+"""Shared fixtures. Flights are the expensive part of the suite, so each (scenario, seed, changes) is
+flown once per test session, whatever the number of pytest-xdist workers: the first worker to need
+a flight flies it and stores it (pickle, renamed into place) in the session's shared temporary
+folder, under a lock; the others load it."""
 
 from __future__ import annotations
 
-import dataclasses
+import os
+import pickle
+
 import pytest
 
 
 @pytest.fixture(scope="session")
-def fly_cached():
-    """fly_cached(name, seed=None, **plan_changes) -> (plan, track), memoised for the session."""
-    from flightmode.scenarios.registry import resolve
-    from flightmode.sim.flight.simulate import fly
+def _flight_cache_dir(tmp_path_factory, worker_id):
+    # with xdist, every worker's basetemp is a folder of one shared per-session folder
+    root = tmp_path_factory.getbasetemp()
+    if worker_id != "master":
+        root = root.parent
+    d = root / "flight-cache"
+    d.mkdir(exist_ok=True)
+    return d
 
-    cache: dict = {}
+
+@pytest.fixture(scope="session")
+def fly_cached(_flight_cache_dir):
+    """fly_cached(name, seed=None, **scenario_changes) -> (scenario, track): the scenario (a built-in
+    with ``Scenario.replace`` changes) flown by the pipeline's own ``fly`` with the run's ``flight``
+    streams, exactly as ``flightmode.run`` flies it."""
+    from filelock import FileLock
+
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.scenario import Scenario
+
+    memo: dict = {}
 
     def _fly(name: str, seed: int | None = None, **changes):
-        key = (name, seed, tuple(sorted(changes.items())))
-        if key not in cache:
-            plan, _, _ = resolve(name)
-            if seed is not None:
-                plan = dataclasses.replace(plan, seed=seed)
-            if changes:
-                plan = dataclasses.replace(plan, **changes)
-            cache[key] = (plan, fly(plan))
-        return cache[key]
+        sc = Scenario.builtin(name)
+        if seed is not None:
+            changes["seed"] = seed
+        if changes:
+            sc = sc.replace(**changes)
+        key = sc.digest()
+        if key not in memo:
+            path = _flight_cache_dir / f"{key}.pkl"
+            with FileLock(str(path) + ".lock"):
+                if path.exists():
+                    track = pickle.loads(path.read_bytes())
+                else:
+                    track = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"))
+                    tmp = path.with_suffix(f".tmp-{os.getpid()}")
+                    tmp.write_bytes(pickle.dumps(track, protocol=pickle.HIGHEST_PROTOCOL))
+                    os.replace(tmp, path)
+            memo[key] = (sc, track)
+        return memo[key]
 
     return _fly
+
+
+@pytest.fixture(scope="session")
+def run_cached(fly_cached):
+    """run_cached(name, seed=None, stages=(fly, sense, detect), **changes) -> RunResult of
+    ``flightmode.run`` (no files written), on the session's cached flight."""
+    from flightmode.scenarios import pipeline
+
+    memo: dict = {}
+
+    def _run(name: str, seed: int | None = None, stages=("fly", "sense", "detect"), **changes):
+        sc, track = fly_cached(name, seed, **changes)
+        key = (sc.digest(), tuple(stages))
+        if key not in memo:
+            memo[key] = pipeline.run(sc, track=track, stages=stages)
+        return memo[key]
+
+    return _run
 
 
 @pytest.fixture(scope="session")
@@ -42,13 +89,13 @@ def pattern_run(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def default_run(tmp_path_factory):
-    """`flightmode fly` (the default scenario, end to end, recording.rrd included), once per session."""
-    from typer.testing import CliRunner
+def default_run(tmp_path_factory, fly_cached):
+    """The default scenario's run folder (recording.rrd included), written by ``flightmode.run`` on the
+    session's cached flight (the CLI end to end is `pattern_run`'s)."""
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.scenario import DEFAULT_SCENARIO
 
-    from flightmode.scenarios.cli import app
-
+    sc, track = fly_cached(DEFAULT_SCENARIO)
     out = tmp_path_factory.mktemp("runs")
-    r = CliRunner().invoke(app, ["fly", "--out", str(out)])
-    assert r.exit_code == 0, r.output
-    return out / "gva-lhr-a320-s1", r.output
+    r = pipeline.run(sc, out=out, track=track)
+    return r.written["run_json"].parent, r

@@ -1,16 +1,46 @@
-"""Per-type speeds, flap schedules, geometry and gains: the one table the pilot flies from.
+"""Per-type speeds, flap schedules, geometry, procedures and gains: the one table the pilot flies
+from (the controllers in :mod:`flightmode.sim.flight.controllers` hold no numbers of their own).
 
-Speeds are chosen inside OpenAP WRAP's real-traffic ranges for the type (FACTS.md) and the
-type's published figures; gains were tuned on these JSBSim models. Flap commands are
-``fcs/flap-cmd-norm`` values of the JSBSim model (737: detents 1,2,5,10,15,25,30,40 at
-1/8 steps; A320 and 787-8: degrees / full travel (40 and 35 deg); fokker100: degrees / 42).
+Speeds are chosen inside OpenAP WRAP's real-traffic ranges for the type (OpenAP's ``WRAP`` kinematic
+model, built from ADS-B) and the type's published figures; gains were tuned on these JSBSim models.
+Flap commands are ``fcs/flap-cmd-norm`` values of the JSBSim model (737: detents
+1,2,5,10,15,25,30,40 at 1/8 steps; A320 and 787-8: degrees / full travel (40 and 35 deg);
+fokker100: degrees / 42).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from flightmode.errors import AircraftError, did_you_mean
+from flightmode.units import FT_M, KT_MPS
+
+
+@dataclass(frozen=True, slots=True)
+class PilotTuning:
+    """The pilot's procedures, limits and loop gains (the same for every type unless a profile sets
+    its own). PID tuples are (kp, ki, kd, lo, hi) in the units named."""
+
+    # procedures
+    taxi_straight_mps: float = 20.0 * KT_MPS  # about 20 kt on straight taxiways (Airbus A319 FCOM)
+    taxi_decel_mps2: float = 0.5  # slowing for corners and stops
+    pushback_mps: float = 1.2  # a tug's pushing speed
+    accel_height_m: float = 1500.0 * FT_M  # thrust reduction and acceleration height after takeoff
+    climb_out_m: float = 3000.0 * FT_M  # above the runway: initial climb ends, the climb begins
+    speed_limit_alt_m: float = 10_000.0 * FT_M  # 250 kt below FL100 (ICAO Annex 11, Appendix 4)
+    speed_limit_mps: float = 250.0 * KT_MPS
+    flare_bias_m: float = 15.0 * FT_M  # exponential-flare bias height: touchdown sink about h_b / tau
+    touchdown_aim_m: float = 300.0  # glideslope origin past the threshold (50 ft crossing at 3 deg)
+    exit_speed_mps: float = 20.0 * KT_MPS  # rollout ends, taxi-in begins
+    # limits: exceeding one fails the flight (FlightDivergedError)
+    max_bank_deg: float = 45.0
+    max_touchdown_sink_mps: float = 10.0 * FT_M  # 14 CFR 25.473(a): gear designed for 10 ft/s
+    # loop gains
+    climb_speed_pid: tuple = (0.008, 0.001, 0.04, -0.1, 0.35)  # IAS error (m/s) -> pitch (rad); kd damps the phugoid
+    path_pid: tuple = (1.0, 0.15, 0.0, -0.2, 0.35)  # flight-path angle error (rad) -> pitch (rad)
+    ground_speed_pid: tuple = (0.08, 0.02, 0.0)  # ground speed error (m/s) -> throttle (to taxi_throttle_max)
+    tug_pid: tuple = (20000.0, 4000.0, 0.0, -60000.0, 60000.0)  # speed error (m/s) -> tug force (lbf)
+    brake_pid: tuple = (0.5, 0.3, 0.0, 0.0, 1.0)  # deceleration error (m/s^2) -> brake command
 
 
 @dataclass(frozen=True, slots=True)
@@ -31,7 +61,7 @@ class AircraftProfile:
     n_engines: int
     length_m: float
     wingspan_m: float
-    cg_height_m: float  # settled reference height on the gear (FACTS.md)
+    cg_height_m: float  # settled reference height on the gear (JSBSim ground trim, measured)
     wheelbase_m: float
     fuel_kg: float  # loaded at the gate, spread over the tanks in proportion to capacity
     vr_kt: float
@@ -50,7 +80,7 @@ class AircraftProfile:
     reverse_throttle: float
     flare_height_ft: float
     touchdown_sink_fps: float  # the flare's commanded minimum sink rate
-    # gains (see sim.pilot)
+    # attitude and speed loop gains (flightmode.sim.flight.autopilot)
     pitch_kp: float = 2.0
     pitch_ki: float = 0.6
     pitch_kq: float = 1.2
@@ -75,8 +105,9 @@ class AircraftProfile:
             "forward_hold": (0.22 * length, 0.0, 1.8),
             "aft_hold": (-0.20 * length, 0.0, 1.8),
         }
-    taxi_turn_kt: float = 10.0  # FACTS.md: about 10 kt in turns
+    taxi_turn_kt: float = 10.0  # about 10 kt in turns (Airbus A319 FCOM)
     rotate_elevator: float = 0.3  # nose-up elevator bias during rotation (fraction of full travel)
+    tuning: PilotTuning = field(default_factory=PilotTuning)
 
 
 PROFILES: dict[str, AircraftProfile] = {

@@ -1,12 +1,12 @@
-"""The flight plan: the plain, validated data :func:`sim.flight.fly` consumes.
+"""The flight plan: the plain, validated data :func:`flightmode.sim.flight.simulate.fly` consumes.
 
-``scenarios/`` builds a :class:`FlightPlan` from a TOML file; sim never reads files itself.
-All units SI (or degrees where named), per DESIGN.md.
+``scenarios/`` builds a :class:`FlightPlan` from a scenario (its flight sections); the flight side
+never reads files itself. All units SI (or degrees where named).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from flightmode.labels import SEVERITIES  # noqa: F401  (re-exported for validation)
 
@@ -27,7 +27,7 @@ class Runway:
 
 @dataclass(frozen=True, slots=True)
 class TaxiPlan:
-    """A generated taxi route (see :mod:`sim.taxi_route`).
+    """A generated taxi route (see :mod:`flightmode.sim.flight.taxi_route`).
 
     ``length_m`` is the taxiway distance between the gate area and the runway; the route is a
     pushback, a straight run along a parallel taxiway ``taxiway_offset_m`` from the centreline,
@@ -73,5 +73,4 @@ class FlightPlan:
     approach_fix_nm: float = 16.0
     autobrake_decel_mps2: float = 1.5
     post_shutdown_s: float = 30.0
-    seed: int = 1
-    extra: dict = field(default_factory=dict)
+    fdm_hz: int = 120  # JSBSim's integration rate and the FlightTrack's sample rate

@@ -1,13 +1,15 @@
-"""Fly a :class:`sim.plan.FlightPlan` gate to gate in JSBSim and return its :class:`FlightTrack`.
+"""Fly a :class:`~flightmode.sim.flight.plan.FlightPlan` gate to gate in JSBSim and return its
+:class:`~flightmode.sim.flight.track.FlightTrack`.
 
-The FDM runs at 120 Hz; every step's state is recorded (the FlightTrack rate); the pilot ticks at
-4-40 Hz by phase (:attr:`sim.pilot.Pilot.control_every`: 40 Hz on the runway and below 1000 ft,
-5 Hz en route). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type`` 3) seeded from
-the plan's seed, so the same plan and seed give a bit-identical track (FACTS.md: JSBSim seeds 0 and
-1 are the same generator state; flightmode therefore passes ``seed + 2`` to JSBSim).
+The FDM runs at the plan's ``fdm_hz`` (120 Hz by default); every step's state is recorded (the
+FlightTrack rate); the pilot ticks at 4-40 Hz by phase (:attr:`Pilot.control_every`: 40 Hz on the
+runway and below 1000 ft, 5 Hz en route). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type``
+3) seeded from the flight's ``turbulence`` stream, so the same plan and streams give a bit-identical
+track. JSBSim's seeds 0 and 1 give the same generator state (its ``std::default_random_engine`` maps
+0 to 1), so the seed passed is at least 2.
 
-Severity mapping (documented, see :data:`sim.pilot.MILSPEC`): light = exceedance index 4 (1e-3)
-with 15 kt wind at 20 ft; moderate = index 6 (1e-5), 30 kt; severe = index 7 (1e-6), 45 kt.
+Severity mapping (documented, see :data:`~flightmode.sim.flight.pilot.MILSPEC`): light = exceedance
+index 4 (1e-3) with 15 kt wind at 20 ft; moderate = index 6 (1e-5), 30 kt; severe = index 7 (1e-6), 45 kt.
 
 Terrain: JSBSim's terrain is one flat elevation. It is the origin's elevation on the ground and is
 switched to the destination's at the top of climb (the aircraft is then far above both).
@@ -25,7 +27,7 @@ import numpy as np
 
 from flightmode.sim.flight import geodesy
 from flightmode.sim.flight.aircraft_profiles import get_profile
-from flightmode.errors import FlightError
+from flightmode.errors import FlightDivergedError
 from flightmode.sim.flight.jsbsim_adapter import FT_M, JSBSimAircraft
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.sim.flight.geodesy import RunwayFrame
@@ -33,16 +35,15 @@ from flightmode.sim.flight.pilot import Pilot
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import gate_position_out
 from flightmode.sim.flight.track import Event, FlightTrack, euler_to_quat_wxyz
-
-FDM_HZ = 120.0
-KG_LB = 2.20462262185
+from flightmode.streams import Streams, as_streams
+from flightmode.units import LB_KG
 
 
 def max_duration_s(plan: FlightPlan) -> float:
     """A generous time limit: a flight slower than this is stuck, not slow."""
     d = float(geodesy.great_circle_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg))
     ground = plan.gate_wait_s + sum(plan.taxi_out.holds_s) + sum(plan.taxi_in.holds_s) + 2 * 3600.0
-    return ground + d / 120.0 + 3600.0
+    return ground + d / 120.0 + 3600.0  # 120 m/s: slower than any airliner's mean speed
 
 
 def _load_fuel(ac: JSBSimAircraft, fuel_kg: float) -> None:
@@ -55,7 +56,7 @@ def _load_fuel(ac: JSBSimAircraft, fuel_kg: float) -> None:
         i += 1
     total = sum(caps)
     for i, cap in enumerate(caps):
-        ac.set(f"propulsion/tank[{i}]/contents-lbs", min(cap, fuel_kg * KG_LB * cap / total))
+        ac.set(f"propulsion/tank[{i}]/contents-lbs", min(cap, fuel_kg / LB_KG * cap / total))
 
 
 SETTLE_S = 8.0  # FDM time let run after run_ic, before the track's t = 0
@@ -63,31 +64,36 @@ SETTLE_S = 8.0  # FDM time let run after run_ic, before the track's t = 0
 
 def fly(
     plan: FlightPlan,
+    streams: Streams | np.random.Generator | int,
     *,
     workdir: Path | None = None,
     progress: Callable[[float, str], None] | None = None,
 ) -> FlightTrack:
-    """Fly ``plan`` gate to gate; raise :class:`FlightError` if the flight fails.
+    """Fly ``plan`` gate to gate; raise :class:`FlightDivergedError` if the flight fails.
 
+    ``streams``: the flight's random streams (:class:`flightmode.streams.Streams`; a Generator or an
+    integer seed is turned into streams): ``turbulence`` seeds JSBSim's gust generator.
     ``progress(t_s, phase)`` is called about once per simulated minute.
     """
+    streams = as_streams(streams)
+    fdm_hz = float(plan.fdm_hz)
     prof = get_profile(plan.aircraft)
-    ac = JSBSimAircraft(plan.aircraft, 1.0 / FDM_HZ, prof.n_engines, workdir=workdir)
+    ac = JSBSimAircraft(plan.aircraft, 1.0 / fdm_hz, prof.n_engines, workdir=workdir)
     origin = RunwayFrame(plan.origin)
     gx, gy, gh = gate_position_out(plan.taxi_out)
     lat0, lon0 = origin.to_latlon(gx, gy)
     ac.init_on_ground(lat0, lon0, plan.origin.elevation_m, (plan.origin.heading_deg + math.degrees(gh)) % 360.0)
     _load_fuel(ac, prof.fuel_kg)
-    ac.set("simulation/randomseed", plan.seed + 2)
+    ac.set("simulation/randomseed", 2 + streams.integer_seed("turbulence", 2**31 - 3))
     ac.set("atmosphere/turb-type", 0)
     ac.set("propulsion/cutoff_cmd", 1)
-    pilot = Pilot(ac, plan, prof, 3.0 / FDM_HZ)
+    pilot = Pilot(ac, plan, prof, fdm_hz)
     # JSBSim's state straight after run_ic is the requested initial condition, not yet resolved on
     # its gear: its first step moves the aircraft 0.2 m at once, and the gear then settles for about
     # 4 s (0.08 m/s, a few m/s^2). Let it settle before recording, so that the track starts truly at
-    # rest at the gate (a 0.2 m jump in 1/120 s is 3,000 m/s^2 of phantom acceleration to anything
+    # rest at the gate (a 0.2 m jump in one 1/120 s step is 3,000 m/s^2 of phantom acceleration to anything
     # that integrates the track, such as nav/).
-    for _ in range(int(SETTLE_S * FDM_HZ)):
+    for _ in range(int(SETTLE_S * fdm_hz)):
         ac.step()
 
     nch = len(ac.channels)
@@ -99,7 +105,7 @@ def fly(
     data = array("d")  # every step's raw channels, appended in place (no per-step NumPy work)
     ext = data.extend
     changes: list[tuple[int, int, int]] = [(0, pilot.phase_code, pilot.severity_code)]
-    limit_steps = int(max_duration_s(plan) * FDM_HZ)
+    limit_steps = int(max_duration_s(plan) * fdm_hz)
     step = 0
     terrain_m = plan.origin.elevation_m
     dest_terrain_from = None  # first step whose state lies over the destination's terrain
@@ -108,7 +114,7 @@ def fly(
         # a control tick: sample, decide, step
         raw = list(map(get, nodes))
         ext(raw)
-        t = step / FDM_HZ
+        t = step / fdm_hz
         codes = (pilot.phase_code, pilot.severity_code)
         x = list(map(mul, raw, scales_list))  # SI floats
         x.append(x[i_alt] - terrain_m)  # the derived channels (sim.jsbsim_adapter.DERIVED_CHANNELS)
@@ -131,10 +137,10 @@ def fly(
             run()
         step += every
         if step > limit_steps:
-            raise FlightError(
-                f"the flight did not reach the stand within {limit_steps / FDM_HZ:.0f} s",
+            raise FlightDivergedError(
+                f"the flight did not reach the stand within {limit_steps / fdm_hz:.0f} s",
                 phase=pilot.phase,
-                t_s=step / FDM_HZ,
+                t_s=step / fdm_hz,
             )
     raw_record = np.frombuffer(data, dtype=np.float64).reshape(-1, nch)
     terrain = np.full(step, plan.origin.elevation_m)
@@ -195,7 +201,8 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> Flight
     g = _gather(raw, ac.scales, groups)
     col = lambda name: g[name][:, 0]  # noqa: E731  (contiguous: the group is (n, 1))
     n = raw.shape[0]
-    t = np.arange(n) / FDM_HZ
+    fdm_hz = float(plan.fdm_hz)
+    t = np.arange(n) / fdm_hz
     o = plan.origin
     pos = geodesy.geodetic_to_ned(col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m)
     vel = g["vel"]
@@ -205,7 +212,7 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> Flight
     airborne_codes = np.array([PHASE_CODE[p] for p in AIRBORNE_PHASES])
     return FlightTrack(
         aircraft=plan.aircraft,
-        fs_hz=FDM_HZ,
+        fs_hz=fdm_hz,
         origin_lat_deg=o.lat_deg,
         origin_lon_deg=o.lon_deg,
         origin_alt_m=o.elevation_m,
@@ -242,4 +249,4 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> Flight
     )
 
 
-__all__ = ["fly", "FDM_HZ", "PHASES"]
+__all__ = ["fly", "PHASES"]

@@ -33,11 +33,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from flightmode.errors import FlightmodeError, did_you_mean
+from flightmode.errors import SensorError, did_you_mean
 
-
-class SensorError(FlightmodeError):
-    """A sensor preset, parameter or input stream that cannot be sensed as asked."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -178,6 +175,14 @@ class UnitDraw:
     offset_g: np.ndarray = field(default_factory=lambda: np.zeros(3))
     sensitivity_err: np.ndarray = field(default_factory=lambda: np.zeros(3))
     cross_axis: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
+
+    @classmethod
+    def from_dict(cls, d: dict | None) -> UnitDraw:
+        """The inverse of :meth:`as_dict` (a Recording's ``unit``, or run.json's); None: a perfect unit."""
+        if d is None:
+            return cls()
+        return cls(np.asarray(d["offset_g"], float), np.asarray(d["sensitivity_err"], float),
+                   np.asarray(d["cross_axis"], float))
 
     def as_dict(self) -> dict:
         return {

@@ -24,9 +24,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from flightmode.errors import FlightmodeError, did_you_mean
+from flightmode.errors import CarrierError, did_you_mean
+from flightmode.units import G0_MPS2 as G0
 
-G0 = 9.80665
 PLACEMENTS = {  # natural frequency (Hz) and damping ratio of the bag-on-support mount, per axis
     "under_seat": ((12.0, 12.0, 15.0), 0.25),
     "overhead_bin": ((10.0, 10.0, 12.0), 0.2),
@@ -42,9 +42,6 @@ LOCATION_OF = {
 KINDS = ("handbag", "parcel")
 BAG_STATES = ("carried", "resting", "stowed", "in_hold", "handled")
 
-
-class CarrierError(FlightmodeError):
-    """A carrier specification that cannot be laid on the flight."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -25,17 +25,20 @@ import numpy as np
 from scipy.signal import sosfilt, sosfilt_zi
 
 from flightmode.sim.sensor import carrier as car
-from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, SensorError, UnitDraw, draw_unit
+from flightmode.errors import SensorError
+from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, UnitDraw, draw_unit
+from flightmode.sim.flight import atmosphere
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.labels import PHASE_CODE
 from flightmode.sim.sensor.recording import Recording
 from flightmode.sim.flight.track import FlightTrack
 from flightmode.sim.sensor.vibration import VibrationModel, initial_state, vibration_g
+from flightmode.streams import Streams, as_streams
+from flightmode.units import G0_MPS2 as G0
 
 FS_INTERNAL_HZ = 1200.0
 CHUNK_S = 60.0
 SETTLE_S = 2.0
-G0 = 9.80665
 BAG_STATE_CODE = {s: i for i, s in enumerate(car.BAG_STATES)}
 
 
@@ -53,13 +56,6 @@ class GyroSpec:
     handling_dps: float = 30.0  # RMS rotation rate of a handled bag
 
 
-def isa_density_kgpm3(alt_m: np.ndarray) -> np.ndarray:
-    """ISA air density (troposphere and lower stratosphere)."""
-    h = np.asarray(alt_m, float)
-    tropo = 1.225 * np.clip(1.0 - 2.25577e-5 * h, 0.0, None) ** 4.2559
-    strato = 0.36392 * np.exp(-(h - 11000.0) / 6341.62)
-    return np.where(h < 11000.0, tropo, strato)
-
 
 def _check_track(track: FlightTrack) -> None:
     if not np.all(np.diff(track.t_s) > 0):
@@ -75,25 +71,30 @@ def sense(
     track: FlightTrack,
     spec: car.CarrierSpec,
     preset: AccelerometerPreset,
-    rng: np.random.Generator,
+    streams: Streams | np.random.Generator | int,
     vibration: VibrationModel = VibrationModel(),
     unit: UnitDraw | None = None,
     gyro: GyroSpec | None = None,
 ) -> Recording:
     """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``.
 
-    The unit's deviations are drawn from ``rng`` first (always, so that the rest of the stream does
-    not depend on it); pass ``unit`` to impose one instead (e.g. a perfect ``UnitDraw()``).
+    ``streams``: the sensing stage's random streams (:class:`flightmode.streams.Streams`; a Generator
+    or an integer seed is turned into streams), one per draw: ``unit`` (the part's offsets, gains and
+    cross-axis coupling), ``timeline`` (handling times, orientations), ``motion`` (gait, handling,
+    road), ``vibration``, ``noise`` (the output noise) and ``gyro``. Changing one draw never moves
+    another's numbers. Pass ``unit`` to impose a unit instead of drawing one (e.g. a perfect
+    ``UnitDraw()``).
     """
     _check_track(track)
     preset.validate()
+    streams = as_streams(streams)
     prof = get_profile(track.aircraft)
-    drawn = draw_unit(preset, rng)
-    unit = drawn if unit is None else unit
+    unit = draw_unit(preset, streams.rng("unit")) if unit is None else unit
     events = {e.name: e.t_s for e in track.events}
     cruise_idx = np.flatnonzero(track.phase_code == PHASE_CODE["cruise"])
     cruise = (float(track.t_s[cruise_idx[0]]), float(track.t_s[cruise_idx[-1]])) if cruise_idx.size else None
-    segs = car.build_timeline(spec, events, cruise, rng)
+    segs = car.build_timeline(spec, events, cruise, streams.rng("timeline"))
+    rng_motion, rng_vib, rng_noise = streams.rng("motion"), streams.rng("vibration"), streams.rng("noise")
     seg_t0 = np.array([s.t0_s for s in segs])
     t_start, t_end = segs[0].t0_s, segs[-1].t1_s
     fs = FS_INTERNAL_HZ
@@ -105,18 +106,18 @@ def sense(
     for i, s in enumerate(segs):
         n = int(round((s.t1_s - s.t0_s) * fs)) + 1
         if s.state == "handled":
-            motion[i] = car.handling_accel_mps2(n, dt, rng)
+            motion[i] = car.handling_accel_mps2(n, dt, rng_motion)
         elif s.phase == "truck":
-            motion[i] = car.road_accel_mps2(n, dt, rng)
+            motion[i] = car.road_accel_mps2(n, dt, rng_motion)
         elif s.walking:
-            motion[i] = car.gait_accel_mps2(np.arange(n) * dt, spec, rng)
+            motion[i] = car.gait_accel_mps2(np.arange(n) * dt, spec, rng_motion)
     # put-down shocks at the start of every resting / stowed segment that follows a carried one,
     # pick-up lifts at the start of every carried / handled segment that follows a resting one
     transients = (car.putdown_pulse_mps2(int(0.25 * fs), dt, spec), car.pickup_pulse_mps2(dt, spec))
 
     # track channels at 120 Hz as rows (channels first), interpolated per chunk row by row
     loc = prof.locations_m[car.LOCATION_OF[spec.placement]]
-    qbar = 0.5 * isa_density_kgpm3(track.alt_m) * track.tas_mps**2
+    qbar = 0.5 * atmosphere.density_kgpm3(track.alt_m) * track.tas_mps**2
     ne = track.n1_pct.shape[1]
     chans = np.vstack(
         [track.specific_force_at(loc).T, track.n1_pct.T, track.n2_pct.T, qbar, track.ground_speed_mps, track.wow]
@@ -124,7 +125,7 @@ def sense(
     mount = car.mount_sos(spec.placement, fs)
     mount_zi = [np.zeros((sos.shape[0], 2)) for sos in mount]
     mount_running = False
-    vstate = initial_state(ne, vibration, fs, rng)
+    vstate = initial_state(ne, vibration, fs, rng_vib)
     chain = SensorChain(preset, unit, fs)
     meas = []
     for c0 in range(0, n_total, int(CHUNK_S * fs)):
@@ -135,7 +136,7 @@ def sense(
         ks = range(int(si[0]), int(si[-1]) + 1)
         runs = np.searchsorted(si, np.arange(ks.start, ks.stop + 1), side="left")
         if any(segs[k].on_board for k in ks):
-            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mount, mount_zi,
+            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng_vib, mount, mount_zi,
                                              mount_running)
             mount_running = True
         else:
@@ -158,7 +159,7 @@ def sense(
             _transients(segs, k, transients, j, f_frame)
             np.matmul(s.orientation.T, f_frame, out=f_sensor[:, a:b])  # sensor <- frame: R^T f
         f_sensor *= 1.0 / G0
-        meas.append(chain.rows(f_sensor, t_start, rng))
+        meas.append(chain.rows(f_sensor, t_start, rng_noise))
     t_out = np.concatenate([m.t_s for m in meas])
     counts = np.concatenate([m.counts for m in meas])
     acc = np.concatenate([m.acc_g for m in meas])
@@ -170,7 +171,7 @@ def sense(
         per = int(round(preset.burst_interval_s * preset.odr_hz))
         keep = (k % per) < preset.burst_samples
         t_out, counts, acc, clipped = t_out[keep], counts[keep], acc[keep], clipped[keep]
-    gyro_dps = None if gyro is None else _gyro(t_out, segs, track, gyro, rng)
+    gyro_dps = None if gyro is None else _gyro(t_out, segs, track, gyro, streams.rng("gyro"))
     labels = _labels(t_out, segs, track, events)
     return Recording(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from flightmode.detector import evaluation as ev
-from flightmode.detector.flight_mode import DetectorParams, detect, sigma2_from_preset
+from flightmode.detector.flight_mode import DetectorParams, detect
+from flightmode.scenarios.pipeline import unit_sigma2
 from flightmode.detector.moving_variance import DetectorError
 
 P = DetectorParams()
@@ -132,14 +133,27 @@ def test_turn_on_response_nmv_is_the_time_threshold_and_emv_weight_speeds_the_mv
 
 def test_bench_calibration_gives_the_noise_or_the_quantisation_floor():
     rng = np.random.default_rng(5)
-    s2 = sigma2_from_preset("lis302dl-logged16", 100.0, None, 100, rng)
+    s2 = unit_sigma2("lis302dl-logged16", 100.0, None, 100, rng)
     # 60 s at 100 Hz: the median of 60 window variances is within ~3 x sqrt(2/99)/sqrt(60) ~ 4 %
     # (plus the median's bias for a chi-square, -0.7 %)
     np.testing.assert_allclose(s2, SIG**2, rtol=0.06)
-    s8 = sigma2_from_preset("lis302dl", 100.0, None, 100, rng)
-    assert np.all(s8 >= 0.018**2 / 12)  # never below the quantisation floor, never zero
-    with pytest.raises(Exception, match="unknown sensor preset"):
-        sigma2_from_preset("lis303", 100.0, None, 100, rng)
+    # the native 8-bit part (18 mg steps, 8 sigma of noise) lying flat, a perfect unit: the axes at
+    # 0 g sit mid-step and never leave count 0, so their variance is zero and the calibration floors
+    # it at the quantisation noise lsb^2 / 12, exactly (never zero: a zero threshold would forbid
+    # every transmission)
+    s8 = unit_sigma2("lis302dl", 100.0, None, 100, rng)
+    assert s8[0] == s8[1] == 0.018**2 / 12
+    # the axis at 1 g reads 1 / 0.018 = 55.56 counts: noise (0.124 counts) flips it between counts 55
+    # and 56 with p = Phi((55.5 - 55.56) / 0.124) = 0.33, a two-level signal of variance p (1 - p)
+    # lsb^2 (the median of 60 window variances of 100 samples is within about 15 % of it)
+    from scipy.stats import norm
+
+    p = norm.cdf((55.5 - 1 / 0.018) / (2.23e-3 / 0.018))
+    assert s8[2] == pytest.approx(p * (1 - p) * 0.018**2, rel=0.15)
+    from flightmode.errors import SensorError
+
+    with pytest.raises(SensorError, match=r"unknown sensor preset 'lis303'.*did you mean"):
+        unit_sigma2("lis303", 100.0, None, 100, rng)
 
 
 def test_evaluation_needs_the_labels():

@@ -10,20 +10,48 @@ from pathlib import Path
 
 import pytest
 
-from flightmode.scenarios.registry import DEFAULT_SCENARIO, builtin_names, builtin_path, resolve
-from flightmode.scenarios.spec import ScenarioError, load_scenario, parse_scenario
+from flightmode.errors import ScenarioError
+from flightmode.scenarios.scenario import DEFAULT_SCENARIO, Scenario, builtin_names, builtin_path
 
 REQUIRED_BUILTINS = {"gva-lhr-a320", "hel-zrh-f100", "ist-osl-737", "lhr-jfk-787", "pattern"}
 
 
-def test_builtin_library_is_complete_and_valid():
+def test_builtin_library_is_complete_and_every_scenario_round_trips_exactly():
     names = set(builtin_names())
     assert REQUIRED_BUILTINS <= names
     assert DEFAULT_SCENARIO == "gva-lhr-a320"
+    from flightmode.scenarios import cli
+
+    assert cli.DEFAULT_SCENARIO == DEFAULT_SCENARIO  # the CLI's copy (it imports nothing at start)
     for name in names:
-        plan, desc, path = resolve(name)
-        assert plan.name == name == path.stem
-        assert desc and "\n" not in desc
+        sc = Scenario.builtin(name)
+        assert sc.name == name == builtin_path(name).stem
+        text = sc.to_toml()
+        back = Scenario.from_toml_text(text)
+        # every field equal (floats bit for bit: TOML writes repr), the same text, the same hash
+        assert back == sc and back.to_toml() == text and back.digest() == sc.digest()
+        # and the TOML written is the file's own content: every key the file sets has the same value
+        doc = tomllib.loads(builtin_path(name).read_text())
+        written = tomllib.loads(text)
+        for sec, table in doc.items():
+            if isinstance(table, dict):
+                for k, v in table.items():
+                    assert written[sec][k] == v, (name, sec, k)
+
+
+def test_replace_is_validated_like_a_file_and_changes_only_what_it_names():
+    sc = Scenario.builtin("pattern")
+    s2 = sc.replace(seed=3, cruise={"altitude_m": 1000.0}, **{"carrier.placement": "overhead_bin"})
+    assert (s2.seed, s2.plan.cruise_alt_m, s2.carrier.placement) == (3, 1000.0, "overhead_bin")
+    assert s2.plan.cruise_mach == sc.plan.cruise_mach and s2.plan.origin == sc.plan.origin
+    assert s2 != sc and s2.digest() != sc.digest()
+    assert Scenario.from_toml_text(s2.to_toml()) == s2
+    with pytest.raises(ScenarioError, match=r"\[cruise\]\.altitude_ft.*did you mean \"altitude_m\""):
+        sc.replace(**{"cruise.altitude_ft": 1000.0})
+    with pytest.raises(ScenarioError, match=r"replace\(crusie=...\).*did you mean \"cruise\""):
+        sc.replace(crusie={"mach": 0.5})
+    with pytest.raises(ScenarioError, match=r"\[scenario\]\.seed = -1: must be >= 0"):
+        sc.replace(seed=-1)
 
 
 def _doc(name="pattern"):
@@ -39,7 +67,7 @@ def _write(tmp_path: Path, text: str) -> Path:
 def test_toml_syntax_error_names_file_and_position(tmp_path):
     p = _write(tmp_path, builtin_path("pattern").read_text().replace('name = "pattern"', 'name = "pattern'))
     with pytest.raises(ScenarioError) as ei:
-        load_scenario(p)
+        Scenario.from_toml(p)
     msg = str(ei.value)
     assert str(p) in msg and "TOML syntax error" in msg and "line" in msg
     assert "\n" not in msg
@@ -49,7 +77,7 @@ def test_unknown_key_suggests_the_nearest():
     doc = _doc()
     doc["cruise"]["altitude_ft"] = doc["cruise"].pop("altitude_m")
     with pytest.raises(ScenarioError) as ei:
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
     msg = str(ei.value)
     assert "x.toml: [cruise].altitude_ft" in msg and 'did you mean "altitude_m"' in msg
 
@@ -58,35 +86,35 @@ def test_unknown_section_suggests_the_nearest():
     doc = _doc()
     doc["turbulance"] = [{"start_s": 1, "duration_s": 2, "severity": "light"}]
     with pytest.raises(ScenarioError, match=r'\[turbulance\].*did you mean "turbulence"'):
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
 
 
 def test_wrong_type():
     doc = _doc()
     doc["cruise"]["mach"] = "fast"
     with pytest.raises(ScenarioError, match=r"\[cruise\]\.mach = 'fast': must be a float"):
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
 
 
 def test_negative_duration():
     doc = _doc()
     doc["scenario"]["gate_wait_s"] = -5
     with pytest.raises(ScenarioError, match=r"\[scenario\]\.gate_wait_s = -5.0: must be >= 0"):
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
 
 
 def test_negative_hold_in_a_list():
     doc = _doc()
     doc["taxi_out"]["holds_s"] = [30, -1]
     with pytest.raises(ScenarioError, match=r"\[taxi_out\]\.holds_s\[1\] = -1"):
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
 
 
 def test_unknown_aircraft_suggests_the_nearest():
     doc = _doc()
     doc["scenario"]["aircraft"] = "A321"
     with pytest.raises(ScenarioError) as ei:
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
     msg = str(ei.value)
     assert "[scenario].aircraft = 'A321'" in msg and 'did you mean "A320"' in msg and "737" in msg
 
@@ -95,7 +123,7 @@ def test_missing_required_key():
     doc = _doc()
     del doc["origin"]["heading_deg"]
     with pytest.raises(ScenarioError, match=r"\[origin\]\.heading_deg is missing"):
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
 
 
 def test_airports_too_close_for_the_cruise_asked():
@@ -103,18 +131,18 @@ def test_airports_too_close_for_the_cruise_asked():
     doc["destination"] = dict(_doc("hel-zrh-f100")["destination"])  # Geneva -> Zurich, 225 km
     doc["route"]["waypoints"] = []
     with pytest.raises(ScenarioError) as ei:
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
     msg = str(ei.value)
     assert "airports too close" in msg and "lower the cruise to at most" in msg
     # and the suggested altitude is accepted
     max_alt = float(msg.split("at most ")[1].split(" m")[0])
     doc["cruise"]["altitude_m"] = max_alt - 10.0
-    parse_scenario(doc, "x.toml")
+    Scenario.from_doc(doc, "x.toml")
 
 
 def test_unknown_builtin_name_suggests_the_nearest():
     with pytest.raises(ScenarioError, match=r"unknown scenario 'gva-lhr-a32'.*did you mean \"gva-lhr-a320\""):
-        resolve("gva-lhr-a32")
+        Scenario.resolve("gva-lhr-a32")
 
 
 @pytest.mark.parametrize(
@@ -149,7 +177,7 @@ def test_sensor_rate_the_part_does_not_have():
     doc = _doc()
     doc["sensor"] = {"preset": "lis302dl", "odr_hz": 200}
     with pytest.raises(ScenarioError, match=r"\[sensor\]\.odr_hz = 200.0: the lis302dl part has only 100, 400 Hz"):
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")
     doc["sensor"] = {"preset": "lis302dll"}
     with pytest.raises(ScenarioError, match=r'did you mean "lis302dl"'):
-        parse_scenario(doc, "x.toml")
+        Scenario.from_doc(doc, "x.toml")

@@ -29,15 +29,15 @@ def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_
     from flightmode.sim.flight.aircraft_profiles import get_profile
     from flightmode.sim.flight.flight_metrics import flight_metrics
 
-    plan, tr = fly_cached(name)
-    m = flight_metrics(tr, plan)
+    sc, tr = fly_cached(name)
+    m = flight_metrics(tr, sc.plan)
     record_property("metrics", json.dumps(m))
     print(f"\n{name} metrics: " + json.dumps({k: round(v, 2) for k, v in m.items()}))
     # ends parked at the stand with engines off
     assert tr.phase[-1] == "parked"
     assert np.all(tr.n2_pct[-1] < 5.0) and tr.ground_speed_mps[-1] < 0.05
 
-    w = _wrap(get_profile(plan.aircraft).wrap_type)
+    w = _wrap(get_profile(sc.aircraft).wrap_type)
 
     def within(value, spec, what):
         lo, hi = spec["minimum"], spec["maximum"]
@@ -79,7 +79,7 @@ def test_turbulence_intensity_rises_with_severity(fly_cached):
         TurbulenceSegment(1300.0, 240.0, "moderate"),
         TurbulenceSegment(1700.0, 240.0, "severe"),
     )
-    plan, tr = fly_cached("gva-lhr-a320", turbulence=segs)
+    sc, tr = fly_cached("gva-lhr-a320", turbulence=segs)
     nz = -tr.specific_force_body_mps2[:, 2] / 9.80665
     t_lo = tr.event_time("liftoff")
     stds, peaks = [], []

@@ -16,7 +16,7 @@ from flightmode.sim.sensor.sensing import sense
 
 @pytest.fixture(scope="module")
 def pattern_rec(fly_cached):
-    plan, tr = fly_cached("pattern")
+    sc, tr = fly_cached("pattern")
     rec = sense(tr, CarrierSpec(), get_preset("lis302dl-logged16"), np.random.default_rng(1), unit=UnitDraw())
     return tr, rec
 
@@ -163,8 +163,8 @@ ENGINE_PHASES = ("taxi_out", "takeoff_roll", "climb", "cruise", "descent", "roll
 
 @pytest.fixture(scope="module")
 def default_rec(fly_cached):
-    plan, tr = fly_cached("gva-lhr-a320")
-    return tr, sense(tr, CarrierSpec(), get_preset("lis302dl-logged16"), np.random.default_rng(plan.seed))
+    sc, tr = fly_cached("gva-lhr-a320")
+    return tr, sense(tr, CarrierSpec(), get_preset("lis302dl-logged16"), np.random.default_rng(sc.seed))
 
 
 def _psd(x, fs):
@@ -213,7 +213,7 @@ def test_in_flight_spectra_peak_between_10_and_30_hz(default_rec):
 def test_100_hz_odr_aliases_the_fan_line_400_hz_records_it(fly_cached):
     """Seed 000 section 4.2 says 60-70 Hz sampling keeps all vibration; the model says the cruise N1
     line (about 70 Hz) is above 50 Hz: at 100 Hz ODR it folds to 100 - f, at 400 Hz it is kept."""
-    plan, tr = fly_cached("gva-lhr-a320")
+    sc, tr = fly_cached("gva-lhr-a320")
     # the steadiest 5 minutes of cruise (the autothrottle moves N1, which smears the line)
     idx = np.flatnonzero(tr.phase == "cruise")
     w = int(300 * tr.fs_hz)

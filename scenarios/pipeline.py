@@ -1,0 +1,304 @@
+"""The pipeline: one run is fly -> sense -> detect -> path -> write, each a plain function over frozen
+containers, each callable on its own; :func:`run` chains them. The command line (``flightmode fly``,
+``flightmode sense``) is a thin shell over these functions, and so is everything that runs many
+flights.
+
+    >>> import flightmode
+    >>> r = flightmode.run("pattern", seed=3)          # doctest: +SKIP
+    >>> r.detection.false_static_count, r.written      # doctest: +SKIP
+    (0, {})
+
+Randomness: one :class:`~flightmode.streams.Streams` per run, from the scenario's seed (or the
+``seed`` given), with a named child per stage: ``flight`` (turbulence), ``sensor`` (the unit, the
+bag's timeline and motion, vibration, noise, gyro) and ``detector/bench`` (the bench calibration of
+the unit's noise). A stage's numbers depend only on its own streams, so re-sensing a flight with
+another sensor keeps the flight, and adding a draw to one stage never moves another's.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from flightmode.errors import FlightmodeError, did_you_mean
+from flightmode.scenarios.scenario import Scenario, SensorChoice
+from flightmode.streams import Streams
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from flightmode.detector.evaluation import Evaluation
+    from flightmode.sim.flight.track import FlightTrack
+    from flightmode.sim.sensor.accelerometer import AccelerometerPreset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.sensor.recording import Recording
+    from flightmode.sim.sensor.sensing import GyroSpec
+
+STAGES = ("fly", "sense", "detect", "path", "write")
+
+
+@dataclass(frozen=True, slots=True)
+class PathResult:
+    """The seed 002 path estimates of one recording (nav.evaluation.estimate_paths) and their errors."""
+
+    estimates: dict  # t_s, truth, acc, mask, tridiagonal, recurrence (world frame, m)
+    rows: list[dict]  # one per method: max / RMS / final error (m)
+    random_walk_m: float  # the t^1.5 law's RMS position error for the sensor's white noise over the span
+    offset_drift_m: float  # 0.5 |b| t^2: what the unit's zero-g offset b alone does over the span
+    span_s: float
+
+
+@dataclass(frozen=True, slots=True)
+class RunResult:
+    """What :func:`run` produced: every stage's output (None for a stage not run) and the files written."""
+
+    scenario: Scenario
+    seed: int
+    track: FlightTrack | None = None
+    metrics: dict | None = None
+    recording: Recording | None = None
+    detection: Evaluation | None = None
+    path: PathResult | None = None
+    written: dict[str, Path] = field(default_factory=dict)  # file role -> path ({} when nothing was written)
+    wall_s: dict[str, float] = field(default_factory=dict)  # stage -> wall-clock seconds
+
+    @property
+    def run_id(self) -> str:
+        return f"{self.scenario.name}-s{self.seed}"
+
+
+# ---------------------------------------------------------------------- resolving inputs
+def scenario_of(scenario: Scenario | str | Path) -> Scenario:
+    """A Scenario, a built-in name, or the path of a ``.toml`` file."""
+    return scenario if isinstance(scenario, Scenario) else Scenario.resolve(scenario)
+
+
+def streams_of(seed: int) -> Streams:
+    """The root random streams of a run."""
+    return Streams(seed)
+
+
+def sensor_preset(sensor: SensorChoice | str | AccelerometerPreset) -> AccelerometerPreset:
+    """An accelerometer preset from a scenario's ``[sensor]`` choice, a preset name, or a preset."""
+    from flightmode.sim.sensor.accelerometer import AccelerometerPreset, get_preset
+
+    if isinstance(sensor, AccelerometerPreset):
+        return sensor
+    if isinstance(sensor, str):
+        return get_preset(sensor)
+    preset = get_preset(sensor.preset)
+    if sensor.odr_hz is not None:
+        preset = dataclasses.replace(preset, odr_hz=float(sensor.odr_hz))
+    return preset
+
+
+# ---------------------------------------------------------------------- the stages
+def fly(scenario: Scenario, streams: Streams, *, progress: Callable[[float, str], None] | None = None,
+        workdir: Path | None = None) -> FlightTrack:
+    """Fly the scenario's plan gate to gate in JSBSim (``streams``: the run's flight streams)."""
+    from flightmode.sim.flight.simulate import fly as _fly
+
+    return _fly(scenario.plan, streams, workdir=workdir, progress=progress)
+
+
+def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str | AccelerometerPreset,
+          streams: Streams | np.random.Generator | int, *, gyro: GyroSpec | None = None) -> Recording:
+    """What the bag's sensor records of ``track`` (``streams``: the run's sensor streams)."""
+    from flightmode.sim.sensor.sensing import sense as _sense
+
+    return _sense(track, carrier, sensor_preset(sensor), streams, gyro=gyro)
+
+
+def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng: np.random.Generator) -> np.ndarray:
+    """sigma^2 per axis as the tracker's maker calibrates it on the bench (seed 000 section 5.1):
+    60 s of the unit (a Recording's ``unit`` dict; None: a perfect one) lying still
+    (:func:`~flightmode.sim.sensor.accelerometer.bench_static`), then
+    :func:`~flightmode.detector.flight_mode.calibrate_sigma2` with the quantisation floor."""
+    from flightmode.detector.flight_mode import calibrate_sigma2
+    from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
+
+    p = dataclasses.replace(get_preset(preset), odr_hz=float(odr_hz))
+    m = bench_static(p, UnitDraw.from_dict(unit), rng)
+    return calibrate_sigma2(m.acc_g, window, p.lsb_g)
+
+
+SIGMA2_SOURCES = ("preset", "rest")
+
+
+def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) -> tuple[np.ndarray, str]:
+    """sigma^2 per axis for a samples file and a sentence saying where it came from. ``preset``: the
+    bench calibration of the recording's own unit (needs the run.json beside the samples; the same
+    stream as the run's own detector); ``rest``: the truly static samples before the flight."""
+    from flightmode.detector.recommended import sigma2_from_rest
+    from flightmode.errors import DetectorError
+    from flightmode.sim.sensor.accelerometer import get_preset
+
+    if source not in SIGMA2_SOURCES:
+        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}{did_you_mean(source, SIGMA2_SOURCES)}")
+    if source == "preset":
+        if info is None or "sensor" not in info:
+            raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
+                                "use --sigma2-from rest for a bare samples file")
+        s = info["sensor"]
+        s2 = unit_sigma2(s["preset"], float(s["odr_hz"]), s.get("unit"), window,
+                         streams_of(int(info["seed"])).rng("detector/bench"))
+        return s2, f"bench calibration of this {s['preset']} unit (60 s static, quantisation floor)"
+    for name in ("sensor_static", "in_flight_window"):
+        if name not in columns:
+            raise DetectorError(f"--sigma2-from rest: the samples have no {name} column")
+    lsb = get_preset(info["sensor"]["preset"]).lsb_g if info is not None and info.get("sensor") else None
+    s2, n = sigma2_from_rest(columns["acc_g"], columns["sensor_static"], columns["in_flight_window"], window, lsb)
+    return s2, f"{n} truly static samples before the flight"
+
+
+def detect(recording: Recording, rng: np.random.Generator) -> Evaluation:
+    """Seed 000's recommended detector on the recording, sigma^2 from the bench calibration of its
+    unit (``rng``: the run's ``detector/bench`` stream), scored against the truth labels."""
+    from flightmode.detector.recommended import evaluate_recommended, recommended_params
+
+    p = recommended_params(recording.odr_hz)
+    s2 = unit_sigma2(recording.preset, recording.odr_hz, recording.unit, p.window, rng)
+    labels = {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
+              "phase": recording.phase}
+    return evaluate_recommended(recording.t_s, recording.acc_g, labels, recording.odr_hz, s2)
+
+
+def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
+    """Seed 002's cubic-spline paths of the bag while stowed, from its samples rotated with the truth
+    (truth-aided frames), and their errors against the truth, beside the random-walk law's figure."""
+    import math
+
+    import numpy as np
+
+    from flightmode.nav.evaluation import estimate_paths, path_rows, predicted_random_walk_m
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.sensor.accelerometer import get_preset
+    from flightmode.sim.sensor.carrier import LOCATION_OF
+    from flightmode.units import G0_MPS2
+
+    lever = get_profile(track.aircraft).locations_m[LOCATION_OF[recording.carrier.placement]]
+    est = estimate_paths(track, recording, lever)
+    span = float(est["t_s"][-1] - est["t_s"][0])
+    noise = get_preset(recording.preset).noise_g * G0_MPS2
+    law = float(predicted_random_walk_m(noise, recording.odr_hz, span)) if noise > 0 else math.nan
+    offset = float(np.linalg.norm(recording.unit["offset_g"])) * G0_MPS2
+    return PathResult(est, path_rows(est, recording.preset), law, 0.5 * offset * span**2, span)
+
+
+def write(out_dir: Path, result: RunResult, *, rrd: bool = True) -> dict[str, Path]:
+    """Write the run folder ``out_dir/<run_id>/`` (truth.parquet, samples.parquet, run.json and, with
+    ``rrd``, recording.rrd) atomically: built in a hidden staging folder and renamed into place only
+    when complete. Returns {role: path}."""
+    from flightmode.scenarios import run_io
+
+    rid = result.run_id
+    written: dict[str, Path] = {}
+    with run_io.staged_run_dir(Path(out_dir), rid) as stage:
+        final = Path(out_dir) / rid
+        info = run_io.run_info(result)
+        if result.track is not None:
+            run_io.write_truth(stage, result.track)
+            written["truth"] = final / "truth.parquet"
+        if result.recording is not None:
+            run_io.write_samples(stage, result.recording)
+            written["samples"] = final / "samples.parquet"
+        if rrd and result.track is not None and result.recording is not None and result.detection is not None:
+            from flightmode.scenarios.run_view import run_view
+            from flightmode.viz.rrd import write_rrd
+
+            t0 = time.perf_counter()
+            paths = result.path.estimates if result.path is not None else None
+            write_rrd(run_view(rid, result.scenario.plan, result.track, result.recording, result.detection, paths),
+                      stage / "recording.rrd")
+            info["wall_time_s"]["rrd"] = time.perf_counter() - t0
+            written["rrd"] = final / "recording.rrd"
+        run_io.write_run_json(stage, info)
+        written["run_json"] = final / "run.json"
+    return written
+
+
+# ---------------------------------------------------------------------- the chain
+def run(
+    scenario: Scenario | str | Path,
+    *,
+    seed: int | None = None,
+    sensor: SensorChoice | str | AccelerometerPreset | None = None,
+    out: str | Path | None = None,
+    stages: Sequence[str] = STAGES,
+    gyro: bool | GyroSpec = False,
+    rrd: bool = True,
+    progress: Callable[[float, str], None] | None = None,
+    on_stage: Callable[[str], None] | None = None,
+    track: FlightTrack | None = None,
+) -> RunResult:
+    """Run the pipeline on a scenario (a :class:`Scenario`, a built-in name or a ``.toml`` path).
+
+    ``seed``: the run's seed (default: the scenario's own); ``sensor``: an accelerometer preset name,
+    a :class:`SensorChoice` or an ``AccelerometerPreset`` instead of the scenario's; ``out``: where
+    to write the run folder (nothing is written when None); ``stages``: which of fly, sense, detect,
+    path, write to run (each needs the ones before it, but ``path`` is optional for ``write``);
+    ``gyro``: also record a gyroscope (True, or a ``GyroSpec``); ``rrd``: write recording.rrd too;
+    ``progress(t_s, phase)``: called about once per simulated minute while flying; ``on_stage(name)``:
+    called as each stage starts; ``track``: the scenario's flight flown before (by :func:`fly` with
+    this run's ``flight`` streams), to skip flying it again.
+    """
+    from flightmode.sim.flight.flight_metrics import flight_metrics
+    from flightmode.sim.sensor.sensing import GyroSpec
+
+    sc = scenario_of(scenario)
+    if seed is not None:
+        sc = sc.replace(seed=seed)
+    stages = tuple(stages)
+    for s in stages:
+        if s not in STAGES:
+            raise FlightmodeError(f"unknown pipeline stage '{s}'{did_you_mean(s, STAGES)}; stages: {', '.join(STAGES)}")
+    needs = {"sense": ("fly",), "detect": ("fly", "sense"), "path": ("fly", "sense"), "write": ("fly",)}
+    for s in stages:
+        missing = [n for n in needs.get(s, ()) if n not in stages]
+        if missing:
+            raise FlightmodeError(f"pipeline stage '{s}' needs {', '.join(missing)}: add it to stages")
+    root = streams_of(sc.seed)
+    wall: dict[str, float] = {}
+    tell = on_stage or (lambda name: None)
+    tell("fly")
+    t0 = time.perf_counter()
+    if track is None:
+        track = fly(sc, root.child("flight"), progress=progress)
+    elif track.aircraft != sc.aircraft or track.fs_hz != sc.plan.fdm_hz:
+        raise FlightmodeError(f"the track given is a {track.aircraft} at {track.fs_hz:g} Hz, not this scenario's flight "
+                              f"({sc.aircraft} at {sc.plan.fdm_hz} Hz)")
+    metrics = flight_metrics(track, sc.plan)
+    wall["fly"] = time.perf_counter() - t0
+    rec = det = path = None
+    if "sense" in stages:
+        tell("sense")
+        t0 = time.perf_counter()
+        g = gyro if isinstance(gyro, GyroSpec) else (GyroSpec() if gyro else None)
+        rec = sense(track, sc.carrier, sc.sensor if sensor is None else sensor, root.child("sensor"), gyro=g)
+        wall["sense"] = time.perf_counter() - t0
+    if "detect" in stages:
+        tell("detect")
+        t0 = time.perf_counter()
+        det = detect(rec, root.rng("detector/bench"))
+        wall["detect"] = time.perf_counter() - t0
+    if "path" in stages:
+        tell("path")
+        t0 = time.perf_counter()
+        path = estimate_path(track, rec)
+        wall["path"] = time.perf_counter() - t0
+    result = RunResult(sc, sc.seed, track, metrics, rec, det, path, {}, wall)
+    if "write" in stages and out is not None:
+        tell("write")
+        t0 = time.perf_counter()
+        written = write(Path(out), result, rrd=rrd)
+        wall["write"] = time.perf_counter() - t0
+        result = dataclasses.replace(result, written=written, wall_s=wall)
+    return result
+
+
+__all__ = ["run", "fly", "sense", "detect", "estimate_path", "write", "RunResult", "PathResult", "STAGES",
+           "unit_sigma2", "stream_sigma2", "sensor_preset", "scenario_of", "streams_of"]

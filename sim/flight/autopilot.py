@@ -1,0 +1,315 @@
+"""The loops every phase controller flies with: actuators, attitude and path loops, lateral
+navigation, runway tracking and taxiing. No JSBSim airliner has a usable autopilot, so this is one.
+
+Loops (PID blocks of :mod:`flightmode.sim.flight.control`): pitch on elevator with pitch-rate
+damping; vertical speed -> flight-path angle -> pitch; speed on pitch in the climb; heading -> bank ->
+aileron; IAS/Mach -> throttle (speedbrake when idle is not enough); great-circle course to each
+waypoint; localizer and glideslope by geometry to the destination runway; nose-wheel steering by
+pure pursuit on the ground, with yaw-rate feedback and differential braking. Gains and procedures
+come from the aircraft profile (:class:`~flightmode.sim.flight.aircraft_profiles.PilotTuning`).
+
+Each control tick the pilot hands the loops ``x``, the SI state row of
+:class:`~flightmode.sim.flight.jsbsim_adapter.JSBSimAircraft` (``x[ix["alt_m"]]``...). Plain scalar
+Python: the loops run at 4-40 Hz and NumPy scalars would be slower.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+from flightmode.sim.flight import geodesy
+from flightmode.sim.flight.aircraft_profiles import AircraftProfile
+from flightmode.sim.flight.control import PID, clamp, rate_limit
+from flightmode.sim.flight.geodesy import RunwayFrame
+from flightmode.sim.flight.plan import FlightPlan
+from flightmode.sim.flight.taxi_route import Path2D, pure_pursuit_steer_rad
+from flightmode.units import FT_M, KT_MPS, LB_KG, NM_M
+
+
+class Autopilot:
+    """The loops and actuators of one flight, and the navigation state the phases share."""
+
+    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, event: Callable[[str, str], None]):
+        self.ac = ac
+        self.plan = plan
+        self.prof = profile
+        self.tune = profile.tuning
+        self.event = event  # event(name, detail): logs a flight event at the current time
+        self.ix = ac.index
+        self.dt = 0.025
+        self.t = 0.0
+        self.origin = RunwayFrame(plan.origin)
+        self.dest = RunwayFrame(plan.destination)
+        p, tu = profile, profile.tuning
+        self.pitch_pid = PID(p.pitch_kp, p.pitch_ki, 0.0, -1.0, 1.0)
+        self.spd_pid = PID(p.spd_kp, p.spd_ki, 0.0, 0.0, 1.0)
+        self.climb_spd_pid = PID(*tu.climb_speed_pid)
+        self.gamma_pid = PID(*tu.path_pid)
+        self.ground_spd_pid = PID(*tu.ground_speed_pid, 0.0, p.taxi_throttle_max)
+        self.tug_pid = PID(*tu.tug_pid)
+        self.brake_pid = PID(*tu.brake_pid)
+        # shared state
+        self.thr = 0.0  # the smoothed throttle
+        self.theta_cmd = 0.0
+        self.flaps = 0.0
+        self.path: Path2D | None = None  # the taxi route being followed
+        self.diff_brake = 0.0
+        self.decel_f = 0.0  # filtered ground deceleration (m/s^2)
+        self._gs_prev = 0.0
+        self.waypoints = list(plan.waypoints) + [self.approach_fix()]
+        self.wp = 0
+        # distance from each waypoint to the threshold along the remaining legs (constant)
+        legs = [geodesy.gc_distance_m(*a, *b) for a, b in zip(self.waypoints, self.waypoints[1:])]
+        self.legs_after_m = [sum(legs[i:]) + plan.approach_fix_nm * NM_M for i in range(len(self.waypoints))]
+        self.loc_mode = False  # on the localizer
+        self.theta_final: float | None = None  # pitch held on short final (deg)
+        self.v_tgt: float | None = None
+        self.vs_cmd: float | None = None
+
+    # ------------------------------------------------------------------ every tick
+    def update(self, x, t: float, dt: float) -> None:
+        """Time, and the filtered deceleration the autobrake loop closes on."""
+        self.t, self.dt = t, dt
+        gs = self.gs(x)
+        self.decel_f += 0.3 * (-(gs - self._gs_prev) / dt - self.decel_f)
+        self._gs_prev = gs
+
+    # ------------------------------------------------------------------ actuators
+    def throttle(self, u: float) -> None:
+        for i in range(self.prof.n_engines):
+            self.ac.set(f"fcs/throttle-cmd-norm[{i}]", u)
+
+    def throttle_smooth(self, u: float) -> None:
+        self.thr = rate_limit(self.thr, u, 0.15 * self.dt)
+        self.throttle(self.thr)
+
+    def brakes(self, u: float) -> None:
+        self.ac.set("fcs/left-brake-cmd-norm", u)
+        self.ac.set("fcs/right-brake-cmd-norm", u)
+
+    def steer(self, rad: float) -> None:
+        self.ac.set("fcs/steer-pos-deg[0]", math.degrees(rad))
+
+    def set_flaps(self, norm: float) -> None:
+        if norm != self.flaps:
+            self.flaps = norm
+            self.ac.set("fcs/flap-cmd-norm", norm)
+            self.event("flaps", f"{norm:.3f}")
+
+    # ------------------------------------------------------------------ state
+    def gs(self, x) -> float:
+        return math.hypot(x[self.ix["v_north_mps"]], x[self.ix["v_east_mps"]])
+
+    def ground_speed_signed(self, x) -> float:
+        psi = x[self.ix["psi_rad"]]
+        return x[self.ix["v_north_mps"]] * math.cos(psi) + x[self.ix["v_east_mps"]] * math.sin(psi)
+
+    # ------------------------------------------------------------------ attitude and path loops
+    def pitch_to(self, x, theta_cmd: float, bias: float = 0.0) -> None:
+        e = theta_cmd - x[self.ix["theta_rad"]]
+        u = self.pitch_pid(e, self.dt, ff=bias - self.prof.pitch_kq * x[self.ix["q_radps"]])
+        self.ac.set("fcs/elevator-cmd-norm", -u)
+
+    def bank_to(self, x, phi_cmd: float) -> None:
+        p = self.prof
+        u = p.roll_kp * (phi_cmd - x[self.ix["phi_rad"]]) - p.roll_kp_p * x[self.ix["p_radps"]]
+        self.ac.set("fcs/aileron-cmd-norm", clamp(u, -1.0, 1.0))
+
+    def heading_to(self, x, psi_cmd: float, max_bank_deg: float) -> None:
+        err = (psi_cmd - x[self.ix["psi_rad"]] + math.pi) % (2 * math.pi) - math.pi
+        phi_cmd = clamp(2.0 * err, -math.radians(max_bank_deg), math.radians(max_bank_deg))
+        self.bank_to(x, phi_cmd)
+
+    def speed_on_pitch(self, x, target_mps: float, lo_deg: float, hi_deg: float, rate_dps: float) -> None:
+        """Too fast -> pitch up: PI from IAS error to the pitch command (integrator = trim pitch),
+        the command moving at most ``rate_dps``."""
+        err = x[self.ix["ias_mps"]] - target_mps
+        theta = clamp(self.climb_spd_pid(err, self.dt), math.radians(lo_deg), math.radians(hi_deg))
+        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(rate_dps) * self.dt)
+        self.pitch_to(x, self.theta_cmd)
+
+    def path_to(self, x, vs_cmd: float, lo_deg: float, hi_deg: float, rate_dps: float = 3.0,
+                boost: float = 0.0) -> None:
+        """Vertical speed -> flight-path angle error -> pitch (PI; the integrator is trim pitch)."""
+        ix = self.ix
+        tas = max(x[ix["tas_mps"]], 30.0)
+        gamma_cmd = math.asin(clamp(vs_cmd / tas, -0.3, 0.3))
+        gamma = math.asin(clamp(-x[ix["v_down_mps"]] / tas, -0.5, 0.5))
+        # the pitch limits are the PID's own output limits, so its integrator cannot wind up
+        # against them (it did, holding attitude on short final, and then the flare was late)
+        self.gamma_pid.lo, self.gamma_pid.hi = math.radians(lo_deg), math.radians(hi_deg)
+        theta = self.gamma_pid(gamma_cmd - gamma, self.dt) + boost * (gamma_cmd - gamma)
+        theta = clamp(theta, math.radians(lo_deg), math.radians(hi_deg))
+        self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(rate_dps) * self.dt)
+        self.pitch_to(x, self.theta_cmd)
+
+    # ------------------------------------------------------------------ navigation
+    def approach_fix(self) -> tuple[float, float]:
+        d = self.plan.destination
+        return geodesy.destination_point(
+            d.lat_deg, d.lon_deg, (d.heading_deg + 180.0) % 360.0, self.plan.approach_fix_nm * NM_M
+        )
+
+    def distance_to_go_m(self, x) -> float:
+        lat, lon = x[self.ix["lat_deg"]], x[self.ix["lon_deg"]]
+        if self.loc_mode:
+            rx, _ = self.dest.to_xy(lat, lon)
+            return -rx
+        wp = self.waypoints[self.wp]
+        return geodesy.gc_distance_m(lat, lon, *wp) + self.legs_after_m[self.wp]
+
+    def path_alt_m(self, d_m: float) -> float:
+        """The vertical profile: glideslope inside 10 nm, the descent path beyond."""
+        elev = self.plan.destination.elevation_m
+        gs = math.tan(math.radians(self.plan.glideslope_deg))
+        d_gs = 10.0 * NM_M
+        aim = self.tune.touchdown_aim_m
+        d_m = max(d_m, -aim)
+        if d_m <= d_gs:
+            return elev + gs * (d_m + aim)
+        return elev + gs * (d_gs + aim) + math.tan(math.radians(self.plan.descent_angle_deg)) * (d_m - d_gs)
+
+    def lateral(self, x, *, runway_heading_below_m: float | None = None, may_capture: bool = False) -> bool:
+        """Fly the route: runway heading below ``runway_heading_below_m`` (after takeoff), great-circle
+        courses to each waypoint, then the localizer. Returns True on the tick the localizer is
+        captured (only when ``may_capture``)."""
+        ix = self.ix
+        lat, lon = x[ix["lat_deg"]], x[ix["lon_deg"]]
+        if runway_heading_below_m is not None and x[ix["agl_m"]] < runway_heading_below_m:
+            self.heading_to(x, self.origin.heading_rad, 5.0)
+            return False
+        captured = False
+        if not self.loc_mode:
+            wp = self.waypoints[self.wp]
+            d = geodesy.gc_distance_m(lat, lon, *wp)
+            if self.wp == len(self.waypoints) - 1:
+                # approach fix: engage the localizer once close, or once abeam inside the cone
+                rx, ry = self.dest.to_xy(lat, lon)
+                hdg_err = abs((x[ix["psi_rad"]] - self.dest.heading_rad + math.pi) % (2 * math.pi) - math.pi)
+                inside_cone = -(self.plan.approach_fix_nm + 2.0) * NM_M < rx < -3.0 * NM_M and abs(ry) < 1.5 * NM_M
+                if may_capture and (d < 2.5 * NM_M or inside_cone) and hdg_err < math.radians(75.0):
+                    self.loc_mode = captured = True
+                    self.event("localizer_capture", "")
+            elif d < 2.0 * NM_M:
+                self.wp += 1
+                self.event("waypoint", f"{self.wp}")
+            if not self.loc_mode:
+                self.heading_to(x, geodesy.gc_course_rad(lat, lon, *wp), self.prof.turn_bank_deg)
+                return captured
+        rx, ry = self.dest.to_xy(lat, lon)
+        look = max(1500.0, min(6000.0, -rx * 0.25))
+        crs = self.dest.heading_rad - math.atan2(ry, look)
+        bank = self.prof.turn_bank_deg if x[ix["agl_m"]] > 500 * FT_M else 8.0
+        self.heading_to(x, crs, bank)
+        return captured
+
+    def speed_target_mps(self, x, d_m: float, climbing: bool, on_approach_legs: bool) -> float:
+        p, tu = self.prof, self.tune
+        ix = self.ix
+        alt = x[ix["alt_m"]]
+        ias = x[ix["ias_mps"]]
+        mach = max(x[ix["mach"]], 0.05)
+        if climbing:
+            v = tu.speed_limit_mps if alt < tu.speed_limit_alt_m else p.climb_ias_kt * KT_MPS
+        else:  # descending: slow to 250 kt 500 ft above the limit's altitude
+            v = tu.speed_limit_mps if alt < tu.speed_limit_alt_m + 500.0 * FT_M else p.descent_ias_kt * KT_MPS
+        v = min(v, ias / mach * self.plan.cruise_mach)  # Mach limit above the crossover
+        if on_approach_legs:
+            for step in p.approach_steps:
+                if d_m < step.dist_nm * NM_M:
+                    final = step is p.approach_steps[-1]
+                    v = min(v, self.vapp_mps() if final else step.speed_kt * KT_MPS)
+        return v
+
+    def vapp_mps(self) -> float:
+        """Final approach speed for the current mass (stall speed scales with sqrt(mass))."""
+        mass_kg = self.ac.get("inertia/weight-lbs") * LB_KG
+        k = clamp(math.sqrt(mass_kg / self.prof.ref_landing_mass_kg), 0.95, 1.1)
+        return self.prof.vapp_kt * k * KT_MPS
+
+    def configure_approach(self, d_m: float, ias_mps: float) -> None:
+        for step in self.prof.approach_steps:
+            # a setting is selected inside its distance gate once slow enough for it: within 10 kt
+            # of its own speed (these models' flaps give so much lift that, selected fast on a light
+            # aircraft, they drive the angle of attack negative and the pitch loop porpoises)
+            limit_kt = step.speed_kt + 10.0
+            if d_m < step.dist_nm * NM_M and ias_mps <= limit_kt * KT_MPS:
+                flaps = step.flaps_norm
+                if step.gear_down and self.ac.get("gear/gear-cmd-norm") < 0.5:
+                    self.ac.set("gear/gear-cmd-norm", 1.0)
+                    self.event("gear_down", "")
+                if flaps > self.flaps:
+                    landing = self.plan.landing_flaps_norm
+                    last = step is self.prof.approach_steps[-1]
+                    self.set_flaps(min(flaps, landing) if landing is not None and last else flaps)
+
+    def retract_flaps(self, x, above_m: float | None = None) -> None:
+        """Flaps up on the schedule (IAS above which each setting goes), above ``above_m`` AGL."""
+        if above_m is not None and x[self.ix["agl_m"]] <= above_m:
+            return
+        for v_kt, fl in self.prof.flap_retract_kt:
+            if x[self.ix["ias_mps"]] > v_kt * KT_MPS and fl < self.flaps:
+                self.set_flaps(fl)
+
+    # ------------------------------------------------------------------ on the ground
+    def runway_track(self, x, frame: RunwayFrame) -> None:
+        """Centreline tracking on the runway: nose wheel (fading with speed) plus rudder."""
+        ix = self.ix
+        rx, ry = frame.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
+        ias = x[ix["ias_mps"]]
+        hdg = frame.heading_in_frame(x[ix["psi_rad"]])
+        hdg = (hdg + math.pi) % (2 * math.pi) - math.pi
+        psi_err = -math.atan2(ry, 150.0) - hdg
+        r = x[ix["r_radps"]]
+        # the JSBSim airliners are directionally unstable on their gear: keep nose-wheel authority
+        # (fading from 30 to 6 deg with speed) and damp the yaw rate with wheel and rudder alike
+        steer_lim = math.radians(max(6.0, 30.0 * (1.0 - ias / 40.0)))
+        self.steer(clamp(2.0 * psi_err - 1.0 * r, -steer_lim, steer_lim))
+        # JSBSim convention: positive rudder command yaws the nose left (checked in flight for all
+        # four models), the opposite of the nose wheel's positive-right steering angle
+        self.ac.set("fcs/rudder-cmd-norm", clamp(-(4.0 * psi_err - 3.0 * r), -1.0, 1.0))
+
+    def follow(self, x, frame: RunwayFrame, v_max: float, lookahead_m: float, max_steer_deg: float):
+        """Pure pursuit along ``self.path``; returns (s, cross-track error, speed target)."""
+        ix = self.ix
+        rx, ry = frame.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
+        s, cross = self.path.project(rx, ry)
+        target = self.path.point_at(s + lookahead_m)
+        hdg = frame.heading_in_frame(x[ix["psi_rad"]])
+        steer, alpha = pure_pursuit_steer_rad(rx, ry, hdg, target, self.prof.wheelbase_m)
+        # yaw-rate feedback around the kinematic pure-pursuit angle: the gear's yaw response lags
+        # (badly on the A320 model), and without it the turns overshoot
+        gs = self.gs(x)
+        ld = max(math.hypot(target[0] - rx, target[1] - ry), 1.0)
+        r_des = gs * 2.0 * math.sin(alpha) / ld
+        r_err = r_des - x[ix["r_radps"]]
+        steer += 1.5 * r_err
+        # differential braking where the nose wheel alone cannot hold the turn rate (as pilots do)
+        self.diff_brake = clamp(4.0 * r_err, -0.4, 0.4) if gs > 1.0 else 0.0
+        lim = math.radians(max_steer_deg)
+        self.steer(clamp(steer, -lim, lim))
+        v_t = v_max
+        v_turn = self.prof.taxi_turn_kt * KT_MPS
+        if abs(steer) > math.radians(15.0):  # hard steering: no faster than a turn
+            v_t = v_turn
+        for sc in self.path.corners_s:
+            if sc > s - 15.0:
+                d = max(0.0, sc - s - 10.0)
+                v_t = min(v_t, math.sqrt(v_turn**2 + 2 * self.tune.taxi_decel_mps2 * d))
+        return s, cross, v_t
+
+    def speed_on_ground(self, gs: float, v_t: float) -> None:
+        """Throttle and brakes to a ground speed target, with the differential braking of
+        :meth:`follow`."""
+        err = v_t - gs
+        thr = self.ground_spd_pid(err, self.dt)
+        if v_t < 0.05:
+            thr = 0.0
+        self.throttle(thr)
+        brake = 0.0
+        if err < -0.8 or v_t < 0.05:
+            brake = clamp(-0.3 * err, 0.15 if v_t < 0.05 else 0.0, 1.0)
+        d = self.diff_brake
+        self.ac.set("fcs/left-brake-cmd-norm", clamp(brake + max(0.0, -d), 0.0, 1.0))
+        self.ac.set("fcs/right-brake-cmd-norm", clamp(brake + max(0.0, d), 0.0, 1.0))
