@@ -1,7 +1,7 @@
-"""The one label vocabulary every sample carries (DESIGN.md, "Labels every sample carries").
+"""The one label vocabulary every sample carries (tracks, recordings, datasets).
 
 Phases are stored as small integer codes into :data:`PHASES` inside arrays and as strings at
-the dataset edge. The flight phases come from :mod:`sim.pilot`; the bag's ground phases
+the dataset edge. The flight phases are the pilot's (:mod:`flightmode.sim.flight.phases`); the bag's ground phases
 (terminal walk, boarding, ...) from the carrier timeline.
 """
 

@@ -253,8 +253,9 @@ def path_cmd(
             preset = run_preset if name == "run" else name
             if preset in recs:
                 continue
-            # re-sensing is deterministic: the run's own preset gives its samples.parquet again,
-            # with the carrier timeline (orientations) that the truth-aided frames need
+            # re-sensing with the run's own streams: the run's own preset gives its samples again (to
+            # one count: truth.parquet stores the forces in float32), with the carrier timeline
+            # (orientations) that the truth-aided frames need
             recs[preset] = pipeline.sense(track, sc.carrier, preset, streams.child("sensor"))
         rows = path_rows(track, recs, sc.carrier, streams)
         if as_json:
@@ -342,6 +343,7 @@ def sense_cmd(
             sc = sc.replace(sensor={"preset": sensor, "odr_hz": None})
         t0 = time.perf_counter()
         # the run's own sensor streams: the same preset and carrier give its samples.parquet again
+        # (labels exactly, counts to one step: truth.parquet stores the forces in float32)
         rec = pipeline.sense(track, sc.carrier, sc.sensor, pipeline.streams_of(sc.seed).child("sensor"),
                              gyro=GyroSpec() if gyro else None)
         wall = time.perf_counter() - t0

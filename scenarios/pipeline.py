@@ -98,11 +98,12 @@ def sensor_preset(sensor: SensorChoice | str | AccelerometerPreset) -> Accelerom
 
 # ---------------------------------------------------------------------- the stages
 def fly(scenario: Scenario, streams: Streams, *, progress: Callable[[float, str], None] | None = None,
-        workdir: Path | None = None) -> FlightTrack:
-    """Fly the scenario's plan gate to gate in JSBSim (``streams``: the run's flight streams)."""
+        workdir: Path | None = None, stop_after_s: float | None = None) -> FlightTrack:
+    """Fly the scenario's plan gate to gate in JSBSim (``streams``: the run's flight streams;
+    ``stop_after_s``: only the first that many simulated seconds, the exact prefix of the flight)."""
     from flightmode.sim.flight.simulate import fly as _fly
 
-    return _fly(scenario.plan, streams, workdir=workdir, progress=progress)
+    return _fly(scenario.plan, streams, workdir=workdir, progress=progress, stop_after_s=stop_after_s)
 
 
 def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str | AccelerometerPreset,

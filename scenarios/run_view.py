@@ -1,5 +1,5 @@
 """Assemble a run's results (FlightTrack, Recording, detector Evaluation, nav estimates) into the
-plain arrays of :class:`viz.rrd.RunView`. Only selection, decimation and frame conventions for
+plain arrays of :class:`flightmode.viz.rrd.RunView`. Only selection, decimation and frame conventions for
 display happen here (NED -> ENU, body -> ENU attitude); every number shown was computed upstream."""
 
 from __future__ import annotations
@@ -8,6 +8,7 @@ import numpy as np
 
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.labels import CARRIER_PHASES
+from flightmode.units import G0_MPS2
 
 NED_TO_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 
@@ -29,8 +30,11 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
     pt, pl = _changes(rec.t_s, rec.phase)
     # the bag's own phases (the aircraft's are among the track's events already)
     info += [(float(t), f"bag: {p}") for t, p in zip(pt, pl) if p in CARRIER_PHASES]
-    # aircraft channels at 10 Hz (every 12th FDM step)
-    k = slice(None, None, 12)
+    def every(hz: float) -> slice:  # the track decimated to about ``hz``
+        return slice(None, None, max(1, round(track.fs_hz / hz)))
+
+    # aircraft channels at 10 Hz
+    k = every(10.0)
     ta = track.t_s[k]
     ne = track.n1_pct.shape[1]
     aircraft = {
@@ -38,10 +42,10 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
         "airspeed_mps": (ta, np.column_stack([track.ias_mps[k], track.ground_speed_mps[k]]), ["IAS", "ground speed"]),
         "vertical_speed_mps": (ta, track.vertical_speed_mps[k], ["vertical speed"]),
         "n1_pct": (ta, track.n1_pct[k], [f"N1 engine {i + 1}" for i in range(ne)]),
-        "load_factor_g": (ta, -track.specific_force_body_mps2[k, 2] / 9.80665, ["n_z"]),
+        "load_factor_g": (ta, -track.specific_force_body_mps2[k, 2] / G0_MPS2, ["n_z"]),
     }
     # 3D pose at 2 Hz: position NED -> ENU, attitude body -> NED -> ENU
-    kp = slice(None, None, 60)
+    kp = every(2.0)
     pos = track.pos_ned_m[kp] @ NED_TO_ENU.T
     r = Rotation.from_matrix(NED_TO_ENU) * Rotation.from_quat(track.quat_wxyz[kp], scalar_first=True)
     prof = get_profile(track.aircraft)
@@ -51,7 +55,7 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
         step = max(1, int(rec.odr_hz))  # one point per second
         for name in ("truth", "tridiagonal", "recurrence"):
             p3[name] = paths[name][::step] @ NED_TO_ENU.T
-    route = np.column_stack([track.lat_deg[::120], track.lon_deg[::120]])
+    route = np.column_stack([track.lat_deg[every(1.0)], track.lon_deg[every(1.0)]])
     airports = [(a.icao, a.name, a.lat_deg, a.lon_deg) for a in (plan.origin, plan.destination)]
     return RunView(
         run_id=run_id, t_s=rec.t_s, acc_g=rec.acc_g, acc_norm_g=np.linalg.norm(rec.acc_g, axis=1), counts=rec.counts,

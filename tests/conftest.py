@@ -76,16 +76,21 @@ def run_cached(fly_cached):
 
 
 @pytest.fixture(scope="session")
-def pattern_run(tmp_path_factory):
-    """A run folder written by `flightmode fly pattern` (the CLI, end to end), once per session."""
+def pattern_run(_flight_cache_dir):
+    """A run folder written by `flightmode fly pattern` (the CLI, end to end), once per session (shared
+    by the workers like the flights; tests only read it). Returns (run folder, the command's output)."""
+    from filelock import FileLock
     from typer.testing import CliRunner
 
     from flightmode.scenarios.cli import app
 
-    out = tmp_path_factory.mktemp("runs")
-    r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(out)])
-    assert r.exit_code == 0, r.output
-    return out / "pattern-s1", r.output
+    out = _flight_cache_dir / "pattern-cli"
+    with FileLock(str(out) + ".lock"):
+        if not (out / "output.txt").exists():
+            r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(out)])
+            assert r.exit_code == 0, r.output
+            (out / "output.txt").write_text(r.output)
+    return out / "pattern-s1", (out / "output.txt").read_text()
 
 
 @pytest.fixture(scope="session")

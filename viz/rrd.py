@@ -1,8 +1,8 @@
 """A run as a Rerun recording (.rrd): what the bag's accelerometer saw, what the detector decided, what
 the aircraft did and where the path estimators went, on one clock.
 
-Everything is sent in bulk with ``send_columns`` (one call per entity; FACTS.md: a per-sample
-``rr.log`` loop is 100x slower). viz computes nothing: it receives the arrays of the sensor, the
+Everything is sent in bulk with ``send_columns`` (one call per entity; measured with rerun-sdk
+0.41: a per-sample ``rr.log`` loop is 100x slower). viz computes nothing: it receives the arrays of the sensor, the
 detector, the truth and nav (:class:`RunView`), and only lays them out.
 
 Timelines: ``sim_time`` (exact integer nanoseconds of FlightTrack time; negative before the track
@@ -71,7 +71,7 @@ class RunView:
 
 
 def _ns(t_s) -> np.ndarray:
-    """Exact integer nanoseconds (FACTS.md: float durations truncate), as timedelta64[ns]."""
+    """Exact integer nanoseconds (``TimeColumn(duration=float seconds)`` truncates to the nanosecond below), as timedelta64[ns]."""
     return np.rint(np.asarray(t_s, float) * 1e9).astype(np.int64).astype("timedelta64[ns]")
 
 

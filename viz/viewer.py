@@ -1,7 +1,7 @@
 """Opening a recording: a new native Rerun viewer, or the web viewer served on 127.0.0.1 only.
 
 Rerun's own viewer binary (shipped in the rerun-sdk wheel, package ``rerun_cli``) binds 0.0.0.0 unless told
-otherwise (FACTS.md), so every command here passes ``--bind 127.0.0.1``. The native viewer gets
+otherwise (rerun 0.41's default), so every command here passes ``--bind 127.0.0.1``. The native viewer gets
 ``--new`` so that it never streams into a viewer that is already open.
 
 Rerun's viewer sends anonymous usage analytics unless they are disabled with

@@ -1,6 +1,7 @@
 """Kinematic figures of a flown FlightTrack, measured from its arrays (not from the pilot).
 
-The definitions follow OpenAP WRAP's quantities (FACTS.md), so the figures can be checked against
+The definitions follow OpenAP WRAP's quantities (the ADS-B kinematic model of Sun et al., package
+``openap``), so the figures can be checked against
 real-traffic ranges: liftoff speed, takeoff acceleration, initial climb rate, cruise altitude,
 final-approach vertical rate, landing (touchdown) speed and braking deceleration. All SI.
 """
@@ -11,18 +12,20 @@ import math
 
 import numpy as np
 
-from flightmode.sim.flight.geodesy import RunwayFrame
+from flightmode.errors import InputDataError
 from flightmode.labels import PHASE_CODE
+from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.track import FlightTrack
+from flightmode.units import FT_M, G0_MPS2
 
-FT_M = 0.3048
 
 
 def _phase_span(track: FlightTrack, phase: str) -> tuple[int, int]:
     idx = np.flatnonzero(track.phase_code == PHASE_CODE[phase])
     if idx.size == 0:
-        raise ValueError(f"the track has no '{phase}' phase")
+        raise InputDataError(f"the track has no '{phase}' phase: flight figures need a whole gate-to-gate flight "
+                             "(fly it with flightmode.run or `flightmode fly`)")
     return int(idx[0]), int(idx[-1])
 
 
@@ -74,9 +77,10 @@ def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     m["max_bank_deg"] = float(np.degrees(np.abs(track.euler_rad[:, 0]).max()))
     airborne = track.airborne
     m["airborne_s"] = float(airborne.sum() / track.fs_hz)
-    m["max_load_factor_g"] = float((-track.specific_force_body_mps2[:, 2] / 9.80665).max())
-    m["min_load_factor_g"] = float((-track.specific_force_body_mps2[:, 2][airborne] / 9.80665).min())
+    m["max_load_factor_g"] = float((-track.specific_force_body_mps2[:, 2] / G0_MPS2).max())
+    m["min_load_factor_g"] = float((-track.specific_force_body_mps2[:, 2][airborne] / G0_MPS2).min())
     for k, v in m.items():
         if not math.isfinite(v):
-            raise ValueError(f"flight metric {k} is not finite")
+            raise InputDataError(f"flight figure {k} is {v}: the track holds NaN or a phase of zero length "
+                                 "(re-fly the scenario)")
     return m

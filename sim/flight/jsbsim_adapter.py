@@ -1,16 +1,17 @@
-"""The one JSBSim adapter: the only ``import jsbsim`` in flightmode (DESIGN.md, "Rooms").
+"""The one JSBSim adapter: the only ``import jsbsim`` in flightmode.
 
 JSBSim speaks imperial units; this module converts them to SI exactly once, in the
 :data:`CHANNELS` table, and the rest of flightmode only sees SI arrays.
 
-Safety (FACTS.md, "JSBSim"): the stock 737 opens a telnet server and a UDP socket from its
+Safety (checked on jsbsim 1.3.3's stock models): the stock 737 opens a telnet server and a UDP socket from its
 ``<input>`` sections and some models write CSV files from ``<output>``. The model is therefore
 loaded from a *private copy* of its main XML in a temporary directory, with every top-level
 ``<input>`` and ``<output>`` element removed, ``disable_input()``/``disable_output()`` called
 as well, and the temporary copy deleted as soon as JSBSim has parsed it. The copy also gives
 every model the same tug: a body-axis ``external_reactions`` force named ``pushback`` at the
 nose gear (the 787-8 and fokker100 already define one; the fokker100's own FlightGear-driven
-``pushback`` system is removed so that one tug controller, in :mod:`sim.pilot`, drives all).
+``pushback`` system is removed so that one tug controller, :class:`~flightmode.sim.flight.controllers.Pushback`,
+drives all).
 """
 
 from __future__ import annotations
@@ -229,12 +230,13 @@ class JSBSimAircraft:
     def init_on_ground(
         self, lat_deg: float, lon_deg: float, elevation_m: float, heading_deg: float
     ) -> None:
-        """Place the aircraft at rest on flat ground (FACTS.md ground-start recipe)."""
+        """Place the aircraft at rest on flat ground (ground start: terrain elevation set, a little above it, run_ic, gear
+        down, brakes on, JSBSim's ground trim)."""
         fdm = self.fdm
         fdm["ic/lat-geod-deg"] = lat_deg
         fdm["ic/long-gc-deg"] = lon_deg
         fdm["ic/terrain-elevation-ft"] = elevation_m / FT_M
-        fdm["ic/h-agl-ft"] = 20.0  # start a little high: AGL 0 buries the gear (FACTS.md)
+        fdm["ic/h-agl-ft"] = 20.0  # start a little high: AGL 0 buries the gear (the A320 then goes NaN)
         fdm["ic/psi-true-deg"] = heading_deg
         for p in ("ic/u-fps", "ic/v-fps", "ic/w-fps", "ic/p-rad_sec", "ic/q-rad_sec", "ic/r-rad_sec"):
             fdm[p] = 0.0

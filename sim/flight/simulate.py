@@ -68,12 +68,15 @@ def fly(
     *,
     workdir: Path | None = None,
     progress: Callable[[float, str], None] | None = None,
+    stop_after_s: float | None = None,
 ) -> FlightTrack:
     """Fly ``plan`` gate to gate; raise :class:`FlightDivergedError` if the flight fails.
 
     ``streams``: the flight's random streams (:class:`flightmode.streams.Streams`; a Generator or an
     integer seed is turned into streams): ``turbulence`` seeds JSBSim's gust generator.
-    ``progress(t_s, phase)`` is called about once per simulated minute.
+    ``progress(t_s, phase)`` is called about once per simulated minute. ``stop_after_s``: stop after
+    that much simulated time (a preview, or a quick check: the track is then the exact prefix of the
+    whole flight's, its in-flight window running to its end if the engines still run).
     """
     streams = as_streams(streams)
     fdm_hz = float(plan.fdm_hz)
@@ -110,14 +113,15 @@ def fly(
     terrain_m = plan.origin.elevation_m
     dest_terrain_from = None  # first step whose state lies over the destination's terrain
     next_progress = 0.0
-    while not pilot.done:
+    stop_steps = None if stop_after_s is None else int(stop_after_s * fdm_hz)
+    while not pilot.done and (stop_steps is None or step < stop_steps):
         # a control tick: sample, decide, step
         raw = list(map(get, nodes))
         ext(raw)
         t = step / fdm_hz
         codes = (pilot.phase_code, pilot.severity_code)
         x = list(map(mul, raw, scales_list))  # SI floats
-        x.append(x[i_alt] - terrain_m)  # the derived channels (sim.jsbsim_adapter.DERIVED_CHANNELS)
+        x.append(x[i_alt] - terrain_m)  # the derived channels (jsbsim_adapter.DERIVED_CHANNELS)
         pilot.tick(x, t)
         if (pilot.phase_code, pilot.severity_code) != codes:
             # labels change at the sample whose state made the pilot change phase
@@ -207,8 +211,8 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> Flight
     pos = geodesy.geodetic_to_ned(col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m)
     vel = g["vel"]
     euler = g["euler"]
-    t_push = next(e.t_s for e in events if e.name == "pushback")
-    t_off = next(e.t_s for e in events if e.name == "engines_off")
+    t_push = next((e.t_s for e in events if e.name == "pushback"), math.inf)
+    t_off = next((e.t_s for e in events if e.name == "engines_off"), math.inf)  # a stopped flight
     airborne_codes = np.array([PHASE_CODE[p] for p in AIRBORNE_PHASES])
     return FlightTrack(
         aircraft=plan.aircraft,

@@ -1,6 +1,6 @@
 """FlightTrack: the truth of one simulated flight, arrays at the FDM rate (SI units).
 
-Frames (DESIGN.md): local NED at the origin runway threshold (WGS-84, so the frame is the
+Frames: local NED at the origin runway threshold (WGS-84, so the frame is the
 tangent plane there) plus geodetic lat/lon/alt; body x forward, y right, z down. Specific force
 f = a - g in body axes: a level aircraft at rest reads f_z = -9.81 m/s^2.
 """
@@ -56,10 +56,10 @@ class FlightTrack:
     alpha_rad: np.ndarray
     ground_speed_mps: np.ndarray
     vertical_speed_mps: np.ndarray
-    phase_code: np.ndarray  # uint8 into sim.labels.PHASES
+    phase_code: np.ndarray  # uint8 into flightmode.labels.PHASES
     in_flight_window: np.ndarray  # pushback start to engines off
     airborne: np.ndarray
-    turbulence_code: np.ndarray  # uint8 into sim.labels.SEVERITIES
+    turbulence_code: np.ndarray  # uint8 into flightmode.labels.SEVERITIES
     events: tuple[Event, ...]
 
     @property
@@ -80,11 +80,14 @@ class FlightTrack:
         return np.asarray(SEVERITIES, dtype=object)[self.turbulence_code]
 
     def event_time(self, name: str) -> float:
-        """Time (s) of the first event called ``name``; KeyError naming the known events otherwise."""
+        """Time (s) of the first event called ``name``; an InputDataError naming the known events otherwise."""
         for ev in self.events:
             if ev.name == name:
                 return ev.t_s
-        raise KeyError(f"no event '{name}'; events: {sorted({e.name for e in self.events})}")
+        from flightmode.errors import InputDataError, did_you_mean
+
+        names = sorted({e.name for e in self.events})
+        raise InputDataError(f"the track has no event '{name}'{did_you_mean(name, names)}; events: {', '.join(names)}")
 
     def specific_force_at(self, lever_arm_body_m) -> np.ndarray:
         """Specific force (N x 3, m/s^2, body axes) at a point ``r`` (body axes, m) from the CG.
@@ -100,7 +103,7 @@ class FlightTrack:
         )
 
     def digest(self) -> str:
-        """Equal digests mean bit-identical tracks (:func:`sim.digest.digest`)."""
+        """Equal digests mean bit-identical tracks (:func:`flightmode.digest.digest`)."""
         return digest(self)
 
 

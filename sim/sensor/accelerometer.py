@@ -1,7 +1,8 @@
 """Accelerometer models: named presets (frozen, vary them with ``dataclasses.replace``), per-unit
 draws within the datasheet tolerances, and the measurement chain from specific force to counts.
 
-Sources: LIS302DL datasheet figures and the flightmode assumptions in FACTS.md ("LIS302DL");
+Sources: the ST LIS302DL datasheet (Rev 4, 2008), and flightmode's named assumptions where it gives
+no figure (zero-g offset spread, cross-axis coupling);
 seed 000 Table 1 (2.23 mg noise) and section 2 (a 100 Hz stream stored with 16-bit resolution);
 seed 003 (e-obs tags) sections 4, 6, 9 and 10.
 
@@ -22,7 +23,7 @@ would after calibration, seed 003 section 7), so the gain tolerance shows in the
 the offsets in both.
 
 The 8-bit LIS302DL: an 18 mg step is eight times the 2.23 mg noise, so a truly static part outputs
-an almost constant count and its variance is far below (2.23 mg)^2 (FACTS.md, "tension"). The
+an almost constant count and its variance is far below (2.23 mg)^2 (an 18 mg step is eight times the 2.23 mg noise). The
 preset ``lis302dl-logged16`` models seed 000's logger: the same part, stored at 16 bits over the
 +-2.3 g range (0.07 mg steps), so the white noise survives and the static variance is 5.0e-6 g^2.
 """
@@ -84,7 +85,7 @@ class AccelerometerPreset:
 
 # LIS302DL, +-2 g: 8-bit two's complement, 18 mg/digit typ. (16.2-19.8), reads to about +-2.3 g,
 # ODR 100 or 400 Hz, bandwidth ODR/2, noise 2.23 mg (seed 000 Table 1). Offsets +-40 mg, cross-axis
-# +-2 %: FACTS.md assumptions. Sensitivity tolerance +-10 % is the datasheet's 16.2-19.8 mg/digit.
+# +-2 %: flightmode assumptions. Sensitivity tolerance +-10 % is the datasheet's 16.2-19.8 mg/digit.
 _LIS302DL = AccelerometerPreset(
     name="lis302dl",
     description="ST LIS302DL, +-2 g, native 8-bit output (18 mg/digit), ODR 100 Hz",
@@ -123,7 +124,7 @@ PRESETS: dict[str, AccelerometerPreset] = {
     # no anti-alias filter (section 1); sampling frequency is per axis. The calibration spread of
     # the zero-g count (+-40 counts, i.e. +-88 mg) and the gain (+-5 %) is our assumption, to be
     # replaced by the six-orientation calibration of section 7. Bursts: 3.3 s of 3 axes at 10 Hz
-    # every 60 s here; sim.accelerometer.eobs_preset sets them from the ACC settings (sec. 9).
+    # every 60 s here; eobs_preset sets them from the ACC settings (sec. 9).
     "eobs": AccelerometerPreset(
         name="eobs",
         description="e-obs tag accelerometer: 12-bit ADC (0.0022 g/count, zero-g 2048), no anti-alias filter",

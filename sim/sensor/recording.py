@@ -1,4 +1,4 @@
-"""Recording: what the bag's accelerometer stored, with per-sample truth labels (DESIGN.md)."""
+"""Recording: what the bag's accelerometer stored, with per-sample truth labels."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ class Recording:
     unit: dict  # the drawn per-unit parameters (offsets, sensitivity errors, cross-axis)
     carrier: CarrierSpec
     aircraft: str
-    segments: tuple  # the carrier timeline (sim.carrier.Segment): states and true orientations
+    segments: tuple  # the carrier timeline (carrier.Segment): states and true orientations
     phase_code: np.ndarray
     in_flight_window: np.ndarray
     airborne: np.ndarray
@@ -62,5 +62,5 @@ class Recording:
         }
 
     def digest(self) -> str:
-        """Equal digests mean bit-identical recordings (:func:`sim.digest.digest`)."""
+        """Equal digests mean bit-identical recordings (:func:`flightmode.digest.digest`)."""
         return digest(self)

@@ -1,7 +1,7 @@
 """Sensing: a FlightTrack plus a carrier timeline plus an accelerometer -> a labelled Recording.
 
-Everything is generated at ``FS_INTERNAL_HZ`` (1200 Hz: a multiple of the 120 Hz FDM, and of the
-100 and 400 Hz ODRs), chunk by chunk with every filter's state carried across chunks, then the
+Everything is generated at ``FS_INTERNAL_HZ`` (1200 Hz: a multiple of the 100 and 400 Hz ODRs;
+the FlightTrack's channels, at its own rate, are interpolated linearly to it), chunk by chunk with every filter's state carried across chunks, then the
 accelerometer's own filter and sampling decide what reaches its output (aliasing included).
 
 Frames: on board, the floor's specific force is the FlightTrack's at the bag's lever arm (body
@@ -9,7 +9,7 @@ axes) plus airframe vibration, passed through the placement's spring-damper moun
 frame is rotated from the body frame by the bag's orientation, drawn anew at every put-down. Off
 board, the bag is in a local north/east/down frame: specific force = motion - gravity.
 
-Labels (DESIGN.md) per output sample: ``phase`` (the bag's: terminal_walk ... boarding, then the
+Labels per output sample: ``phase`` (the bag's: terminal_walk ... boarding, then the
 aircraft's phases while on board, deplaning, arrival_rest), ``in_flight_window``, ``airborne``,
 ``turbulence_severity`` (from the FlightTrack; false/none outside it), ``bag_state`` and
 ``sensor_static``: true only while the bag rests (in the terminal or at arrival) or sits stowed
@@ -115,7 +115,7 @@ def sense(
     # pick-up lifts at the start of every carried / handled segment that follows a resting one
     transients = (car.putdown_pulse_mps2(int(0.25 * fs), dt, spec), car.pickup_pulse_mps2(dt, spec))
 
-    # track channels at 120 Hz as rows (channels first), interpolated per chunk row by row
+    # track channels at the track's rate as rows (channels first), interpolated per chunk row by row
     loc = prof.locations_m[car.LOCATION_OF[spec.placement]]
     qbar = 0.5 * atmosphere.density_kgpm3(track.alt_m) * track.tas_mps**2
     ne = track.n1_pct.shape[1]

@@ -1,8 +1,9 @@
 """Airframe vibration at the cabin floor / hold, generated at the internal rate (>= 1 kHz) so that
 the accelerometer's own filter and sampling decide what survives (aliasing included).
 
-Components (all amplitudes are flightmode assumptions: FACTS.md found no public cabin or cargo
-vibration PSD; they are named parameters of :class:`VibrationModel` and documented here):
+Components (all amplitudes are flightmode assumptions: no public cabin or cargo vibration PSD was
+found, and Mansfield and Aggarwal's review of 26 in-aircraft studies (Vibration 5(1), 2022) gives
+no usable magnitudes; they are named parameters of :class:`VibrationModel` and documented here):
 
 - engine lines: each engine's fan (N1) and core (N2) rotation, f = rpm / 60 with the N1 first and
   second harmonics; amplitude 0.5 + 0.5 N1/100 of its full-power value while running (idle is
@@ -15,7 +16,7 @@ vibration PSD; they are named parameters of :class:`VibrationModel` and document
 
 Directions: body z (vertical) carries the most, then y and x (``axis_share``).
 
-Engine spool speeds (rpm at 100 %): CFM56-5B N1 5000 / N2 14460 (FACTS.md); CFM56-3 (737) 5490 /
+Engine spool speeds (rpm at 100 %): CFM56-5B N1 5000 / N2 14460 (EASA type certificate data sheet E.067); CFM56-3 (737) 5490 /
 15183; Rolls-Royce Tay 650 (fokker100) 8400 / 12500; Trent 1000 (787-8) 2683 / 13391 (public type
 certificate data sheets, rounded).
 """
@@ -41,8 +42,9 @@ ENGINE_RPM = {  # model -> (N1 rpm at 100 %, N2 rpm at 100 %)
 class VibrationModel:
     """Amplitudes calibrated against seed 000, the only measured evidence at hand: engines running
     are visible at once (section 2, Fig. 2), and in flight 1 the per-axis moving variance sat below
-    4 sigma^2 with probabilities 8e-2 (x), 2e-3 (y), 2e-6 (z) (Table 4). With these values the
-    default flight's stowed handbag gives per-axis probabilities of the same order (see the note)."""
+    4 sigma^2 with probabilities 8e-2 (x), 2e-3 (y), 2e-6 (z) (Table 4). These values do not reproduce
+    that table: on the default flight the stowed handbag's per-axis fractions of in-flight checks under
+    4 sigma^2 are about 4e-4 (measured; the vibration model is too uniform and the air too still)."""
 
     n1_line_g: float = 4.5e-3  # first N1 harmonic at 100 % N1, per engine
     n1_h2_g: float = 1.5e-3  # second N1 harmonic at 100 % N1
@@ -139,8 +141,8 @@ def vibration_g(
     drive = rng.standard_normal((3, n), dtype=np.float32) * (level + rough)
     drive[2] += joints
     y, mode_zi = sosfilt(sos, drive, axis=-1, zi=state.mode_zi)
-    # engine lines reach the floor mostly vertically, a third laterally (fixed mixing); the modes
-    # likewise (axis_share)
+    # the engine lines and the modes reach the floor through the same fixed axis weights
+    # (axis_share: fore-aft 0.35, lateral 0.5, vertical 1)
     y += line
     y *= share[:, None]
     return y, VibrationState(phases, state.detune, mode_zi, new_joint)

@@ -1,0 +1,44 @@
+"""Benchmark: the whole pipeline on the default scenario against bare JSBSim stepping, same run.
+
+    python benchmarks/bench_pipeline.py [SCENARIO]
+
+Timed: ``flightmode.run`` with every stage (fly, sense, detect, path, and write: truth.parquet,
+samples.parquet, run.json, recording.rrd) into a temporary folder, in a warm process (imports done),
+best of 2; and once, the whole ``flightmode fly`` command in a fresh interpreter (imports included).
+Baseline: the same JSBSim model stepped with bare ``fdm.run()`` for as many steps as the flight took
+(benchmarks/_bench.py ``bare_stepping_s``), best of 2. Goal: ratio <= 1.8 (aim 1.3).
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import tempfile
+
+from _bench import bare_stepping_s, best_timed, report, timed
+
+
+def main(name: str = "gva-lhr-a320", repeats: int = 2) -> dict:
+    import flightmode
+    from flightmode.scenarios.scenario import Scenario
+    from flightmode.sim.flight.simulate import SETTLE_S
+
+    sc = Scenario.resolve(name)
+    with tempfile.TemporaryDirectory() as d:
+        flightmode.run(sc, stages=("fly",), progress=None)  # warm: imports, JSBSim's model files cached
+        r, t_run = best_timed(lambda: flightmode.run(sc, out=d), repeats)
+        steps = r.track.n + int(SETTLE_S * sc.plan.fdm_hz)
+        t_bare = bare_stepping_s(sc, steps, repeats)
+        _, t_cli = timed(lambda: subprocess.run(["flightmode", "fly", name, "--out", d], check=True,
+                                                capture_output=True))
+    res = {"scenario": name, "steps": steps, "simulated_s": r.track.duration_s, "bare_run_wall_s": t_bare,
+           "run_wall_s": t_run, "ratio": t_run / t_bare, "cli_wall_s (fresh process)": t_cli,
+           "cli_ratio": t_cli / t_bare}
+    res |= {f"stage {k} s (last run)": v for k, v in r.wall_s.items()}
+    report(res)
+    print(f"goal: ratio <= 1.8 -> {'met' if res['ratio'] <= 1.8 else 'NOT met'} (aim 1.3)")
+    return res
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:2])

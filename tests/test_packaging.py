@@ -1,0 +1,69 @@
+"""The installed distribution: every room under the one name ``flightmode`` (nothing called ``sim``
+or ``nav`` lands in site-packages), and nothing heavy imported to start."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+ROOMS = {"flightmode": "flightmode", "scenarios": "flightmode/scenarios", "sim": "flightmode/sim",
+         "detector": "flightmode/detector", "nav": "flightmode/nav", "viz": "flightmode/viz"}
+HEAVY = ("numpy", "scipy", "jsbsim", "rerun", "pyarrow", "pandas", "dask", "distributed", "matplotlib")
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("wheel")
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(ROOT)],
+                   check=True, capture_output=True, text=True)
+    (whl,) = out.glob("flightmode-*.whl")
+    return whl
+
+
+def test_wheel_holds_every_room_under_flightmode_and_nothing_else(wheel):
+    names = zipfile.ZipFile(wheel).namelist()
+    tops = {n.split("/")[0] for n in names}
+    assert tops == {"flightmode", "flightmode-0.1.0.dist-info"}, tops
+    # every module of every repository room is in the wheel, at its place under flightmode/
+    for room, dest in ROOMS.items():
+        for f in (ROOT / room).rglob("*.py"):
+            assert f"{dest}/{f.relative_to(ROOT / room).as_posix()}" in names, f
+    # the built-in scenarios ship as package data
+    for f in (ROOT / "scenarios" / "library").glob("*.toml"):
+        assert f"flightmode/scenarios/library/{f.name}" in names
+
+
+def test_installed_wheel_imports_flightmode_sim_and_not_sim(wheel, tmp_path):
+    venv = tmp_path / "venv"
+    # a fresh environment that sees the dependencies already installed here (no download), with the
+    # wheel installed into it
+    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", str(venv)], check=True)
+    py = venv / "bin" / "python"
+    subprocess.run([sys.executable, "-m", "pip", "--python", str(py), "install", "--no-deps", "-q", str(wheel)],
+                   check=True, capture_output=True, text=True)
+    code = ("import importlib, flightmode, flightmode.sim.flight.phases, flightmode.scenarios.scenario as s;"
+            "print(flightmode.__file__); print(len(s.builtin_names()))\n"
+            "try:\n import sim\n print('sim imported from', sim.__file__)\nexcept ModuleNotFoundError:\n print('no sim')")
+    r = subprocess.run([str(py), "-c", code], capture_output=True, text=True, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    where, n, sim = r.stdout.split("\n")[:3]
+    assert Path(where).is_relative_to(venv), where  # the wheel's flightmode, not this checkout's
+    assert int(n) >= 5 and sim == "no sim"
+
+
+def test_importing_flightmode_and_its_cli_loads_nothing_heavy():
+    """`flightmode --help` must start fast: jsbsim, scipy, rerun, pyarrow (and numpy) are imported
+    only inside the commands that need them. Counted in a fresh interpreter, not timed."""
+    code = ("import sys, flightmode, flightmode.scenarios.cli;"
+            f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert r.stdout.strip() == "", f"heavy modules imported at start: {r.stdout.strip()}"
+    # and the API is there, loaded on first use
+    r = subprocess.run([sys.executable, "-c", "import flightmode; print(flightmode.Scenario.builtin('pattern').aircraft)"],
+                       capture_output=True, text=True, check=True)
+    assert r.stdout.strip() == "737"
