@@ -10,7 +10,7 @@ import pytest
 from flightmode.detector import evaluation as ev
 from flightmode.detector.flight_mode import DetectorParams, detect
 from flightmode.scenarios.pipeline import unit_sigma2
-from flightmode.detector.moving_variance import DetectorError
+from flightmode.errors import DetectorError
 
 P = DetectorParams()
 SIG = 2.23e-3  # seed 000 Table 1 noise, g
@@ -50,23 +50,35 @@ def test_events_response_and_scores_on_a_constructed_stream():
 
 
 def test_pfa_table_follows_eq_14_and_counts_the_detector_itself():
+    """The constructed stream fixes every entry of the table. The in-flight window [20, 80) s holds
+    exactly 60 one-second checks (closing at 20.99 ... 79.99 s); the windows of 10 of them (closing
+    at 50.99 ... 59.99 s) are wholly calm, the other 50 wholly dynamic. A calm check's NMV exceeds
+    3 sigma^2 with probability P(chi2_99 >= 300) = 4e-22 per axis (test_statistics), and a dynamic
+    one (variance 401 sigma^2) falls below 5 sigma^2 with probability P(chi2_99 <= 100 x 5 / 401)
+    = 9e-75: so, for any seed (failing with probability < 60 x 3 x 4e-22 = 1e-19), each axis's P_FA is 10/60 exactly, the three axes are
+    below together in the same 10 checks, and the detector's 10 consecutive temporary statics give
+    10 - T_th / W_s + 1 final statics (eq. 8: the T_th-th consecutive check is the first final)."""
     t, a, lab = _labelled(np.random.default_rng(2))
     s2 = np.full(3, SIG**2)
     rows = ev.pfa_table(t, a, lab, P, s2)
-    assert len(rows) == 6
+    assert [(r["T_sigma"], r["T_th_s"]) for r in rows] == [(k, th) for k in (3.0, 4.0, 5.0) for th in (3.0, 4.0)]
+    p_axis = 10 / 60
     for r in rows:
-        assert r["P_FA_t"] == pytest.approx(r["P_FA_x"] * r["P_FA_y"] * r["P_FA_z"])
-        assert r["P_FA"] == pytest.approx(r["P_FA_t"] ** r["T_th_s"])  # W_s = 1 s
-        # observed: the detector's own final statics inside the window
+        assert r["checks"] == 60
+        # the fractions are ratios of small integers: exact in float64 up to one rounding (1e-15)
+        for ax in "xyz":
+            assert r[f"P_FA_{ax}"] == pytest.approx(p_axis, rel=1e-12)
+        assert r["P_FA_t"] == pytest.approx(p_axis**3, rel=1e-12)  # the paper's independence product
+        assert r["P_FA_t_joint"] == pytest.approx(p_axis, rel=1e-12)  # the axes are not independent
+        assert r["P_FA"] == pytest.approx(p_axis ** (3 * r["T_th_s"]), rel=1e-12)  # eq. 14, W_s = 1 s
+        final = 10 - int(r["T_th_s"]) + 1
+        assert r["observed_final_static_checks"] == final
+        assert r["observed_final_static_rate"] == pytest.approx(final / 60, rel=1e-12)
+        # and the same count from the detector run with that row's parameters
         c = detect(t, a, DetectorParams(k_sigma=r["T_sigma"], time_threshold_s=r["T_th_s"]), s2)
         in_w = lab["in_flight_window"][c.index]
-        assert r["observed_final_static_checks"] == int((c.final_static & in_w).sum())
-    # within the window only the 10 calm checks (of 60) can be below a threshold of >= 3 sigma^2:
-    # each axis's P_FA is at most 10/60 and at least 9/60 (the NMV of white noise exceeds 3 sigma^2
-    # with probability ~1e-22, Table 2 form)
-    for r in rows:
-        for ax in "xyz":
-            assert 9 / 60 <= r[f"P_FA_{ax}"] <= 10 / 60
+        assert int(in_w.sum()) == 60
+        assert int((c.final_static & in_w).sum()) == final
 
 
 def test_seed_tables_4_and_5_obey_eq_14_except_one_column():

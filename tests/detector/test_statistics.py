@@ -3,6 +3,8 @@ paper's table implies."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -49,9 +51,37 @@ def test_seed_table2_is_not_white_noise_at_100_hz():
     assert 1.0 / SEED_TABLE2[2.0] == pytest.approx(166, rel=0.01)
 
 
+def _chi2_sf_odd_dof(x: float, nu: int) -> float:
+    """P(chi2_nu >= x) for odd nu in closed form (Abramowitz & Stegun 26.4.4), independent of
+    scipy: Q = 2 Phi(-sqrt x) + 2 phi(sqrt x) sum_{r=1}^{(nu-1)/2} x^(r-1/2) / (1 3 5 ... (2r-1)).
+    All terms are positive (no cancellation), so float64 keeps ~1e-14 relative accuracy."""
+    s, term = 0.0, math.sqrt(x)
+    for r in range(1, (nu - 1) // 2 + 1):
+        s += term
+        term *= x / (2 * r + 1)
+    return math.erfc(math.sqrt(x / 2.0)) + math.sqrt(2.0 / math.pi) * math.exp(-x / 2.0) * s
+
+
 def test_table2_form():
+    """Table 2 form at N = 100 (1 s at 100 Hz), each row against an independent computation:
+    exact: N MV / sigma^2 ~ chi2 with N - 1 = 99 degrees of freedom, so P_M = Q(100 k; 99) by the
+    odd-dof closed form above; Gaussian (eq. 13): the chi-square's own moments mu = (N-1)/N and
+    sigma_MV = sqrt(2 (N-1)) / N (units of sigma^2) in 1/2 erfc((k - mu) / (sqrt 2 sigma_MV)).
+    Tolerance rel 1e-9: both sides are float64 evaluations of the same number by different routes
+    (round-off ~1e-13); a wrong degree of freedom (98 or 100) or a 1/(N-1) normalisation moves
+    P_M by 30 % or more at every row."""
+    n = 100
     rows = table2()
     assert [r["T_sigma"] for r in rows] == ["2 sigma^2", "2.5 sigma^2", "3 sigma^2", "4 sigma^2", "5 sigma^2"]
-    pe = [r["P_M_exact"] for r in rows]
-    assert all(a > b for a, b in zip(pe, pe[1:]))  # P_M falls as the threshold rises
-    assert rows[0]["time_error_exact_s"] == pytest.approx(1.0 / pe[0])
+    mu, s_mv = (n - 1) / n, math.sqrt(2.0 * (n - 1)) / n
+    for k, r in zip((2.0, 2.5, 3.0, 4.0, 5.0), rows):
+        exact = _chi2_sf_odd_dof(n * k, n - 1)
+        gauss = 0.5 * math.erfc((k - mu) / (math.sqrt(2.0) * s_mv))
+        assert r["P_M_exact"] == pytest.approx(exact, rel=1e-9), k
+        assert r["P_M_gaussian"] == pytest.approx(gauss, rel=1e-9), k
+        # TimeError = W_s / P_M with W_s = 1 s (the paper's Table 2 column)
+        assert r["time_error_exact_s"] == pytest.approx(1.0 / exact, rel=1e-9)
+        assert r["time_error_gaussian_s"] == pytest.approx(1.0 / gauss, rel=1e-9)
+    # orders of magnitude of the first row, as the module docstring states them (8e-9 and 4e-13)
+    assert rows[0]["P_M_exact"] == pytest.approx(8.19e-9, rel=1e-3)
+    assert rows[0]["P_M_gaussian"] == pytest.approx(3.54e-13, rel=1e-3)

@@ -39,7 +39,7 @@ def test_logged16_static_noise_is_white_uncorrelated_and_5e_6_g2():
 
 
 def test_native_8bit_static_variance_is_far_below_the_noise():
-    """An 18 mg step is 8 sigma: most samples round to the same count (FACTS.md tension)."""
+    """An 18 mg step is 8 sigma: most samples round to the same count (LIS302DL datasheet step, seed 000 Table 1 noise)."""
     p = get_preset("lis302dl")
     m = _static(p, 0.5, np.random.default_rng(1))
     var = m.acc_g.var(axis=0)
@@ -119,9 +119,64 @@ def test_bad_input_is_named():
         measure(np.zeros((10, 3)), 150.0, 0.0, get_preset("lis302dl"), UnitDraw(), np.random.default_rng(0))
 
 
+# Datasheet facts per preset: (bits, zero-g count, count range, g per count, ODRs, anti-alias
+# bandwidth as a fraction of the ODR or None, noise g, +-sensitivity tolerance).
+# LIS302DL datasheet, Table 3: FS = 0 sensitivity 16.2 / 18 / 19.8 mg/digit (+-10 %), measurement
+# range +-2.3 g typ.; FS = 1 64.8 / 72 / 79.2 mg/digit, +-9.2 g typ.; 8-bit two's complement output (OUT_X/Y/Z), ODR 100 or 400 Hz, bandwidth ODR / 2. Noise:
+# seed 000 Table 1 (2.23 mg). logged16: seed 000 section 2, the +-2.3 g span stored in 16 bits.
+# e-obs: seed 003 section 6, readings 0...4095 (12 bits), zero-g 2048 nominal, 0.0022 g per count
+# (tags > 2241); section 1, no anti-alias filter.
+DATASHEET = {
+    "lis302dl": (8, 0, (-128, 127), 0.018, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
+    "lis302dl-8g": (8, 0, (-128, 127), 0.072, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
+    "lis302dl-logged16": (16, 0, (-32768, 32767), 4.6 / 2**16, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
+    "eobs": (12, 2048, (0, 4095), 0.0022, (1.0, 2.0, 5.0, 10.0, 20.0, 25.0, 33.33, 50.0, 100.0), None,
+             None, None),
+}
+
+
 def test_every_preset_validates():
-    for p in PRESETS.values():
+    """Each preset carries its part's published numbers, its range is what its counts can hold, and
+    the chain saturates exactly at the extreme counts. The published ranges are rounded: +-2.3 g
+    against 128 x 18 mg = 2.304 g, +-9.2 g against 128 x 72 mg = 9.216 g, +-4.5 g against
+    2048 x 2.2 mg = 4.506 g; so range_g must be the count span times the step within half a step
+    (the rounding of the printed figure), and within 0.5 % of the printed range."""
+    assert set(PRESETS) == set(DATASHEET) | {"ideal"}
+    published_range_g = {"lis302dl": 2.3, "lis302dl-8g": 9.2, "lis302dl-logged16": 2.3, "eobs": 4.5}
+    for name, (bits, zero, crange, lsb, odrs, bw, noise, sens) in DATASHEET.items():
+        p = PRESETS[name]
         p.validate()
+        assert p.bits == bits and p.zero_count == zero and p.count_range == crange, name
+        assert crange[1] - crange[0] + 1 == 2**bits  # the word holds exactly 2^bits codes
+        assert p.lsb_g == pytest.approx(lsb, rel=1e-12), name
+        assert set(odrs) == set(p.allowed_odr_hz), name
+        # negative full scale: the counts below zero-g times the step
+        span_g = (zero - crange[0]) * lsb
+        assert abs(p.range_g - span_g) <= lsb / 2, (name, p.range_g, span_g)
+        assert p.range_g == pytest.approx(published_range_g[name], rel=0.005), name
+        if bw is None:
+            assert p.bandwidth_hz is None, name
+        else:
+            assert p.bandwidth_hz == pytest.approx(bw * p.odr_hz), name
+        if noise is not None:
+            assert p.noise_g == noise and p.sensitivity_tol == sens, name
+        # a +-100 g shock pins the output at the extreme counts, which read (count - zero) x step:
+        # one step less on the positive side (2^bits codes, zero-g among them)
+        f = np.zeros((40, 3))
+        f[:20] = 100.0
+        f[20:] = -100.0
+        m = measure(f, p.odr_hz, 0.0, dataclasses.replace(p, bandwidth_hz=None, noise_g=0.0), UnitDraw(),
+                    np.random.default_rng(0))
+        assert (m.counts[:20] == crange[1]).all() and (m.counts[20:] == crange[0]).all(), name
+        assert m.acc_g.min() == pytest.approx(-span_g, rel=1e-12) and m.clipped.all(), name
+        assert m.acc_g.max() == pytest.approx((crange[1] - zero) * lsb, rel=1e-12), name
+    # logged16: 0.07 mg steps, 32 times finer than the 2.23 mg noise (the noise survives)
+    assert PRESETS["lis302dl-logged16"].lsb_g == pytest.approx(7.02e-5, rel=1e-3)
+    # ideal: a float output, no noise, no filter, no tolerances
+    ideal = PRESETS["ideal"]
+    ideal.validate()
+    assert ideal.lsb_g is None and ideal.bits is None and ideal.bandwidth_hz is None
+    assert ideal.noise_g == ideal.offset_tol_g == ideal.sensitivity_tol == ideal.cross_axis_tol == 0.0
 
 
 def test_chunked_sensing_equals_one_piece():
