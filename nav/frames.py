@@ -36,53 +36,68 @@ from __future__ import annotations
 
 import numpy as np
 
-from flightmode.nav.spline_path import NavError
+from flightmode.errors import NavError
+from flightmode.sim.flight.geodesy import ecef_to_ned_matrix, geodetic_to_ecef, ned_to_ecef
+from flightmode.units import G0_MPS2  # the g in which accelerometer samples are expressed
 
 OMEGA_E_RADPS = 7.292115e-5  # WGS84 Earth rotation rate
-G0_MPS2 = 9.80665  # the g in which accelerometer samples are expressed
-
 
 GM_M3PS2 = 3.986004418e14  # WGS84 gravitational parameter
 J2 = 1.08262982e-3  # the Earth's second zonal harmonic (JSBSim's value)
 A_M = 6378137.0  # WGS84 equatorial radius
 
 
-def gravity_ned_mps2(lat_deg, lon_deg, alt_m) -> np.ndarray:
-    """(n, 3) effective gravity in local north/east/down: the J2 gravitation plus the centrifugal
-    term of the Earth's rotation, the model JSBSim's FGInertial uses (it matches the FDM's own
-    specific force at rest to 1e-8 m/s^2, tests/nav). WGS84 *normal* gravity (Somigliana with the
-    free-air gradient) differs from it by about 5e-5 m/s^2 (5 micro-g) here, which a double
-    integration turns into ~600 m after 85 minutes: the gravity model matters at this level."""
-    from flightmode.sim.flight.geodesy import geodetic_to_ecef
-
+def gravity_ecef_mps2(lat_deg, lon_deg, alt_m) -> np.ndarray:
+    """(n, 3) effective gravity in ECEF: the J2 gravitation plus the centrifugal term of the Earth's
+    rotation, the model JSBSim's FGInertial uses (it matches the FDM's own specific force at rest to
+    1e-6 m/s^2 vertically, tests/nav). WGS84 *normal* gravity (Somigliana with the free-air
+    gradient) differs from it by about 5e-5 m/s^2 (5 micro-g) here, which a double integration turns
+    into ~600 m after 85 minutes: the gravity model matters at this level."""
     e = geodetic_to_ecef(lat_deg, lon_deg, alt_m)
     x, y, z = e[..., 0], e[..., 1], e[..., 2]
-    r = np.sqrt(x * x + y * y + z * z)
-    s2 = (z / r) ** 2
-    pc = 1.5 * J2 * (A_M / r) ** 2
-    k = GM_M3PS2 / (r * r)
-    g = -k[..., None] * np.stack([(1 + pc * (1 - 5 * s2)) * x / r, (1 + pc * (1 - 5 * s2)) * y / r,
-                                  (1 + pc * (3 - 5 * s2)) * z / r], axis=-1)
-    om = np.array([0.0, 0.0, OMEGA_E_RADPS])
-    g = g - np.cross(om, np.cross(om, e))  # centrifugal
-    return np.einsum("...ij,...j->...i", _ecef_to_ned(lat_deg, lon_deg), g)
+    r2 = x * x + y * y + z * z
+    r = np.sqrt(r2)
+    s2 = z * z / r2
+    pc = 1.5 * J2 * (A_M * A_M / r2)
+    k = -GM_M3PS2 / (r2 * r)
+    w2 = OMEGA_E_RADPS**2  # centrifugal: + w^2 (x, y, 0)
+    fxy = k * (1 + pc * (1 - 5 * s2)) + w2
+    return np.stack([fxy * x, fxy * y, k * (1 + pc * (3 - 5 * s2)) * z], axis=-1)
 
 
-def _ecef_to_ned(lat_deg, lon_deg) -> np.ndarray:
-    """(..., 3, 3) rotation matrices taking ECEF vectors into local north/east/down."""
-    la, lo = np.radians(lat_deg), np.radians(lon_deg)
-    sl, cl, so, co = np.sin(la), np.cos(la), np.sin(lo), np.cos(lo)
-    r = np.empty(np.shape(la) + (3, 3))
-    r[..., 0, :] = np.stack([-sl * co, -sl * so, cl], axis=-1)
-    r[..., 1, :] = np.stack([-so, co, np.zeros_like(so)], axis=-1)
-    r[..., 2, :] = np.stack([-cl * co, -cl * so, -sl], axis=-1)
-    return r
+def gravity_ned_mps2(lat_deg, lon_deg, alt_m) -> np.ndarray:
+    """:func:`gravity_ecef_mps2` in local north/east/down."""
+    return np.einsum("...ij,...j->...i", ecef_to_ned_matrix(lat_deg, lon_deg), gravity_ecef_mps2(lat_deg, lon_deg, alt_m))
 
 
-def world_from_local(track, lat_deg, lon_deg) -> np.ndarray:
-    """(n, 3, 3): local NED at (lat, lon) -> the track's world frame (tangent NED at its origin)."""
-    r0 = _ecef_to_ned(track.origin_lat_deg, track.origin_lon_deg)
-    return np.einsum("ij,nkj->nik", r0, _ecef_to_ned(lat_deg, lon_deg))
+def _world_rotation(track) -> np.ndarray:
+    """ECEF -> the track's world frame (the tangent NED at its origin)."""
+    return ecef_to_ned_matrix(track.origin_lat_deg, track.origin_lon_deg)
+
+
+def attitude_at(track, t_s):
+    """The body -> local NED attitude at times ``t_s`` (a scipy Rotation): the track's quaternions
+    interpolated linearly and renormalised (nlerp). Between two FDM steps (1/120 s) an airliner turns
+    by at most a few milliradians, where nlerp and slerp differ by under 1e-9 rad."""
+    from scipy.spatial.transform import Rotation
+
+    t = np.clip(np.asarray(t_s, float), track.t_s[0], track.t_s[-1])
+    pos = (t - track.t_s[0]) * track.fs_hz
+    i0 = np.clip(pos.astype(np.int64), 0, track.n - 2)
+    w = (pos - i0)[:, None]
+    q0, q1 = track.quat_wxyz[i0], track.quat_wxyz[i0 + 1]
+    q1 = np.where(np.sum(q0 * q1, axis=1)[:, None] < 0.0, -q1, q1)  # the shorter way round
+    return Rotation.from_quat(q0 + w * (q1 - q0), scalar_first=True)
+
+
+def body_to_world(track, t_s, v_body) -> np.ndarray:
+    """Body-axis vectors (n, 3) (or one (3,)) at times ``t_s``, in the track's world frame: body ->
+    local NED by the attitude, local NED -> ECEF at the track's position, ECEF -> world."""
+    t = np.asarray(t_s, float)
+    v_ned = attitude_at(track, t).apply(v_body)
+    lat = np.interp(t, track.t_s, track.lat_deg)
+    lon = np.interp(t, track.t_s, track.lon_deg)
+    return ned_to_ecef(lat, lon, v_ned) @ _world_rotation(track).T
 
 
 class TruthPath:
@@ -95,8 +110,7 @@ class TruthPath:
 
         pos = track.pos_ned_m
         if lever_arm_body_m is not None:
-            r = np.asarray(lever_arm_body_m, float)
-            pos = pos + np.einsum("nij,j->ni", _world_from_body(track, track.t_s), r)
+            pos = pos + body_to_world(track, track.t_s, np.asarray(lever_arm_body_m, float))
         self.t0_s, self.t1_s = float(track.t_s[0]), float(track.t_s[-1])
         self.spline = CubicSpline(track.t_s, pos)
 
@@ -131,16 +145,6 @@ def truth_world_acceleration(track, t_s, integrating: bool = True, lever_arm_bod
     return TruthPath(track, lever_arm_body_m).acceleration(t_s, integrating)
 
 
-def _world_from_body(track, t_s) -> np.ndarray:
-    from scipy.spatial.transform import Rotation, Slerp
-
-    t = np.clip(np.asarray(t_s, float), track.t_s[0], track.t_s[-1])
-    att = Slerp(track.t_s, Rotation.from_quat(track.quat_wxyz, scalar_first=True))(t)  # body -> local NED
-    lat = np.interp(t, track.t_s, track.lat_deg)
-    lon = np.interp(t, track.t_s, track.lon_deg)
-    return np.einsum("nij,njk->nik", world_from_local(track, lat, lon), att.as_matrix())
-
-
 def truth_aided_acceleration(rec, track, t_s=None, acc_g=None, truth: TruthPath | None = None) -> np.ndarray:
     """World-frame kinematic acceleration (m/s^2) from a Recording's samples with the truth's help:
     sensor -> body by the bag's orientation in its stowed segment, body -> local NED -> world by the
@@ -161,16 +165,15 @@ def truth_aided_acceleration(rec, track, t_s=None, acc_g=None, truth: TruthPath 
     for k in np.unique(si):
         sel = si == k
         f_body[sel] = a[sel] @ rec.segments[k].orientation.T * G0_MPS2  # body <- sensor
-    c_wb = _world_from_body(track, t)
     lat = np.interp(t, track.t_s, track.lat_deg)
     lon = np.interp(t, track.t_s, track.lon_deg)
     alt = np.interp(t, track.t_s, track.alt_m)
-    g_w = np.einsum("nij,nj->ni", world_from_local(track, lat, lon), gravity_ned_mps2(lat, lon, alt))
-    # Earth rate in world axes: ECEF z axis expressed in the origin's NED
-    r0 = _ecef_to_ned(track.origin_lat_deg, track.origin_lon_deg)
-    omega_w = r0 @ np.array([0.0, 0.0, OMEGA_E_RADPS])
+    # specific force body -> local NED -> ECEF, plus gravity (in ECEF), then ECEF -> world once
+    f_ecef = ned_to_ecef(lat, lon, attitude_at(track, t).apply(f_body))
+    r0 = _world_rotation(track)
+    omega_w = r0 @ np.array([0.0, 0.0, OMEGA_E_RADPS])  # Earth rate: the ECEF z axis in world axes
     v_w = (truth or TruthPath(track)).velocity(t)
-    return np.einsum("nij,nj->ni", c_wb, f_body) + g_w - 2.0 * np.cross(omega_w, v_w)
+    return (f_ecef + gravity_ecef_mps2(lat, lon, alt)) @ r0.T - 2.0 * np.cross(omega_w, v_w)
 
 
 def static_periods(checks, window: int, n: int) -> np.ndarray:

@@ -17,6 +17,7 @@ another sensor keeps the flight, and adding a draw to one stage never moves anot
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import time
 from collections.abc import Callable, Sequence
@@ -190,36 +191,124 @@ def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
     return PathResult(est, path_rows(est, recording.preset), law, 0.5 * offset * span**2, span)
 
 
-def write(out_dir: Path, result: RunResult, *, rrd: bool = True) -> dict[str, Path]:
-    """Write the run folder ``out_dir/<run_id>/`` (truth.parquet, samples.parquet, run.json and, with
-    ``rrd``, recording.rrd) atomically: built in a hidden staging folder and renamed into place only
-    when complete. Returns {role: path}."""
+class RunWriter:
+    """Writes one run folder ``out_dir/<run_id>/`` while later stages compute: a hidden staging folder,
+    one writer thread running the writes in the order given (pyarrow and Rerun release the GIL while
+    they encode), and, once every write has finished, one rename into place. If anything fails (a
+    write, or a stage while the writes run), the staging folder is removed and nothing is left
+    behind. Use as a context manager."""
+
+    def __init__(self, out_dir: Path, run_id: str):
+        self.out_dir, self.run_id = Path(out_dir), run_id
+        self.final = self.out_dir / run_id
+        self.written: dict[str, Path] = {}
+        self._futures: list = []
+        self._on_failure: list = []
+
+    def __enter__(self) -> RunWriter:
+        from concurrent.futures import ThreadPoolExecutor
+
+        from flightmode.scenarios import run_io
+
+        self._staging = run_io.staged_run_dir(self.out_dir, self.run_id)
+        self.stage = self._staging.__enter__()
+        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flightmode-writer")
+        return self
+
+    def submit(self, role: str, filename: str, fn, *args) -> None:
+        """Run ``fn(stage_folder, *args)`` on the writer thread; it writes ``filename``."""
+        self._futures.append(self._pool.submit(fn, self.stage, *args))
+        self.written[role] = self.final / filename
+
+    def on_failure(self, fn) -> None:
+        """Call ``fn()`` if the run fails, before the staging folder is removed (e.g. to close a
+        file a write left open for a later task)."""
+        self._on_failure.append(fn)
+
+    def wait(self) -> None:
+        for f in self._futures:
+            f.result()  # re-raises a write's error here
+
+    def __exit__(self, exc_type, exc, tb) -> bool:
+        failure = exc
+        if failure is None:
+            try:
+                self.wait()
+            except BaseException as e:  # a failed write: clean up as for any other failure
+                failure = e
+        self._pool.shutdown(wait=True, cancel_futures=failure is not None)
+        if failure is None:
+            self._staging.__exit__(None, None, None)  # rename into place
+            return False
+        for fn in self._on_failure:
+            try:
+                fn()
+            except Exception:  # cleaning up after a failure must not hide the failure
+                pass
+        self._staging.__exit__(type(failure), failure, failure.__traceback__)  # removes the staging folder
+        if exc is None:
+            raise failure
+        return False
+
+
+class _Rrd:
+    """recording.rrd written in two parts on the writer thread: everything but the 3D paths as soon as
+    the detector has run (Rerun encodes it in its own threads while the paths are estimated), then
+    the paths, and the rename."""
+
+    def __init__(self, writer: RunWriter):
+        self.w = None
+        writer.on_failure(self.abort)
+
+    def open(self, stage: Path, result: RunResult) -> None:
+        from flightmode.scenarios.run_view import run_view
+        from flightmode.viz.rrd import RrdWriter
+
+        self.w = RrdWriter(stage / "recording.rrd", result.run_id)
+        self.w.send(run_view(result.run_id, result.scenario.plan, result.track, result.recording, result.detection,
+                             None))
+
+    def close(self, stage: Path, result: RunResult) -> None:
+        from flightmode.scenarios.run_view import path_lines
+
+        if result.path is not None:
+            self.w.send_paths(path_lines(result.path.estimates, result.recording.odr_hz))
+        self.w.close()
+
+    def abort(self) -> None:
+        if self.w is not None:
+            self.w.abort()
+
+
+def _finish(writer: RunWriter, result: RunResult, rrd: _Rrd | None) -> None:
+    """Queue what needs every stage: the rest of recording.rrd, then run.json (a run folder's last file)."""
     from flightmode.scenarios import run_io
 
-    rid = result.run_id
-    written: dict[str, Path] = {}
-    with run_io.staged_run_dir(Path(out_dir), rid) as stage:
-        final = Path(out_dir) / rid
-        info = run_io.run_info(result)
-        if result.track is not None:
-            run_io.write_truth(stage, result.track)
-            written["truth"] = final / "truth.parquet"
-        if result.recording is not None:
-            run_io.write_samples(stage, result.recording)
-            written["samples"] = final / "samples.parquet"
-        if rrd and result.track is not None and result.recording is not None and result.detection is not None:
-            from flightmode.scenarios.run_view import run_view
-            from flightmode.viz.rrd import write_rrd
+    if rrd is not None:
+        writer.submit("rrd", "recording.rrd", rrd.close, result)
+    writer.submit("run_json", "run.json", run_io.write_run_json, run_io.run_info(result))
 
-            t0 = time.perf_counter()
-            paths = result.path.estimates if result.path is not None else None
-            write_rrd(run_view(rid, result.scenario.plan, result.track, result.recording, result.detection, paths),
-                      stage / "recording.rrd")
-            info["wall_time_s"]["rrd"] = time.perf_counter() - t0
-            written["rrd"] = final / "recording.rrd"
-        run_io.write_run_json(stage, info)
-        written["run_json"] = final / "run.json"
-    return written
+
+def _rrd_after_detect(writer: RunWriter, result: RunResult, rrd: bool) -> _Rrd | None:
+    if not (rrd and result.track is not None and result.recording is not None and result.detection is not None):
+        return None
+    r = _Rrd(writer)
+    writer.submit("rrd", "recording.rrd", r.open, result)
+    return r
+
+
+def write(out_dir: Path, result: RunResult, *, rrd: bool = True) -> dict[str, Path]:
+    """Write the run folder ``out_dir/<run_id>/`` (truth.parquet, samples.parquet, run.json and, with
+    ``rrd``, recording.rrd) atomically (:class:`RunWriter`). Returns {role: path}."""
+    from flightmode.scenarios import run_io
+
+    with RunWriter(out_dir, result.run_id) as w:
+        if result.track is not None:
+            w.submit("truth", "truth.parquet", run_io.write_truth, result.track)
+        if result.recording is not None:
+            w.submit("samples", "samples.parquet", run_io.write_samples, result.recording)
+        _finish(w, result, _rrd_after_detect(w, result, rrd))
+    return w.written
 
 
 # ---------------------------------------------------------------------- the chain
@@ -247,6 +336,7 @@ def run(
     called as each stage starts; ``track``: the scenario's flight flown before (by :func:`fly` with
     this run's ``flight`` streams), to skip flying it again.
     """
+    from flightmode.scenarios import run_io
     from flightmode.sim.flight.flight_metrics import flight_metrics
     from flightmode.sim.sensor.sensing import GyroSpec
 
@@ -265,41 +355,55 @@ def run(
     root = streams_of(sc.seed)
     wall: dict[str, float] = {}
     tell = on_stage or (lambda name: None)
-    tell("fly")
-    t0 = time.perf_counter()
-    if track is None:
-        track = fly(sc, root.child("flight"), progress=progress)
-    elif track.aircraft != sc.aircraft or track.fs_hz != sc.plan.fdm_hz:
-        raise FlightmodeError(f"the track given is a {track.aircraft} at {track.fs_hz:g} Hz, not this scenario's flight "
-                              f"({sc.aircraft} at {sc.plan.fdm_hz} Hz)")
-    metrics = flight_metrics(track, sc.plan)
-    wall["fly"] = time.perf_counter() - t0
-    rec = det = path = None
-    if "sense" in stages:
-        tell("sense")
+    writing = "write" in stages and out is not None
+    with contextlib.ExitStack() as stack:
+        # files are written by a background thread as soon as their data exist (a run folder appears
+        # whole, or not at all: RunWriter)
+        writer = stack.enter_context(RunWriter(Path(out), sc.run_id)) if writing else None
+        tell("fly")
         t0 = time.perf_counter()
-        g = gyro if isinstance(gyro, GyroSpec) else (GyroSpec() if gyro else None)
-        rec = sense(track, sc.carrier, sc.sensor if sensor is None else sensor, root.child("sensor"), gyro=g)
-        wall["sense"] = time.perf_counter() - t0
-    if "detect" in stages:
-        tell("detect")
-        t0 = time.perf_counter()
-        det = detect(rec, root.rng("detector/bench"))
-        wall["detect"] = time.perf_counter() - t0
-    if "path" in stages:
-        tell("path")
-        t0 = time.perf_counter()
-        path = estimate_path(track, rec)
-        wall["path"] = time.perf_counter() - t0
-    result = RunResult(sc, sc.seed, track, metrics, rec, det, path, {}, wall)
-    if "write" in stages and out is not None:
-        tell("write")
-        t0 = time.perf_counter()
-        written = write(Path(out), result, rrd=rrd)
-        wall["write"] = time.perf_counter() - t0
-        result = dataclasses.replace(result, written=written, wall_s=wall)
+        if track is None:
+            track = fly(sc, root.child("flight"), progress=progress)
+        elif track.aircraft != sc.aircraft or track.fs_hz != sc.plan.fdm_hz:
+            raise FlightmodeError(f"the track given is a {track.aircraft} at {track.fs_hz:g} Hz, not this scenario's "
+                                  f"flight ({sc.aircraft} at {sc.plan.fdm_hz} Hz)")
+        metrics = flight_metrics(track, sc.plan)
+        wall["fly"] = time.perf_counter() - t0
+        if writer is not None:
+            writer.submit("truth", "truth.parquet", run_io.write_truth, track)
+        rec = det = path = rrd_part = None
+        if "sense" in stages:
+            tell("sense")
+            t0 = time.perf_counter()
+            g = gyro if isinstance(gyro, GyroSpec) else (GyroSpec() if gyro else None)
+            rec = sense(track, sc.carrier, sc.sensor if sensor is None else sensor, root.child("sensor"), gyro=g)
+            wall["sense"] = time.perf_counter() - t0
+            if writer is not None:
+                writer.submit("samples", "samples.parquet", run_io.write_samples, rec)
+        if "detect" in stages:
+            tell("detect")
+            t0 = time.perf_counter()
+            det = detect(rec, root.rng("detector/bench"))
+            wall["detect"] = time.perf_counter() - t0
+            if writer is not None:
+                partial = RunResult(sc, sc.seed, track, metrics, rec, det, None, {}, wall)
+                rrd_part = _rrd_after_detect(writer, partial, rrd)
+        if "path" in stages:
+            tell("path")
+            t0 = time.perf_counter()
+            path = estimate_path(track, rec)
+            wall["path"] = time.perf_counter() - t0
+        result = RunResult(sc, sc.seed, track, metrics, rec, det, path, {}, wall)
+        if writer is not None:
+            tell("write")
+            t0 = time.perf_counter()
+            _finish(writer, result, rrd_part)
+            writer.wait()
+            wall["write"] = time.perf_counter() - t0  # what was left to write after the last stage
+    if writer is not None:
+        result = dataclasses.replace(result, written=writer.written, wall_s=wall)
     return result
 
 
-__all__ = ["run", "fly", "sense", "detect", "estimate_path", "write", "RunResult", "PathResult", "STAGES",
+__all__ = ["run", "fly", "sense", "detect", "estimate_path", "write", "RunWriter", "RunResult", "PathResult", "STAGES",
            "unit_sigma2", "stream_sigma2", "sensor_preset", "scenario_of", "streams_of"]

@@ -50,11 +50,7 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
     r = Rotation.from_matrix(NED_TO_ENU) * Rotation.from_quat(track.quat_wxyz[kp], scalar_first=True)
     prof = get_profile(track.aircraft)
     box = (prof.length_m, prof.wingspan_m, prof.length_m * 0.2)  # length, span, a rough height
-    p3 = {}
-    if paths is not None:
-        step = max(1, int(rec.odr_hz))  # one point per second
-        for name in ("truth", "tridiagonal", "recurrence"):
-            p3[name] = paths[name][::step] @ NED_TO_ENU.T
+    p3 = path_lines(paths, rec.odr_hz) if paths is not None else {}
     route = np.column_stack([track.lat_deg[every(1.0)], track.lon_deg[every(1.0)]])
     airports = [(a.icao, a.name, a.lat_deg, a.lon_deg) for a in (plan.origin, plan.destination)]
     return RunView(
@@ -65,3 +61,9 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
         aircraft=aircraft, pose_t_s=track.t_s[kp], pose_enu_m=pos, pose_quat_xyzw=r.as_quat(),
         box_size_m=box, paths_enu_m=p3, route_lat_lon=route, airports=airports,
     )
+
+
+def path_lines(paths: dict, odr_hz: float) -> dict:
+    """The path estimates (nav, world NED) as ENU polylines at one point per second."""
+    step = max(1, int(odr_hz))
+    return {name: paths[name][::step] @ NED_TO_ENU.T for name in ("truth", "tridiagonal", "recurrence")}

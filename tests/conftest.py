@@ -24,9 +24,10 @@ def _flight_cache_dir(tmp_path_factory, worker_id):
 
 @pytest.fixture(scope="session")
 def fly_cached(_flight_cache_dir):
-    """fly_cached(name, seed=None, **scenario_changes) -> (scenario, track): the scenario (a built-in
-    with ``Scenario.replace`` changes) flown by the pipeline's own ``fly`` with the run's ``flight``
-    streams, exactly as ``flightmode.run`` flies it."""
+    """fly_cached(name, seed=None, stop_after_s=None, **scenario_changes) -> (scenario, track): the
+    scenario (a built-in with ``Scenario.replace`` changes) flown by the pipeline's own ``fly`` with
+    the run's ``flight`` streams, exactly as ``flightmode.run`` flies it (``stop_after_s``: only that
+    much of it, the exact prefix)."""
     from filelock import FileLock
 
     from flightmode.scenarios import pipeline
@@ -34,20 +35,20 @@ def fly_cached(_flight_cache_dir):
 
     memo: dict = {}
 
-    def _fly(name: str, seed: int | None = None, **changes):
+    def _fly(name: str, seed: int | None = None, stop_after_s: float | None = None, **changes):
         sc = Scenario.builtin(name)
         if seed is not None:
             changes["seed"] = seed
         if changes:
             sc = sc.replace(**changes)
-        key = sc.digest()
+        key = sc.digest() + ("" if stop_after_s is None else f"-stop{stop_after_s:g}")
         if key not in memo:
             path = _flight_cache_dir / f"{key}.pkl"
             with FileLock(str(path) + ".lock"):
                 if path.exists():
                     track = pickle.loads(path.read_bytes())
                 else:
-                    track = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"))
+                    track = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=stop_after_s)
                     tmp = path.with_suffix(f".tmp-{os.getpid()}")
                     tmp.write_bytes(pickle.dumps(track, protocol=pickle.HIGHEST_PROTOCOL))
                     os.replace(tmp, path)

@@ -129,23 +129,57 @@ def view_names() -> list[str]:
     return walk(_layout())
 
 
+class RrdWriter:
+    """An .rrd being written: opened at a temporary name beside ``path`` with the embedded blueprint,
+    filled with :meth:`send` (a RunView; Rerun encodes and writes in its own threads meanwhile) and
+    :meth:`send_paths` (3D paths computed later), renamed into place by :meth:`close`; :meth:`abort`
+    removes it."""
+
+    def __init__(self, path: Path, run_id: str):
+        import rerun as rr
+
+        self._rr = rr
+        self.path = Path(path)
+        self._tmp = self.path.with_name(f".{self.path.name}.{uuid.uuid4().hex[:8]}.partial")
+        self._rec = rr.RecordingStream("flightmode", recording_id=run_id)
+        try:
+            self._rec.save(self._tmp, default_blueprint=blueprint())
+        except BaseException:
+            self.abort()
+            raise
+
+    def send(self, view: RunView) -> None:
+        _send(self._rr, self._rec, view)
+
+    def send_paths(self, paths_enu_m: dict) -> None:
+        _send_paths(self._rr, self._rec, paths_enu_m)
+
+    def close(self) -> Path:
+        try:
+            self._rec.flush()
+            self._rec.disconnect()
+            os.replace(self._tmp, self.path)
+        except BaseException:
+            self.abort()
+            raise
+        return self.path
+
+    def abort(self) -> None:
+        try:
+            self._rec.disconnect()
+        finally:
+            self._tmp.unlink(missing_ok=True)
+
+
 def write_rrd(view: RunView, path: Path) -> Path:
     """Write ``view`` to ``path`` (temporary name, then rename) with the embedded blueprint."""
-    import rerun as rr
-
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex[:8]}.partial")
-    rec = rr.RecordingStream("flightmode", recording_id=view.run_id)
+    w = RrdWriter(path, view.run_id)
     try:
-        rec.save(tmp, default_blueprint=blueprint())
-        _send(rr, rec, view)
-        rec.flush()
-        rec.disconnect()
-        os.replace(tmp, path)
+        w.send(view)
     except BaseException:
-        tmp.unlink(missing_ok=True)
+        w.abort()
         raise
-    return path
+    return w.close()
 
 
 def _send(rr, rec, v: RunView) -> None:
@@ -198,10 +232,7 @@ def _send(rr, rec, v: RunView) -> None:
            static=True, **kw)
     rr.send_columns("/world/aircraft", indexes=[rr.TimeColumn("sim_time", duration=_ns(v.pose_t_s))],
                     columns=rr.Transform3D.columns(translation=v.pose_enu_m, quaternion=v.pose_quat_xyzw), **kw)
-    colours = {"truth": [240, 240, 240], "tridiagonal": [80, 200, 255], "recurrence": [255, 120, 60]}
-    for name, pts in v.paths_enu_m.items():
-        rr.log(f"/world/path/{name}", rr.LineStrips3D([pts], radii=[40.0], colors=[colours.get(name, [200, 200, 0])],
-                                                      labels=[name]), static=True, **kw)
+    _send_paths(rr, rec, v.paths_enu_m)
     # map
     if v.route_lat_lon.shape[0]:
         rr.log("/map/route", rr.GeoLineStrings(lat_lon=[v.route_lat_lon], radii=rr.components.Radius.ui_points(2.0),
@@ -214,3 +245,12 @@ def _send(rr, rec, v: RunView) -> None:
     for i, (icao, _name, lat, lon) in enumerate(v.airports):
         rr.log(f"/map/airports/{icao}", rr.GeoPoints(lat_lon=[[lat, lon]], radii=rr.components.Radius.ui_points(8.0),
                                                     class_ids=[i + 1]), static=True, **kw)
+
+
+PATH_COLOURS = {"truth": [240, 240, 240], "tridiagonal": [80, 200, 255], "recurrence": [255, 120, 60]}
+
+
+def _send_paths(rr, rec, paths_enu_m: dict) -> None:
+    for name, pts in paths_enu_m.items():
+        rr.log(f"/world/path/{name}", rr.LineStrips3D([pts], radii=[40.0], colors=[PATH_COLOURS.get(name, [200, 200, 0])],
+                                                      labels=[name]), static=True, recording=rec)

@@ -33,17 +33,26 @@ def geodetic_to_ecef(lat_deg, lon_deg, alt_m):
     return np.stack(np.broadcast_arrays(x, y, z), axis=-1)
 
 
-def ecef_to_ned_matrix(lat0_deg: float, lon0_deg: float) -> np.ndarray:
-    """Rotation matrix taking an ECEF vector to the local NED frame at (lat0, lon0)."""
-    lat, lon = np.radians(lat0_deg), np.radians(lon0_deg)
-    sl, cl, so, co = np.sin(lat), np.cos(lat), np.sin(lon), np.cos(lon)
-    return np.array(
-        [
-            [-sl * co, -sl * so, cl],
-            [-so, co, 0.0],
-            [-cl * co, -cl * so, -sl],
-        ]
-    )
+def ecef_to_ned_matrix(lat_deg, lon_deg) -> np.ndarray:
+    """Rotation matrices (..., 3, 3) taking ECEF vectors into the local NED frame at (lat, lon);
+    (3, 3) for scalars. The one ECEF <-> NED rotation of flightmode (its transpose goes back)."""
+    la, lo = np.radians(lat_deg), np.radians(lon_deg)
+    sl, cl, so, co = np.sin(la), np.cos(la), np.sin(lo), np.cos(lo)
+    r = np.empty(np.shape(la) + (3, 3))
+    r[..., 0, :] = np.stack([-sl * co, -sl * so, cl], axis=-1)
+    r[..., 1, :] = np.stack([-so, co, np.zeros_like(so)], axis=-1)
+    r[..., 2, :] = np.stack([-cl * co, -cl * so, -sl], axis=-1)
+    return r
+
+
+def ned_to_ecef(lat_deg, lon_deg, v_ned) -> np.ndarray:
+    """NED vectors (n, 3) at (lat, lon) (n,) rotated into ECEF: ``ecef_to_ned_matrix(lat, lon)^T v``,
+    without building the (n, 3, 3) matrices."""
+    la, lo = np.radians(lat_deg), np.radians(lon_deg)
+    sl, cl, so, co = np.sin(la), np.cos(la), np.sin(lo), np.cos(lo)
+    v = np.asarray(v_ned, float)
+    n, e, d = v[..., 0], v[..., 1], v[..., 2]
+    return np.stack([-sl * co * n - so * e - cl * co * d, -sl * so * n + co * e - cl * so * d, cl * n - sl * d], axis=-1)
 
 
 def geodetic_to_ned(lat_deg, lon_deg, alt_m, lat0_deg: float, lon0_deg: float, alt0_m: float):
@@ -106,12 +115,12 @@ class RunwayFrame:
         lat0, lon0 = math.radians(rwy.lat_deg), math.radians(rwy.lon_deg)
         self._h = rwy.elevation_m  # points are taken at the threshold elevation
         self._ecef0 = self._ecef(lat0, lon0, self._h)
-        sl, cl, so, co = math.sin(lat0), math.cos(lat0), math.sin(lon0), math.cos(lon0)
+        sl, cl = math.sin(lat0), math.cos(lat0)
         h = math.radians(rwy.heading_deg)
         ch, sh = math.cos(h), math.sin(h)
-        # rows: runway x = N cos h + E sin h; runway y = -N sin h + E cos h
-        n_row = (-sl * co, -sl * so, cl)
-        e_row = (-so, co, 0.0)
+        # rows: runway x = N cos h + E sin h; runway y = -N sin h + E cos h (plain floats: the pilot
+        # calls to_xy every tick)
+        n_row, e_row, _ = ecef_to_ned_matrix(rwy.lat_deg, rwy.lon_deg).tolist()
         self._rx = tuple(ch * a + sh * b for a, b in zip(n_row, e_row))
         self._ry = tuple(-sh * a + ch * b for a, b in zip(n_row, e_row))
         s = sl

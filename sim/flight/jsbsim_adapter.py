@@ -28,19 +28,21 @@ import numpy as np
 
 from flightmode.errors import AircraftError, did_you_mean
 
-FT_M = 0.3048
-KT_MPS = 1852.0 / 3600.0
-LBF_N = 4.4482216152605
-G0_MPS2 = 9.80665
+from flightmode.units import FT_M, G0_MPS2, KT_MPS, LBF_N
 
 
 @dataclass(frozen=True, slots=True)
 class Channel:
-    """One JSBSim property read every step, with its SI name and scale."""
+    """One JSBSim property recorded for the FlightTrack, with its SI name and scale. A ``slow``
+    channel is read at the pilot's ticks only (4-40 Hz) and interpolated linearly to every step: the
+    actuator positions (rate-limited, piecewise linear in time), the engines (first-order spool
+    lags of seconds) and the air data (airspeeds, Mach, angle of attack), which only the truth
+    columns show. Reading 32 properties every step cost a third of a flight's time."""
 
     name: str
     prop: str
     scale: float = 1.0
+    slow: bool = False
 
 
 # Height above ground is derived, not read: ``position/h-agl-ft`` costs three times any other
@@ -74,22 +76,22 @@ def _channels(n_engines: int) -> tuple[Channel, ...]:
         Channel("fx_mps2", "accelerations/Nx", G0_MPS2),
         Channel("fy_mps2", "accelerations/Ny", G0_MPS2),
         Channel("fz_mps2", "accelerations/Nz", -G0_MPS2),
-        Channel("ias_mps", "velocities/vc-kts", KT_MPS),
-        Channel("tas_mps", "velocities/vtrue-kts", KT_MPS),
-        Channel("mach", "velocities/mach"),
-        Channel("alpha_rad", "aero/alpha-rad"),
         Channel("wow", "gear/wow"),
-        Channel("flap_norm", "fcs/flap-pos-norm"),
-        Channel("gear_norm", "gear/gear-pos-norm"),
-        Channel("speedbrake_norm", "fcs/speedbrake-pos-norm"),
+        Channel("ias_mps", "velocities/vc-kts", KT_MPS, slow=True),
+        Channel("tas_mps", "velocities/vtrue-kts", KT_MPS, slow=True),
+        Channel("mach", "velocities/mach", slow=True),
+        Channel("alpha_rad", "aero/alpha-rad", slow=True),
+        Channel("flap_norm", "fcs/flap-pos-norm", slow=True),
+        Channel("gear_norm", "gear/gear-pos-norm", slow=True),
+        Channel("speedbrake_norm", "fcs/speedbrake-pos-norm", slow=True),
     ]
     for i in range(n_engines):
         base += [
-            Channel(f"n1_pct_{i}", f"propulsion/engine[{i}]/n1"),
-            Channel(f"n2_pct_{i}", f"propulsion/engine[{i}]/n2"),
-            Channel(f"thrust_n_{i}", f"propulsion/engine[{i}]/thrust-lbs", LBF_N),
+            Channel(f"n1_pct_{i}", f"propulsion/engine[{i}]/n1", slow=True),
+            Channel(f"n2_pct_{i}", f"propulsion/engine[{i}]/n2", slow=True),
+            Channel(f"thrust_n_{i}", f"propulsion/engine[{i}]/thrust-lbs", LBF_N, slow=True),
         ]
-    return tuple(base)
+    return tuple(base)  # the every-step channels first, then the slow ones
 
 
 def available_models() -> list[str]:
@@ -177,6 +179,7 @@ class JSBSimAircraft:
         self.dt_s = dt_s
         self.channels = _channels(n_engines)
         self.index = {c.name: i for i, c in enumerate(self.channels + DERIVED_CHANNELS)}
+        self.n_every_step = sum(1 for c in self.channels if not c.slow)  # the first channels
         tmp = Path(tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir)).resolve()  # JSBSim needs absolute paths
         try:
             aircraft_path = _private_model_copy(model, tmp)

@@ -28,7 +28,7 @@ import numpy as np
 from flightmode.sim.flight import geodesy
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.errors import FlightDivergedError
-from flightmode.sim.flight.jsbsim_adapter import FT_M, JSBSimAircraft
+from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.pilot import Pilot
@@ -36,7 +36,7 @@ from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import gate_position_out
 from flightmode.sim.flight.track import Event, FlightTrack, euler_to_quat_wxyz
 from flightmode.streams import Streams, as_streams
-from flightmode.units import LB_KG
+from flightmode.units import FT_M, LB_KG
 
 
 def max_duration_s(plan: FlightPlan) -> float:
@@ -100,13 +100,18 @@ def fly(
         ac.step()
 
     nch = len(ac.channels)
+    nf = ac.n_every_step  # channels recorded every step; the rest at the pilot's ticks
     scales_list = ac.scales.tolist()
     get, nodes = ac.raw_getter()
+    fast_nodes = nodes[:nf]
     run = ac.fdm.run
     mul = operator.mul
     i_alt = ac.index["alt_m"]
-    data = array("d")  # every step's raw channels, appended in place (no per-step NumPy work)
+    data = array("d")  # every step's fast channels, appended in place (no per-step NumPy work)
     ext = data.extend
+    slow = array("d")  # the slow channels at each tick
+    ext_slow = slow.extend
+    tick_steps = array("q")
     changes: list[tuple[int, int, int]] = [(0, pilot.phase_code, pilot.severity_code)]
     limit_steps = int(max_duration_s(plan) * fdm_hz)
     step = 0
@@ -115,9 +120,11 @@ def fly(
     next_progress = 0.0
     stop_steps = None if stop_after_s is None else int(stop_after_s * fdm_hz)
     while not pilot.done and (stop_steps is None or step < stop_steps):
-        # a control tick: sample, decide, step
+        # a control tick: sample every channel, decide, step
         raw = list(map(get, nodes))
-        ext(raw)
+        ext(raw[:nf])
+        ext_slow(raw[nf:])
+        tick_steps.append(step)
         t = step / fdm_hz
         codes = (pilot.phase_code, pilot.severity_code)
         x = list(map(mul, raw, scales_list))  # SI floats
@@ -135,9 +142,9 @@ def fly(
             next_progress = t + 60.0
         run()
         every = 1 if pilot.done else pilot.control_every
-        # the steps between ticks: record and step, nothing else
+        # the steps between ticks: record the fast channels and step, nothing else
         for _ in range(every - 1):
-            ext(map(get, nodes))
+            ext(map(get, fast_nodes))
             run()
         step += every
         if step > limit_steps:
@@ -146,7 +153,16 @@ def fly(
                 phase=pilot.phase,
                 t_s=step / fdm_hz,
             )
-    raw_record = np.frombuffer(data, dtype=np.float64).reshape(-1, nch)
+    raw_record = np.empty((step, nch))
+    raw_record[:, :nf] = np.frombuffer(data, dtype=np.float64).reshape(-1, nf)
+    ticks = np.frombuffer(tick_steps, dtype=np.int64)
+    at_ticks = np.frombuffer(slow, dtype=np.float64).reshape(-1, nch - nf)
+    all_steps = np.arange(step, dtype=np.float64)
+    for j, ch in enumerate(ac.channels[nf:]):  # slow channels: linear between ticks (jsbsim_adapter.Channel)
+        if ch.name == "alpha_rad":  # an angle: interpolated the short way round (it wraps at standstill)
+            raw_record[:, nf + j] = np.angle(np.exp(1j * np.interp(all_steps, ticks, np.unwrap(at_ticks[:, j]))))
+        else:
+            raw_record[:, nf + j] = np.interp(all_steps, ticks, at_ticks[:, j])
     terrain = np.full(step, plan.origin.elevation_m)
     if dest_terrain_from is not None:
         terrain[dest_terrain_from:] = plan.destination.elevation_m

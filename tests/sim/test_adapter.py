@@ -2,7 +2,8 @@
 
 import pytest
 
-from flightmode.sim.flight.jsbsim_adapter import FT_M, JSBSimAircraft
+from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+from flightmode.units import FT_M
 
 
 @pytest.mark.parametrize("model,n_eng", [("A320", 2), ("737", 2)])

@@ -97,7 +97,9 @@ def test_turbulence_intensity_rises_with_severity(fly_cached):
         TurbulenceSegment(1300.0, 240.0, "moderate"),
         TurbulenceSegment(1700.0, 240.0, "severe"),
     )
-    sc, tr = fly_cached("gva-lhr-a320", turbulence=segs)
+    # flown to a little after the last segment (liftoff is about 15 min after the track starts)
+    sc, tr = fly_cached("gva-lhr-a320", turbulence=segs, stop_after_s=3300.0)
+    assert tr.t_s[-1] > tr.event_time("liftoff") + 1940.0
     nz = -tr.specific_force_body_mps2[:, 2] / 9.80665
     t_lo = tr.event_time("liftoff")
     dt = 1.0 / tr.fs_hz
