@@ -3,7 +3,7 @@
     python benchmarks/bench_sensing.py [SCENARIO] [PRESET]
 
 Both timed here, best of 3 each (as in bench_flight): ``pipeline.fly`` (JSBSim and the pilot) and
-``pipeline.sense`` (carrier timeline, vibration, mount, accelerometer chain at 1200 Hz internal
+``pipeline.sense`` (carrier timeline, vibration, mount, accelerometer chain at the internal
 rate, labels).
 """
 

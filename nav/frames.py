@@ -91,13 +91,19 @@ def attitude_at(track, t_s):
 
 
 def body_to_world(track, t_s, v_body) -> np.ndarray:
-    """Body-axis vectors (n, 3) (or one (3,)) at times ``t_s``, in the track's world frame: body ->
-    local NED by the attitude, local NED -> ECEF at the track's position, ECEF -> world."""
-    t = np.asarray(t_s, float)
-    v_ned = attitude_at(track, t).apply(v_body)
-    lat = np.interp(t, track.t_s, track.lat_deg)
-    lon = np.interp(t, track.t_s, track.lon_deg)
-    return ned_to_ecef(lat, lon, v_ned) @ _world_rotation(track).T
+    """Body-axis vectors (n, 3) (or one (3,)) at times ``t_s`` (None: at the track's own samples, no
+    interpolation), in the track's world frame: body -> local NED by the attitude, local NED -> ECEF
+    at the track's position, ECEF -> world."""
+    if t_s is None:
+        from scipy.spatial.transform import Rotation
+
+        att, lat, lon = Rotation.from_quat(track.quat_wxyz, scalar_first=True), track.lat_deg, track.lon_deg
+    else:
+        t = np.asarray(t_s, float)
+        att = attitude_at(track, t)
+        lat = np.interp(t, track.t_s, track.lat_deg)
+        lon = np.interp(t, track.t_s, track.lon_deg)
+    return ned_to_ecef(lat, lon, att.apply(v_body)) @ _world_rotation(track).T
 
 
 class TruthPath:
@@ -110,7 +116,7 @@ class TruthPath:
 
         pos = track.pos_ned_m
         if lever_arm_body_m is not None:
-            pos = pos + body_to_world(track, track.t_s, np.asarray(lever_arm_body_m, float))
+            pos = pos + body_to_world(track, None, np.asarray(lever_arm_body_m, float))
         self.t0_s, self.t1_s = float(track.t_s[0]), float(track.t_s[-1])
         self.spline = CubicSpline(track.t_s, pos)
 

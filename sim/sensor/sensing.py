@@ -1,7 +1,9 @@
 """Sensing: a FlightTrack plus a carrier timeline plus an accelerometer -> a labelled Recording.
 
-Everything is generated at ``FS_INTERNAL_HZ`` (1200 Hz: a multiple of the 100 and 400 Hz ODRs;
-the FlightTrack's channels, at its own rate, are interpolated linearly to it), chunk by chunk with every filter's state carried across chunks, then the
+Everything is generated at ``FS_INTERNAL_HZ`` (800 Hz: a multiple of every output data rate of the
+presets, 1 to 400 Hz, and above twice the highest line modelled, an N2 shaft at 253 Hz, so every
+line is represented and the part's own filter and sampling decide what aliases; the FlightTrack's
+channels, at its own rate, are interpolated linearly to it), chunk by chunk with every filter's state carried across chunks, then the
 accelerometer's own filter and sampling decide what reaches its output (aliasing included).
 
 Frames: on board, the floor's specific force is the FlightTrack's at the bag's lever arm (body
@@ -36,7 +38,7 @@ from flightmode.sim.sensor.vibration import VibrationModel, initial_state, vibra
 from flightmode.streams import Streams, as_streams
 from flightmode.units import G0_MPS2 as G0
 
-FS_INTERNAL_HZ = 1200.0
+FS_INTERNAL_HZ = 800.0
 CHUNK_S = 60.0
 SETTLE_S = 2.0
 BAG_STATE_CODE = {s: i for i, s in enumerate(car.BAG_STATES)}

@@ -134,7 +134,9 @@ def test_pick_up_lifts_the_bag_and_leaves_no_net_velocity(fly_cached):
     _, tr = fly_cached("pattern")
     spec = dataclasses.replace(CarrierSpec(), gait_vertical_g=0.0, gait_lateral_g=0.0, gait_fore_aft_g=0.0)
     rec = sense(tr, spec, get_preset("ideal"), np.random.default_rng(0), unit=UnitDraw())
-    peak_g = float(pickup_pulse_mps2(1 / 1200, spec).max()) / 9.80665
+    from flightmode.sim.sensor.sensing import FS_INTERNAL_HZ
+
+    peak_g = float(pickup_pulse_mps2(1 / FS_INTERNAL_HZ, spec).max()) / 9.80665
     assert peak_g == pytest.approx(5.77 * spec.pickup_height_m / spec.pickup_s**2 / 9.80665, rel=0.01)  # min-jerk peak
     a = np.linalg.norm(rec.acc_g, axis=1) - 1.0
     lifts = 0
@@ -305,15 +307,17 @@ def test_100_hz_odr_aliases_the_fan_line_400_hz_records_it(fly_cached):
     assert _folded_hz(f_n1, 400.0) == f_n1  # kept where it is
     # Amplitude: the chain is linear and the two recordings share every random stream, so the
     # ratio of the two tones is the ratio of the anti-alias filters' gains at the line (2nd-order
-    # Butterworth at ODR / 2 = the datasheet bandwidth, run at the 1200 Hz internal rate): 0.49.
+    # Butterworth at ODR / 2 = the datasheet bandwidth, run at the internal rate): 0.49.
     # The +-2-bin sums hold > 99.9 % of a Hann-windowed tone, and the 100 Hz grid mirrors the
     # 400 Hz one about 50 Hz (same offset from the bins); what remains is the two engines' lines
     # sitting +-0.2 Hz apart on the 50 Hz filter's slope (|H| falls 2.3 %/Hz at 67 Hz): +-0.5 %.
     # 2 % is four times that (a 1st-order filter would give 0.62, a 45 Hz cut-off 0.41).
     from scipy.signal import butter, sosfreqz
 
-    h100 = abs(sosfreqz(butter(2, 50.0, fs=1200.0, output="sos"), worN=[f_n1], fs=1200.0)[1][0])
-    h400 = abs(sosfreqz(butter(2, 200.0, fs=1200.0, output="sos"), worN=[f_n1], fs=1200.0)[1][0])
+    from flightmode.sim.sensor.sensing import FS_INTERNAL_HZ as FS
+
+    h100 = abs(sosfreqz(butter(2, 50.0, fs=FS, output="sos"), worN=[f_n1], fs=FS)[1][0])
+    h400 = abs(sosfreqz(butter(2, 200.0, fs=FS, output="sos"), worN=[f_n1], fs=FS)[1][0])
     assert res[100.0][1] / res[400.0][1] == pytest.approx(h100 / h400, rel=0.02)
 
 
