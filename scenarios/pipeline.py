@@ -48,7 +48,7 @@ class PathResult:
 
     estimates: dict  # t_s, truth, acc, mask, tridiagonal, recurrence (world frame, m)
     rows: list[dict]  # one per method: max / RMS / final error (m)
-    random_walk_m: float  # the t^1.5 law's RMS position error for the sensor's white noise over the span
+    random_walk_m: float  # the t^1.5 law's RMS position error for the sensor's noise (its 0 Hz density) over the span
     offset_drift_m: float  # 0.5 |b| t^2: what the unit's zero-g offset b alone does over the span
     span_s: float
 
@@ -178,14 +178,15 @@ def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
 
     from flightmode.nav.evaluation import estimate_paths, path_rows, predicted_random_walk_m
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.sensor.accelerometer import get_preset
+    from flightmode.sim.sensor.accelerometer import get_preset, noise_random_walk_sigma_g
     from flightmode.sim.sensor.carrier import LOCATION_OF
     from flightmode.units import G0_MPS2
 
     lever = get_profile(track.aircraft).locations_m[LOCATION_OF[recording.carrier.placement]]
     est = estimate_paths(track, recording, lever)
     span = float(est["t_s"][-1] - est["t_s"][0])
-    noise = get_preset(recording.preset).noise_g * G0_MPS2
+    # the noise's density at 0 Hz (its coloured part included) is what integrates into a random walk
+    noise = noise_random_walk_sigma_g(get_preset(recording.preset)) * G0_MPS2
     law = float(predicted_random_walk_m(noise, recording.odr_hz, span)) if noise > 0 else math.nan
     offset = float(np.linalg.norm(recording.unit["offset_g"])) * G0_MPS2
     return PathResult(est, path_rows(est, recording.preset), law, 0.5 * offset * span**2, span)

@@ -14,7 +14,8 @@ an integer multiple of the output data rate (ODR):
 3. the part's anti-alias low-pass (``bandwidth_hz``; a 2nd-order Butterworth, ``sosfilt``), or none
    (e-obs: seed 003 section 1 says it has no anti-alias filter, so vibration aliases);
 4. sampling at the ODR (every k-th internal sample: whatever the filter let through aliases);
-5. white output noise, sigma ``noise_g`` per axis;
+5. output noise, sigma ``noise_g`` per axis: white, or white plus a first-order Gauss-Markov part
+   (the section "Coloured noise" below), independent between axes;
 6. quantisation to counts (``round(a / lsb)``, plus the zero-g count for offset-binary ADCs) and
    saturation at the part's range (counts clip at the representable extremes).
 
@@ -25,7 +26,35 @@ the offsets in both.
 The 8-bit LIS302DL: an 18 mg step is eight times the 2.23 mg noise, so a truly static part outputs
 an almost constant count and its variance is far below (2.23 mg)^2 (an 18 mg step is eight times the 2.23 mg noise). The
 preset ``lis302dl-logged16`` models seed 000's logger: the same part, stored at 16 bits over the
-+-2.3 g range (0.07 mg steps), so the white noise survives and the static variance is 5.0e-6 g^2.
++-2.3 g range (0.07 mg steps), so the noise survives and the static variance is 5.0e-6 g^2.
+
+Coloured noise. Seed 000's Table 2 (P_M 6e-3 at 2 sigma^2, 8e-6 at 2.5 sigma^2 for 1 s windows of
+100 samples, eq. 13) implies a spread of the static 1-s moving variance of 0.35-0.40 sigma^2, where 100
+white samples give 0.14 sigma^2 (detector.statistics): the logged static noise had only about 15
+independent samples per second. The LIS302DL presets therefore add to the white noise a first-order
+Gauss-Markov process (exponentially correlated noise, the standard model of correlated inertial-sensor
+noise: IEEE Std 952-1997, Annex C; Maybeck, "Stochastic Models, Estimation and Control", vol. 1,
+section 4.11), sampled exactly at the ODR as an AR(1) sequence. Per axis, at the output samples k:
+
+    n[k] = w[k] + g[k],   w ~ N(0, (1 - q) sigma^2) white,
+    g[k] = phi g[k-1] + sqrt(1 - phi^2) sqrt(q) sigma e[k],   e ~ N(0, 1),   phi = exp(-1 / (ODR tau)),
+
+with sigma = ``noise_g`` (the total: the static variance stays sigma^2), q = ``noise_gm_fraction``
+(the Gauss-Markov share of the variance) and tau = ``noise_gm_tau_s``. Autocovariance
+r(m) = sigma^2 ((1 - q) delta(m) + q phi^|m|); one-sided PSD (:func:`noise_psd_g2_per_hz`)
+S(f) = (2 / ODR) sigma^2 [(1 - q) + q (1 - phi^2) / (1 - 2 phi cos(2 pi f / ODR) + phi^2)], the
+sampled form of the Lorentzian 4 q sigma^2 tau / (1 + (2 pi f tau)^2) on a white floor. g starts in
+its stationary distribution (no power-on transient) and its state is carried from chunk to chunk.
+
+The fit (tests/sim/test_noise_colour.py re-derives it): tau makes sigma_MV / E[MV] of the 100-sample
+NMV equal 0.373, the mean of the spreads Table 2's rows 2 and 2.5 sigma^2 imply (the rows the
+paper's 35 h of static data can resolve; rows 3 and 4 are eq. 13 extrapolated 5-9 sigma_MV into
+a tail the skewed MV distribution does not have); q = 0.77 is the member of that one-parameter
+family whose spectrum is the flattest (least max/min PSD ratio): seed 000 section 4.1 calls the
+static noise "approximated as an independent white noise" (Fig. 4). Then tau = 0.146 s (corner
+1.1 Hz), the white floor is 150 ug/sqrt(Hz) (the analog sister LIS302SG's datasheet lists 200), and
+the mean 1-s NMV is 0.81 sigma^2: a window this correlated loses a fifth of the variance to its
+own mean. Below the corner the density is 1.5 mg/sqrt(Hz) (:func:`noise_random_walk_sigma_g`).
 """
 
 from __future__ import annotations
@@ -35,7 +64,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from flightmode.errors import SensorError, did_you_mean
-
 
 
 @dataclass(frozen=True, slots=True)
@@ -55,6 +83,10 @@ class AccelerometerPreset:
     cross_axis_tol: float  # per-unit cross-axis coupling drawn uniformly in +-tol
     burst_interval_s: float | None = None  # e-obs: a burst every ACC interval
     burst_samples: int | None = None  # e-obs: samples per axis in a burst
+    # coloured noise (module docstring): the Gauss-Markov share of noise_g^2 (0: white) and its
+    # correlation time in seconds
+    noise_gm_fraction: float = 0.0
+    noise_gm_tau_s: float | None = None
 
     def validate(self) -> None:
         if self.odr_hz not in self.allowed_odr_hz:
@@ -64,6 +96,11 @@ class AccelerometerPreset:
             )
         if self.noise_g < 0 or self.range_g <= 0:
             raise SensorError(f"sensor '{self.name}': noise must be >= 0 and range > 0")
+        if not 0.0 <= self.noise_gm_fraction <= 1.0:
+            raise SensorError(f"sensor '{self.name}': noise_gm_fraction {self.noise_gm_fraction:g} must be in [0, 1]")
+        if self.noise_gm_fraction > 0 and not (self.noise_gm_tau_s is not None and self.noise_gm_tau_s > 0):
+            raise SensorError(f"sensor '{self.name}': a Gauss-Markov noise part needs noise_gm_tau_s > 0 "
+                              f"(got {self.noise_gm_tau_s})")
         if self.lsb_g is not None and (self.bits is None or self.lsb_g <= 0):
             raise SensorError(f"sensor '{self.name}': a quantised output needs bits and lsb_g > 0")
         if (self.burst_interval_s is None) != (self.burst_samples is None):
@@ -72,6 +109,13 @@ class AccelerometerPreset:
             raise SensorError(f"sensor '{self.name}': burst interval must be > 0 s")
         # a burst longer than the interval is allowed: seed 003 section 10 uses it for (nearly)
         # continuous sampling
+
+    @property
+    def noise_gm_phi(self) -> float:
+        """AR(1) coefficient of the Gauss-Markov part at the ODR, exp(-1 / (ODR tau)); 0 if white."""
+        if self.noise_gm_fraction == 0 or self.noise_gm_tau_s is None:
+            return 0.0
+        return float(np.exp(-1.0 / (self.odr_hz * self.noise_gm_tau_s)))
 
     @property
     def count_range(self) -> tuple[int, int]:
@@ -100,6 +144,9 @@ _LIS302DL = AccelerometerPreset(
     offset_tol_g=0.040,
     sensitivity_tol=0.10,
     cross_axis_tol=0.02,
+    # seed 000 Table 2 via the fit in the module docstring (tests/sim/test_noise_colour.py)
+    noise_gm_fraction=0.77,
+    noise_gm_tau_s=0.146,
 )
 
 PRESETS: dict[str, AccelerometerPreset] = {
@@ -124,7 +171,8 @@ PRESETS: dict[str, AccelerometerPreset] = {
     # no anti-alias filter (section 1); sampling frequency is per axis. The calibration spread of
     # the zero-g count (+-40 counts, i.e. +-88 mg) and the gain (+-5 %) is our assumption, to be
     # replaced by the six-orientation calibration of section 7. Bursts: 3.3 s of 3 axes at 10 Hz
-    # every 60 s here; eobs_preset sets them from the ACC settings (sec. 9).
+    # every 60 s here; eobs_preset sets them from the ACC settings (sec. 9). Its noise stays white:
+    # seed 003 gives no static spectrum (the 1 mg is our assumption).
     "eobs": AccelerometerPreset(
         name="eobs",
         description="e-obs tag accelerometer: 12-bit ADC (0.0022 g/count, zero-g 2048), no anti-alias filter",
@@ -167,6 +215,33 @@ def get_preset(name: str) -> AccelerometerPreset:
         raise SensorError(
             f"unknown sensor preset '{name}'{did_you_mean(name, PRESETS)}; presets: {', '.join(PRESETS)}"
         ) from None
+
+
+def noise_autocovariance_g2(preset: AccelerometerPreset, n_lags: int) -> np.ndarray:
+    """Autocovariance of the output noise per axis at lags 0..n_lags-1 output samples, in g^2:
+    sigma^2 ((1 - q) delta(m) + q phi^|m|) (module docstring)."""
+    var, q, phi = preset.noise_g**2, preset.noise_gm_fraction, preset.noise_gm_phi
+    r = q * var * phi ** np.arange(n_lags, dtype=float) if q > 0 else np.zeros(n_lags)
+    r[0] = var
+    return r
+
+
+def noise_psd_g2_per_hz(preset: AccelerometerPreset, f_hz: np.ndarray) -> np.ndarray:
+    """One-sided PSD of the output noise per axis (g^2/Hz) at ``f_hz`` in [0, ODR/2]: the white floor
+    plus the AR(1) (sampled Lorentzian) part; it integrates to noise_g^2 over [0, ODR/2]."""
+    f = np.asarray(f_hz, float)
+    var, q, phi, fs = preset.noise_g**2, preset.noise_gm_fraction, preset.noise_gm_phi, preset.odr_hz
+    gm = q * (1.0 - phi**2) / (1.0 - 2.0 * phi * np.cos(2.0 * np.pi * f / fs) + phi**2)
+    return 2.0 / fs * var * ((1.0 - q) + gm)
+
+
+def noise_random_walk_sigma_g(preset: AccelerometerPreset) -> float:
+    """The white-noise sigma at the ODR with this noise's PSD at 0 Hz,
+    sigma sqrt((1 - q) + q (1 + phi) / (1 - phi)) = sqrt(sum_m r(m)): what integrates into velocity
+    and position random walks over times much longer than tau. For the LIS302DL presets 4.8 noise_g
+    (1.5 mg/sqrt(Hz)); a random-walk law that takes noise_g as white underestimates by that factor."""
+    q, phi = preset.noise_gm_fraction, preset.noise_gm_phi
+    return float(preset.noise_g * np.sqrt((1.0 - q) + q * (1.0 + phi) / (1.0 - phi)))
 
 
 @dataclass(frozen=True, slots=True)
@@ -232,6 +307,7 @@ class SensorChain:
         self._zi = None
         self._phase = 0  # index within the next chunk of the next internal sample to keep
         self._n_out = 0
+        self._gm_zi = None  # lfilter state of the Gauss-Markov noise, (1, 3): phi g[last]
 
     def __call__(self, f_sensor_g: np.ndarray, t0_s: float, rng: np.random.Generator) -> Measurement:
         """Sense a chunk (N, 3); ``t0_s`` is the time of the first sample of the whole stream."""
@@ -264,7 +340,7 @@ class SensorChain:
         t = t0_s + (self._n_out + np.arange(a.shape[0])) / preset.odr_hz
         self._n_out += a.shape[0]
         if preset.noise_g > 0:
-            a = a + rng.normal(0.0, preset.noise_g, a.shape)
+            a = a + self._noise(a.shape[0], rng)
         if preset.lsb_g is None:
             clipped = np.abs(a) >= preset.range_g
             return Measurement(t, np.zeros(a.shape, np.int32), np.clip(a, -preset.range_g, preset.range_g), clipped)
@@ -278,6 +354,26 @@ class SensorChain:
         clipped = (raw <= lim_lo) | (raw >= lim_hi)
         counts = np.clip(raw, lim_lo, lim_hi).astype(np.int32)
         return Measurement(t, counts, (counts - preset.zero_count) * sens_g[None, :], clipped)
+
+    def _noise(self, m: int, rng: np.random.Generator) -> np.ndarray:
+        """Output noise for the next ``m`` output samples (m, 3), continuing the stream exactly: the
+        draws are taken in sample order (per sample: 3 white, then 3 Gauss-Markov innovations), so
+        any chunking consumes ``rng`` identically, and the AR(1) state is carried in ``_gm_zi``."""
+        p = self.preset
+        if p.noise_gm_fraction == 0:
+            return rng.normal(0.0, p.noise_g, (m, 3))
+        from scipy.signal import lfilter
+
+        var, q, phi = p.noise_g**2, p.noise_gm_fraction, p.noise_gm_phi
+        if self._gm_zi is None:  # g[-1] from the stationary N(0, q sigma^2): no start-up transient
+            self._gm_zi = phi * np.sqrt(q * var) * rng.standard_normal((1, 3))
+        z = rng.standard_normal((m, 6))
+        if m == 0:
+            return np.zeros((0, 3))
+        # g[k] = phi g[k-1] + sqrt(1 - phi^2) sqrt(q) sigma e[k]  (module docstring)
+        g, self._gm_zi = lfilter([1.0], [1.0, -phi], np.sqrt((1.0 - phi**2) * q * var) * z[:, 3:], axis=0,
+                                 zi=self._gm_zi)
+        return np.sqrt((1.0 - q) * var) * z[:, :3] + g
 
 
 def measure(
