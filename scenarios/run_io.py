@@ -242,6 +242,7 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
         airborne=np.asarray(c["airborne"], bool),
         turbulence_code=_codes(turb, SEVERITIES),
         events=tuple(Event(e["t_s"], e["name"], e["detail"]) for e in info["events"]),
+        conditions=info.get("conditions", {}),
     )
     return track, info
 
@@ -320,6 +321,7 @@ def run_info(result) -> dict:
         "versions": package_versions(),
         "plan": asdict(sc.plan),
         "events": [{"t_s": e.t_s, "name": e.name, "detail": e.detail} for e in track.events],
+        "conditions": track.conditions,
         "summary": result.metrics,
         "truth": {"rows": track.n, "fs_hz": track.fs_hz, "sha256": track.digest()},
         "wall_time_s": dict(result.wall_s),

@@ -78,10 +78,15 @@ class Scenario:
             takeoff_thrust_norm=v["takeoff"]["thrust_norm"], takeoff_flaps_norm=v["takeoff"]["flaps_norm"],
             landing_flaps_norm=v["approach"]["landing_flaps_norm"],
             waypoints=tuple((lat, lon) for lat, lon in v["route"]["waypoints"]),
-            turbulence=tuple(TurbulenceSegment(t["start_s"], t["duration_s"], t["severity"]) for t in v["turbulence"]),
+            turbulence=tuple(TurbulenceSegment(t["start_s"], t["duration_s"], t["severity"], t["edr"])
+                             for t in v["turbulence"]),
             descent_angle_deg=v["descent"]["angle_deg"], glideslope_deg=v["approach"]["glideslope_deg"],
             approach_fix_nm=v["approach"]["fix_nm"], autobrake_decel_mps2=v["landing"]["autobrake_decel_mps2"],
             post_shutdown_s=v["shutdown"]["post_shutdown_s"], fdm_hz=s["fdm_hz"],
+            landing_quality=v["landing"]["quality"],
+            touchdown_sink_mps=v["landing"]["sink_mps"],
+            surface_wind_mps=v["atmosphere"]["surface_wind_mps"],
+            background_edr=v["atmosphere"]["background_edr"],
         )
         sensor = SensorChoice(v["sensor"]["preset"], v["sensor"]["odr_hz"])
         check_scenario(source, plan, sensor.preset, sensor.odr_hz)
@@ -145,14 +150,16 @@ class Scenario:
             "descent": {"angle_deg": p.descent_angle_deg},
             "approach": _drop_none({"glideslope_deg": p.glideslope_deg, "fix_nm": p.approach_fix_nm,
                                     "landing_flaps_norm": p.landing_flaps_norm}),
-            "landing": {"autobrake_decel_mps2": p.autobrake_decel_mps2},
+            "landing": _drop_none({"autobrake_decel_mps2": p.autobrake_decel_mps2, "quality": p.landing_quality,
+                                   "sink_mps": p.touchdown_sink_mps}),
+            "atmosphere": _drop_none({"surface_wind_mps": p.surface_wind_mps, "background_edr": p.background_edr}),
             "shutdown": {"post_shutdown_s": p.post_shutdown_s},
             "carrier": dataclasses.asdict(c),
             "sensor": _drop_none({"preset": self.sensor.preset, "odr_hz": self.sensor.odr_hz}),
         }
         if p.turbulence:
-            doc["turbulence"] = [{"start_s": t.start_s, "duration_s": t.duration_s, "severity": t.severity}
-                                 for t in p.turbulence]
+            doc["turbulence"] = [_drop_none({"start_s": t.start_s, "duration_s": t.duration_s, "severity": t.severity,
+                                             "edr": t.edr}) for t in p.turbulence]
         return doc
 
     def to_toml(self) -> str:
@@ -230,7 +237,8 @@ def _as_doc(value: Any) -> dict[str, Any]:
     if isinstance(value, TaxiPlan):
         return _taxi_doc(value)
     if isinstance(value, TurbulenceSegment):
-        return {"start_s": value.start_s, "duration_s": value.duration_s, "severity": value.severity}
+        return _drop_none({"start_s": value.start_s, "duration_s": value.duration_s, "severity": value.severity,
+                           "edr": value.edr})
     if isinstance(value, SensorChoice):
         return _drop_none(dataclasses.asdict(value))
     if dataclasses.is_dataclass(value) and not isinstance(value, type):

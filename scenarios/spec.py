@@ -91,7 +91,15 @@ SPEC: dict[str, dict[str, Key]] = {
     "turbulence": {
         "start_s": Key(float, "start, seconds after liftoff", lo=0, hi=86400),
         "duration_s": Key(float, "duration", lo=1, hi=86400),
-        "severity": Key(str, "intensity (MIL-F-8785C via JSBSim Milspec)", choices=SEVERITIES[1:]),
+        "severity": Key(str, "category (ICAO Annex 3 peak-EDR bands)", choices=SEVERITIES[1:]),
+        "edr": Key(float, "eddy dissipation rate, m^2/3 s^-1; absent: drawn inside the severity's band",
+                   optional=True, lo=0.01, hi=1.0),
+    },
+    "atmosphere": {
+        "surface_wind_mps": Key(float, "wind at 20 ft above ground (sets low-level gustiness); absent: drawn",
+                                optional=True, lo=0, hi=30),
+        "background_edr": Key(float, "background turbulence above 2000 ft, EDR m^2/3 s^-1; absent: drawn",
+                              optional=True, lo=0.001, hi=0.1),
     },
     "descent": {
         "angle_deg": Key(float, "descent path angle from cruise to the glideslope", 2.8, lo=1.5, hi=4.0),
@@ -103,6 +111,10 @@ SPEC: dict[str, dict[str, Key]] = {
     },
     "landing": {
         "autobrake_decel_mps2": Key(float, "autobrake deceleration target", 1.5, lo=0.5, hi=3.5),
+        "quality": Key(str, "touchdown sink speed distribution (normal, firm, hard)", "normal",
+                       choices=("normal", "firm", "hard")),
+        "sink_mps": Key(float, "touchdown sink speed the flare aims at (1 ft/s = 0.3048 m/s); absent: drawn by "
+                        "quality", optional=True, lo=0.15, hi=2.9),
     },
     "shutdown": {
         "post_shutdown_s": Key(float, "time recorded after engines off", 30.0, lo=0, hi=86400),
@@ -136,8 +148,8 @@ SPEC: dict[str, dict[str, Key]] = {
     },
 }
 ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables
-OPTIONAL_SECTIONS = {"takeoff", "route", "turbulence", "descent", "approach", "landing", "shutdown", "carrier",
-                     "sensor"}
+OPTIONAL_SECTIONS = {"takeoff", "route", "turbulence", "atmosphere", "descent", "approach", "landing", "shutdown",
+                     "carrier", "sensor"}
 
 
 def _fail(source: str, path: str, value: Any, allowed: str, hint: str = "") -> ScenarioError:

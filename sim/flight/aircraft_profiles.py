@@ -29,7 +29,6 @@ class PilotTuning:
     climb_out_m: float = 3000.0 * FT_M  # above the runway: initial climb ends, the climb begins
     speed_limit_alt_m: float = 10_000.0 * FT_M  # 250 kt below FL100 (ICAO Annex 11, Appendix 4)
     speed_limit_mps: float = 250.0 * KT_MPS
-    flare_bias_m: float = 15.0 * FT_M  # exponential-flare bias height: touchdown sink about h_b / tau
     touchdown_aim_m: float = 300.0  # glideslope origin past the threshold (50 ft crossing at 3 deg)
     exit_speed_mps: float = 20.0 * KT_MPS  # rollout ends, taxi-in begins
     # limits: exceeding one fails the flight (FlightDivergedError)
@@ -41,6 +40,37 @@ class PilotTuning:
     ground_speed_pid: tuple = (0.08, 0.02, 0.0)  # ground speed error (m/s) -> throttle (to taxi_throttle_max)
     tug_pid: tuple = (20000.0, 4000.0, 0.0, -60000.0, 60000.0)  # speed error (m/s) -> tug force (lbf)
     brake_pid: tuple = (0.5, 0.3, 0.0, 0.0, 1.0)  # deceleration error (m/s^2) -> brake command
+
+
+@dataclass(frozen=True, slots=True)
+class Spread:
+    """A figure's real-traffic distribution as OpenAP WRAP gives it: mean, standard deviation and
+    the [minimum, maximum] it reports (draws are clipped to that range)."""
+
+    mean: float
+    std: float
+    lo: float
+    hi: float
+
+    def draw(self, rng) -> float:
+        return float(min(self.hi, max(self.lo, rng.normal(self.mean, self.std))))
+
+
+@dataclass(frozen=True, slots=True)
+class ClimbSchedule:
+    """The climb of a type in three bands, from OpenAP's WRAP kinematic model (Sun, Ellerbroek and
+    Hoekstra, "WRAP: An open-source kinematic aircraft performance model", Transportation Research
+    Part C 98, 2019, fitted on ADS-B): vertical rate below the constant-CAS crossover altitude
+    (``climb_vs_pre_concas``), in the constant-CAS climb (``climb_vs_concas``) and in the constant-Mach
+    climb (``climb_vs_conmach``), the crossover altitudes and the climb CAS. Each flight draws its
+    three rates from these spreads."""
+
+    vs_pre_cas: Spread  # m/s, up to cross_cas_m
+    vs_cas: Spread  # m/s, cross_cas_m to cross_mach_m
+    vs_mach: Spread  # m/s, above cross_mach_m
+    cross_cas_m: float
+    cross_mach_m: float
+    cas_mps: float  # constant-CAS climb speed (above 10,000 ft)
 
 
 @dataclass(frozen=True, slots=True)
@@ -66,7 +96,6 @@ class AircraftProfile:
     fuel_kg: float  # loaded at the gate, spread over the tanks in proportion to capacity
     vr_kt: float
     v2_kt: float
-    climb_ias_kt: float
     descent_ias_kt: float
     vapp_kt: float  # final approach speed at ref_landing_mass_kg; scaled by sqrt(mass / ref)
     ref_landing_mass_kg: float
@@ -79,7 +108,8 @@ class AircraftProfile:
     taxi_throttle_max: float
     reverse_throttle: float
     flare_height_ft: float
-    touchdown_sink_fps: float  # the flare's commanded minimum sink rate
+    flare_gain: float  # pitch (rad) per rad of flight-path error in the flare, on top of the path loop
+    climb: ClimbSchedule
     # attitude and speed loop gains (flightmode.sim.flight.autopilot)
     pitch_kp: float = 2.0
     pitch_ki: float = 0.6
@@ -107,6 +137,7 @@ class AircraftProfile:
         }
     taxi_turn_kt: float = 10.0  # about 10 kt in turns (Airbus A319 FCOM)
     rotate_elevator: float = 0.3  # nose-up elevator bias during rotation (fraction of full travel)
+    elevator_nose_up_deg: float | None = None  # extends the model's elevator travel (sim.flight.model_edits)
     tuning: PilotTuning = field(default_factory=PilotTuning)
 
 
@@ -123,7 +154,6 @@ PROFILES: dict[str, AircraftProfile] = {
         fuel_kg=9000.0,
         vr_kt=150.0,
         v2_kt=158.0,
-        climb_ias_kt=280.0,
         descent_ias_kt=280.0,
         vapp_kt=138.0,
         ref_landing_mass_kg=46000.0,
@@ -141,8 +171,11 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_throttle=0.92,
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
-        flare_height_ft=40.0,
-        touchdown_sink_fps=3.0,
+        flare_height_ft=55.0,
+        flare_gain=7.0,
+        # WRAP B737
+        climb=ClimbSchedule(Spread(11.41, 2.07, 8.01, 14.82), Spread(11.71, 1.96, 8.49, 14.93),
+                            Spread(6.74, 1.42, 4.4, 9.08), 3400.0, 8900.0, 151.95),
     ),
     "A320": AircraftProfile(
         model="A320",
@@ -150,6 +183,7 @@ PROFILES: dict[str, AircraftProfile] = {
         wrap_type="A320",
         taxi_turn_kt=6.0,  # the JSBSim A320's nose wheel skids above ~7 kt at full steering
         rotate_elevator=0.6,
+        elevator_nose_up_deg=35.0,  # no trimmable stabiliser in the model (sim.flight.model_edits)
         n_engines=2,
         length_m=37.57,
         wingspan_m=34.1,
@@ -158,7 +192,6 @@ PROFILES: dict[str, AircraftProfile] = {
         fuel_kg=5500.0,
         vr_kt=138.0,
         v2_kt=148.0,
-        climb_ias_kt=290.0,
         descent_ias_kt=280.0,
         vapp_kt=145.0,
         ref_landing_mass_kg=52500.0,
@@ -178,8 +211,11 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_throttle=0.92,
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
-        flare_height_ft=70.0,  # little nose-up elevator left in landing trim: start early
-        touchdown_sink_fps=3.0,
+        flare_height_ft=70.0,  # a heavy, slow-responding model in landing trim: start early
+        flare_gain=8.0,
+        # WRAP A320
+        climb=ClimbSchedule(Spread(10.25, 1.59, 7.63, 12.87), Spread(8.44, 1.31, 6.28, 10.6),
+                            Spread(5.29, 1.03, 3.6, 6.97), 3700.0, 8800.0, 151.04),
     ),
     "fokker100": AircraftProfile(
         model="fokker100",
@@ -194,7 +230,6 @@ PROFILES: dict[str, AircraftProfile] = {
         fuel_kg=9000.0,
         vr_kt=146.0,
         v2_kt=152.0,
-        climb_ias_kt=280.0,
         descent_ias_kt=280.0,
         vapp_kt=145.0,
         ref_landing_mass_kg=29000.0,
@@ -215,7 +250,10 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.4,
         reverse_throttle=0.4,
         flare_height_ft=40.0,
-        touchdown_sink_fps=3.0,
+        flare_gain=5.0,
+        # WRAP E190 (the nearest type WRAP models)
+        climb=ClimbSchedule(Spread(10.44, 1.98, 7.18, 13.71), Spread(8.93, 1.62, 6.27, 11.6),
+                            Spread(4.82, 1.14, 2.95, 6.7), 3000.0, 9200.0, 140.0),
     ),
     "787-8": AircraftProfile(
         model="787-8",
@@ -230,7 +268,6 @@ PROFILES: dict[str, AircraftProfile] = {
         fuel_kg=50000.0,
         vr_kt=150.0,
         v2_kt=160.0,
-        climb_ias_kt=300.0,
         descent_ias_kt=290.0,
         vapp_kt=145.0,
         ref_landing_mass_kg=150000.0,
@@ -249,7 +286,10 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
         flare_height_ft=50.0,
-        touchdown_sink_fps=3.0,
+        flare_gain=5.0,
+        # WRAP B788
+        climb=ClimbSchedule(Spread(9.58, 1.38, 7.32, 11.85), Spread(9.02, 1.77, 6.12, 11.93),
+                            Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68),
     ),
 }
 

@@ -30,10 +30,11 @@ from flightmode.units import FT_M, KT_MPS, LB_KG, NM_M
 class Autopilot:
     """The loops and actuators of one flight, and the navigation state the phases share."""
 
-    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, event: Callable[[str, str], None]):
+    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, draws, event: Callable[[str, str], None]):
         self.ac = ac
         self.plan = plan
         self.prof = profile
+        self.draws = draws  # this flight's draws (flightmode.sim.flight.draws.FlightDraws)
         self.tune = profile.tuning
         self.event = event  # event(name, detail): logs a flight event at the current time
         self.ix = ac.index
@@ -130,12 +131,14 @@ class Autopilot:
         self.pitch_to(x, self.theta_cmd)
 
     def path_to(self, x, vs_cmd: float, lo_deg: float, hi_deg: float, rate_dps: float = 3.0,
-                boost: float = 0.0) -> None:
-        """Vertical speed -> flight-path angle error -> pitch (PI; the integrator is trim pitch)."""
+                boost: float = 0.0, vs_now: float | None = None) -> None:
+        """Vertical speed -> flight-path angle error -> pitch (PI; the integrator is trim pitch).
+        ``vs_now``: the vertical speed to close the loop on (default: the measured one)."""
         ix = self.ix
         tas = max(x[ix["tas_mps"]], 30.0)
         gamma_cmd = math.asin(clamp(vs_cmd / tas, -0.3, 0.3))
-        gamma = math.asin(clamp(-x[ix["v_down_mps"]] / tas, -0.5, 0.5))
+        vs = -x[ix["v_down_mps"]] if vs_now is None else vs_now
+        gamma = math.asin(clamp(vs / tas, -0.5, 0.5))
         # the pitch limits are the PID's own output limits, so its integrator cannot wind up
         # against them (it did, holding attitude on short final, and then the flare was late)
         self.gamma_pid.lo, self.gamma_pid.hi = math.radians(lo_deg), math.radians(hi_deg)
@@ -211,7 +214,7 @@ class Autopilot:
         ias = x[ix["ias_mps"]]
         mach = max(x[ix["mach"]], 0.05)
         if climbing:
-            v = tu.speed_limit_mps if alt < tu.speed_limit_alt_m else p.climb_ias_kt * KT_MPS
+            v = tu.speed_limit_mps if alt < tu.speed_limit_alt_m else p.climb.cas_mps
         else:  # descending: slow to 250 kt 500 ft above the limit's altitude
             v = tu.speed_limit_mps if alt < tu.speed_limit_alt_m + 500.0 * FT_M else p.descent_ias_kt * KT_MPS
         v = min(v, ias / mach * self.plan.cruise_mach)  # Mach limit above the crossover
@@ -221,6 +224,13 @@ class Autopilot:
                     final = step is p.approach_steps[-1]
                     v = min(v, self.vapp_mps() if final else step.speed_kt * KT_MPS)
         return v
+
+    def climb_vs_mps(self, alt_m: float) -> float:
+        """The climb's vertical-rate target at this altitude: this flight's draw for the band
+        (:class:`~flightmode.sim.flight.aircraft_profiles.ClimbSchedule`)."""
+        c = self.prof.climb
+        pre, cas, mach = self.draws.climb_vs_mps
+        return pre if alt_m < c.cross_cas_m else cas if alt_m < c.cross_mach_m else mach
 
     def vapp_mps(self) -> float:
         """Final approach speed for the current mass (stall speed scales with sqrt(mass))."""

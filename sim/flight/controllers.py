@@ -12,7 +12,7 @@ import math
 
 from flightmode.sim.flight.control import clamp, rate_limit
 from flightmode.sim.flight.taxi_route import taxi_in_path, taxi_out_path
-from flightmode.units import FT_M, KT_MPS
+from flightmode.units import FT_M, G0_MPS2, KT_MPS
 
 
 class Controller:
@@ -228,6 +228,11 @@ class InitialClimb(Controller):
         ap.retract_flaps(x, above_m=tu.accel_height_m)
         ap.lateral(x, runway_heading_below_m=400.0 * FT_M)
         if agl > tu.climb_out_m or x[ix["alt_m"]] > p.plan.cruise_alt_m - 150.0:
+            # bumpless hand-over to the climb's vertical-rate mode: its loops start where these are
+            ap.gamma_pid.reset(integral=x[ix["theta_rad"]] / ap.gamma_pid.ki)
+            ap.spd_pid.reset(integral=prof.climb_throttle / prof.spd_ki)
+            ap.thr = prof.climb_throttle
+            ap.vs_cmd = -x[ix["v_down_mps"]]
             p.fire("climb_out_done")
 
 
@@ -253,13 +258,9 @@ class EnRoute(Controller):
         if phase == "climb":
             ap.retract_flaps(x)
             if h < h_tgt - 250.0:
-                ap.throttle(prof.climb_throttle)
-                ap.thr = prof.climb_throttle
-                # pitch command at most 0.6 deg/s once established (about 0.15 g at climb speeds)
-                ap.speed_on_pitch(x, v_tgt, lo_deg=0.0, hi_deg=15.0, rate_dps=0.6)
-                ap.spd_pid.reset(integral=prof.climb_throttle / prof.spd_ki)
-                ap.gamma_pid.reset(integral=x[ix["theta_rad"]] / ap.gamma_pid.ki)
+                self._climb(x, v_tgt, h_tgt - h)
                 return
+            ap.spd_pid.hi = 1.0
             p.fire("level")
         if p.phase == "cruise" and h_tgt < p.plan.cruise_alt_m - 1.0:
             p.fire("top_of_descent")
@@ -296,25 +297,54 @@ class EnRoute(Controller):
             p.fire("flare_height")
 
 
+    def _climb(self, x, v_tgt: float, to_go_m: float) -> None:
+        """The climb as airline pilots fly it on the FMS: the vertical rate of this flight's draw for
+        the altitude band (OpenAP WRAP), the speed on the throttle up to climb thrust; when climb
+        thrust cannot hold the speed at that rate (the acceleration at 10,000 ft, a heavy aircraft
+        high up), the rate gives way, as an FMS's speed protection does."""
+        ap, ix, prof = self.ap, self.p.ix, self.p.prof
+        ap.spd_pid.hi = prof.climb_throttle
+        err = v_tgt - x[ix["ias_mps"]]
+        thr = ap.spd_pid(err, ap.dt)
+        ap.throttle_smooth(thr)
+        vs = ap.climb_vs_mps(x[ix["alt_m"]])
+        deficit = err - 5.0 * KT_MPS  # slower than the target by more than 5 kt
+        if deficit > 0.0 and thr >= prof.climb_throttle - 0.01:
+            vs *= clamp(1.0 - deficit / (10.0 * KT_MPS), 0.2, 1.0)
+        vs = min(vs, 0.05 * to_go_m + 1.0)  # level off smoothly (within 250 m the cruise takes over)
+        if ap.vs_cmd is None:
+            ap.vs_cmd = -x[ix["v_down_mps"]]
+        ap.vs_cmd = rate_limit(ap.vs_cmd, vs, 0.8 * ap.dt)
+        ap.path_to(x, ap.vs_cmd, 0.0, 15.0, rate_dps=1.0)
+        ap.ac.set("fcs/speedbrake-cmd-norm", 0.0)
+
+
 class Flare(Controller):
-    """Exponential flare: sink rate commanded as (h + h_b) / tau, continuous at flare entry, so the
-    touchdown sink rate tends to h_b / tau (h: main-gear height)."""
+    """Exponential flare: the sink rate commanded as (h + h_b) / tau, continuous at flare entry and
+    tending to the flight's drawn touchdown sink v_td (h: main-gear height). The flight-path loop
+    closes on the sink rate predicted ``FLARE_LEAD_S`` ahead from the vertical acceleration (the
+    specific force), as a pilot anticipates: without that lead the attitude's lag behind the
+    command makes the flare either late (a firm landing) or overdone (a balloon, then a drop)."""
 
     def enter(self, x) -> None:
         self.tau: float | None = None
 
     def tick(self, x) -> None:
         ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
-        hb_ft = ap.tune.flare_bias_m / FT_M
         mg_ft = (x[ix["agl_m"]] - prof.cg_height_m) / FT_M
+        target_fps = ap.draws.touchdown_sink_mps / FT_M
         if self.tau is None:
-            sink0_fps = max(x[ix["v_down_mps"]] / FT_M, 5.0)
-            self.tau = (mg_ft + hb_ft) / sink0_fps
+            # h_b = v_td h0 / (sink0 - v_td) makes (h0 + h_b) / tau = sink0 and h_b / tau = v_td
+            sink0_fps = max(x[ix["v_down_mps"]] / FT_M, target_fps + 2.0)
+            self.hb_ft = target_fps * mg_ft / (sink0_fps - target_fps)
+            self.tau = (mg_ft + self.hb_ft) / sink0_fps
             ap.gamma_pid.reset(integral=x[ix["theta_rad"]] / ap.gamma_pid.ki)  # bumpless
-        vs_cmd = -max(prof.touchdown_sink_fps, (mg_ft + hb_ft) / self.tau) * FT_M
-        vs_cmd = min(vs_cmd, -prof.touchdown_sink_fps * FT_M)
+        vs_cmd = -max(target_fps, (mg_ft + self.hb_ft) / self.tau) * FT_M
+        # vertical acceleration (up) from the specific force: a = -f_z cos(theta) - g (near wings level)
+        a_up = -x[ix["fz_mps2"]] * math.cos(x[ix["theta_rad"]]) - G0_MPS2
+        vs_pred = -x[ix["v_down_mps"]] + FLARE_LEAD_S * a_up
         lo_deg = -3.0 if ap.theta_final is None else ap.theta_final - 1.0
-        ap.path_to(x, vs_cmd, lo_deg, 12.0, rate_dps=5.0, boost=2.0)
+        ap.path_to(x, vs_cmd, lo_deg, 12.0, rate_dps=5.0, boost=prof.flare_gain, vs_now=vs_pred)
         ap.throttle_smooth(0.0 if mg_ft < 20.0 else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
         rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         ap.heading_to(x, ap.dest.heading_rad - math.atan2(ry, 1500.0), 5.0)
@@ -327,6 +357,9 @@ class Flare(Controller):
             p.fire("touchdown")
 
 
+FLARE_LEAD_S = 1.0  # the flare loop's anticipation of the sink rate
+
+
 class Rollout(Controller):
     """Spoilers and speedbrake out, reversers while fast, a deceleration-loop autobrake to the plan's
     target; the reverse thrust is trimmed down when it alone decelerates harder than the target."""
@@ -335,6 +368,10 @@ class Rollout(Controller):
         ap = self.ap
         ap.ac.set("fcs/speedbrake-cmd-norm", 1.0)
         ap.ac.set("fcs/spoiler-cmd-norm", 1.0)
+        # stop flaring: the attitude held as it is (no further pull: with lift still near the weight,
+        # a pull after the first contact bounces the aircraft back into the air), then lowered
+        ap.theta_cmd = x[self.p.ix["theta_rad"]]
+        ap.pitch_pid.integral *= 0.5
         self.rev_thr = self.p.prof.reverse_throttle
         ap.brake_pid.reset()
 

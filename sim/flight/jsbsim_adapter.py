@@ -102,8 +102,10 @@ def available_models() -> list[str]:
     return sorted(p.name for p in root.iterdir() if (p / f"{p.name}.xml").is_file())
 
 
-def _private_model_copy(model: str, workdir: Path) -> Path:
-    """Write the sanitised copy of ``model``'s main XML below ``workdir``; return the aircraft path."""
+def _private_model_copy(model: str, workdir: Path, edits=()) -> Path:
+    """Write the sanitised copy of ``model``'s main XML below ``workdir``; return the aircraft path.
+    ``edits``: functions applied to the XML root before it is written (e.g. the gear's damping,
+    :mod:`flightmode.sim.flight.gear`)."""
     import jsbsim
 
     src_dir = Path(jsbsim.get_default_root_dir()) / "aircraft" / model
@@ -141,6 +143,11 @@ def _private_model_copy(model: str, workdir: Path) -> Path:
             (i + 1 for i, c in enumerate(children) if c.tag == "ground_reactions"), len(children)
         )
         root.insert(idx, ext)
+    for edit in edits:
+        edit(root)
+    from flightmode.sim.flight.roughness import add_gear_roughness
+
+    add_gear_roughness(root)  # runway roughness through the gear, from the gear as edited (roughness.py)
     tree.write(dst_dir / f"{model}.xml", encoding="utf-8", xml_declaration=True)
     return workdir / "aircraft"
 
@@ -170,9 +177,10 @@ class JSBSimAircraft:
     n_engines : number of engines whose N1/N2/thrust are read every step.
     workdir : where the temporary private model copy is made (a fresh subdirectory, deleted
         after loading); the system temporary directory when ``None``.
+    edits : functions of the model's XML root applied to the private copy (:func:`_private_model_copy`).
     """
 
-    def __init__(self, model: str, dt_s: float, n_engines: int, workdir: Path | None = None):
+    def __init__(self, model: str, dt_s: float, n_engines: int, workdir: Path | None = None, edits=()):
         import jsbsim
 
         self.model = model
@@ -182,7 +190,7 @@ class JSBSimAircraft:
         self.n_every_step = sum(1 for c in self.channels if not c.slow)  # the first channels
         tmp = Path(tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir)).resolve()  # JSBSim needs absolute paths
         try:
-            aircraft_path = _private_model_copy(model, tmp)
+            aircraft_path = _private_model_copy(model, tmp, edits)
             jsbsim.FGJSBBase().debug_lvl = 0  # no start-up banner on stdout
             fdm = jsbsim.FGFDMExec(None)
             fdm.set_debug_level(0)

@@ -5,7 +5,8 @@ Every control tick the pilot reads the SI state row of
 the current phase's controller (:mod:`flightmode.sim.flight.controllers`). A controller ends its phase
 by reporting a condition (:meth:`Pilot.fire`); the next phase is the transition table's
 (:data:`flightmode.sim.flight.phases.TRANSITIONS`). Each phase event records the condition that
-started it. Turbulence is switched on and off by the plan's segments (JSBSim's MIL-F-8785C model).
+started it. The pilot also says how turbulent the air is (:attr:`Pilot.gust_sigma_mps`): the
+flight's background from liftoff to touchdown, and the plan's patches.
 
 Limits checked every tick raise :class:`~flightmode.errors.FlightDivergedError` naming phase, time and
 cause: NaN, bank beyond the limit, a sustained stall, below the ground, divergence, ground contact
@@ -23,23 +24,14 @@ from flightmode.sim.flight.autopilot import Autopilot
 from flightmode.sim.flight.controllers import CONTROLLERS
 from flightmode.sim.flight.phases import START, TABLE
 from flightmode.sim.flight.plan import FlightPlan
+from flightmode.sim.flight.turbulence import MID_TOP_M, sigma_high_mps
 from flightmode.units import FT_M, KT_MPS
-
-# MIL-F-8785C probability-of-exceedance index (JSBSim milspec severity) and 20 ft wind (kt) per
-# severity code: light 1e-3 / 15 kt, moderate 1e-5 / 30 kt, severe 1e-6 / 45 kt. Chosen so that the
-# A320 at FL360 meets the ICAO/FAA intensity definitions at its centre of gravity (light < 0.5 g
-# change, moderate 0.5-1.0 g, severe > 1.0 g; FAA AIM 7-1-21, Table 7-1-10): peak load-factor
-# change in a 4-minute segment 0.25 g (light), 0.79 g (moderate), 1.14 g (severe). The handbook's
-# own 1e-2 / 1e-3 / 1e-5 gave only 0.02 / 0.22 / 0.73 g at cruise altitude (its 1e-2 curve vanishes
-# above about 30,000 ft).
-MILSPEC = {1: (4, 15.0), 2: (6, 30.0), 3: (7, 45.0)}
-
 
 class Pilot:
     """Flies ``plan`` with ``profile`` on ``ac``; call :meth:`tick` every :attr:`control_every` FDM
     steps (``fdm_hz`` steps a second)."""
 
-    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, fdm_hz: float):
+    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, fdm_hz: float, draws):
         self.ac = ac
         self.plan = plan
         self.prof = profile
@@ -54,7 +46,8 @@ class Pilot:
         self.phase_code = PHASE_CODE[START]
         self.severity_code = 0
         self.done = False
-        self.ap = Autopilot(ac, plan, profile, self.event)
+        self.draws = draws  # flightmode.sim.flight.draws.FlightDraws
+        self.ap = Autopilot(ac, plan, profile, draws, self.event)
         self.ap.dt = 3.0 / fdm_hz
         # one controller per phase; the four en-route phases share one (one set of loops)
         shared: dict[type, object] = {}
@@ -64,6 +57,15 @@ class Pilot:
         self._t_alpha_high: float | None = None
         self._en_route = False
         self._airborne_high = False
+        self.gust_sigma_mps: float | None = None  # turbulent air: sigma_w above 2000 ft; None: still air
+
+    def set_cg_height(self, cg_height_m: float) -> None:
+        """The CG's height above ground with the aircraft settled on its gear (measured: it depends
+        on the gear, :mod:`flightmode.sim.flight.gear`)."""
+        import dataclasses
+
+        self.prof = dataclasses.replace(self.prof, cg_height_m=cg_height_m)
+        self.ap.prof = self.prof
 
     # ------------------------------------------------------------------ phases and events
     def event(self, name: str, detail: str = "") -> None:
@@ -159,25 +161,23 @@ class Pilot:
                 self.fail(f"ground contact off the runway at x = {rx:.0f} m, y = {ry:.0f} m from the threshold")
 
     def _turbulence(self) -> None:
-        if self.t_liftoff is None:
+        """The air is turbulent from liftoff to touchdown (:mod:`flightmode.sim.flight.turbulence`):
+        the flight's background EDR (mid or upper levels by altitude) or, inside one of the plan's
+        patches, the patch's EDR; below 2000 ft the turbulence model blends in the boundary layer's
+        own intensity. The label is the patch's severity, ``none`` for the background."""
+        airborne = self.t_liftoff is not None and self.phase in AIRBORNE_PHASES
+        if not airborne or self._x[self.ix["wow"]] > 0.5:
+            if self.gust_sigma_mps is not None:
+                self.gust_sigma_mps = None
+                self.severity_code = 0
             return
         since = self.t - self.t_liftoff
-        sev = 0
-        for seg in self.plan.turbulence:
+        atm = self.draws.atmosphere
+        sev, edr = 0, (atm.edr_mid if self._x[self.ix["alt_m"]] < MID_TOP_M else atm.edr_upper)
+        for seg, seg_edr in zip(self.plan.turbulence, atm.patch_edr):
             if seg.start_s <= since < seg.start_s + seg.duration_s:
-                sev = SEVERITY_CODE[seg.severity]
-        if self.phase not in AIRBORNE_PHASES:
-            sev = 0
+                sev, edr = SEVERITY_CODE[seg.severity], seg_edr
         if sev != self.severity_code:
-            self.severity_code = sev
-            ac = self.ac
-            if sev == 0:
-                ac.set("atmosphere/turb-type", 0)
-            else:
-                # MIL-F-8785C via JSBSim's Milspec model (turb-type 3): probability-of-exceedance
-                # index and the 20 ft wind that sets low-altitude intensity
-                index, wind_kt = MILSPEC[sev]
-                ac.set("atmosphere/turb-type", 3)
-                ac.set("atmosphere/turbulence/milspec/severity", index)
-                ac.set("atmosphere/turbulence/milspec/windspeed_at_20ft_AGL-fps", wind_kt * KT_MPS / FT_M)
-            self.event("turbulence", SEVERITIES[sev])
+            self.event("turbulence", f"{SEVERITIES[sev]} (EDR {edr:.3f})")
+        self.severity_code = sev
+        self.gust_sigma_mps = sigma_high_mps(edr)

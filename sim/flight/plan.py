@@ -45,11 +45,14 @@ class TaxiPlan:
 
 @dataclass(frozen=True, slots=True)
 class TurbulenceSegment:
-    """Turbulence from ``start_s`` after liftoff for ``duration_s``, of a named severity."""
+    """A turbulence patch from ``start_s`` after liftoff for ``duration_s``, of a named severity
+    (light, moderate, severe); its EDR is drawn inside the severity's band unless ``edr`` is given
+    (:mod:`flightmode.sim.flight.turbulence`)."""
 
     start_s: float
     duration_s: float
     severity: str
+    edr: float | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -74,3 +77,7 @@ class FlightPlan:
     autobrake_decel_mps2: float = 1.5
     post_shutdown_s: float = 30.0
     fdm_hz: int = 120  # JSBSim's integration rate and the FlightTrack's sample rate
+    landing_quality: str = "normal"  # normal, firm, hard: the touchdown sink speed's distribution
+    touchdown_sink_mps: float | None = None  # fixes the touchdown sink target instead of drawing it
+    surface_wind_mps: float | None = None  # fixes the wind at 20 ft (the boundary layer's gustiness)
+    background_edr: float | None = None  # fixes the background turbulence above 2000 ft (EDR, m^2/3 s^-1)

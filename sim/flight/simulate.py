@@ -3,13 +3,10 @@
 
 The FDM runs at the plan's ``fdm_hz`` (120 Hz by default); every step's state is recorded (the
 FlightTrack rate); the pilot ticks at 4-40 Hz by phase (:attr:`Pilot.control_every`: 40 Hz on the
-runway and below 1000 ft, 5 Hz en route). Turbulence uses JSBSim's MIL-F-8785C model (``turb-type``
-3) seeded from the flight's ``turbulence`` stream, so the same plan and streams give a bit-identical
-track. JSBSim's seeds 0 and 1 give the same generator state (its ``std::default_random_engine`` maps
-0 to 1), so the seed passed is at least 2.
-
-Severity mapping (documented, see :data:`~flightmode.sim.flight.pilot.MILSPEC`): light = exceedance
-index 4 (1e-3) with 15 kt wind at 20 ft; moderate = index 6 (1e-5), 30 kt; severe = index 7 (1e-6), 45 kt.
+runway and below 1000 ft, 5 Hz en route). Per-flight draws (:mod:`flightmode.sim.flight.draws`: the
+climb's rates, the touchdown sink, the turbulence) come from the flight's named streams; the gusts
+(:mod:`flightmode.sim.flight.turbulence`) are written into JSBSim before every step while airborne.
+The same plan and streams give a bit-identical track.
 
 Terrain: JSBSim's terrain is one flat elevation. It is the origin's elevation on the ground and is
 switched to the destination's at the top of climb (the aircraft is then far above both).
@@ -17,6 +14,7 @@ switched to the destination's at the top of climb (the aircraft is then far abov
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import operator
 from array import array
@@ -30,6 +28,9 @@ from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.errors import FlightDivergedError
 from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
+from flightmode.sim.flight.draws import draw_flight
+from flightmode.sim.flight.turbulence import GustFeed, GustField
+from flightmode.sim.flight.model_edits import edits_for
 from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.pilot import Pilot
 from flightmode.sim.flight.plan import FlightPlan
@@ -73,7 +74,8 @@ def fly(
     """Fly ``plan`` gate to gate; raise :class:`FlightDivergedError` if the flight fails.
 
     ``streams``: the flight's random streams (:class:`flightmode.streams.Streams`; a Generator or an
-    integer seed is turned into streams): ``turbulence`` seeds JSBSim's gust generator.
+    integer seed is turned into streams), by name: ``climb``, ``landing``, ``turbulence/atmosphere``
+    (the draws) and ``turbulence/field`` (the gusts).
     ``progress(t_s, phase)`` is called about once per simulated minute. ``stop_after_s``: stop after
     that much simulated time (a preview, or a quick check: the track is then the exact prefix of the
     whole flight's, its in-flight window running to its end if the engines still run).
@@ -81,16 +83,18 @@ def fly(
     streams = as_streams(streams)
     fdm_hz = float(plan.fdm_hz)
     prof = get_profile(plan.aircraft)
-    ac = JSBSimAircraft(plan.aircraft, 1.0 / fdm_hz, prof.n_engines, workdir=workdir)
+    # flightmode's changes to the stock model: the gear's struts, the A320's elevator travel
+    ac = JSBSimAircraft(plan.aircraft, 1.0 / fdm_hz, prof.n_engines, workdir=workdir, edits=edits_for(prof))
     origin = RunwayFrame(plan.origin)
     gx, gy, gh = gate_position_out(plan.taxi_out)
     lat0, lon0 = origin.to_latlon(gx, gy)
     ac.init_on_ground(lat0, lon0, plan.origin.elevation_m, (plan.origin.heading_deg + math.degrees(gh)) % 360.0)
     _load_fuel(ac, prof.fuel_kg)
-    ac.set("simulation/randomseed", 2 + streams.integer_seed("turbulence", 2**31 - 3))
-    ac.set("atmosphere/turb-type", 0)
+    ac.set("atmosphere/turb-type", 0)  # JSBSim's own turbulence is off: flightmode feeds its gusts
     ac.set("propulsion/cutoff_cmd", 1)
-    pilot = Pilot(ac, plan, prof, fdm_hz)
+    draws = draw_flight(plan, prof, streams)
+    pilot = Pilot(ac, plan, prof, fdm_hz, draws)
+    gusts = GustFeed(ac, GustField(fdm_hz, streams.rng("turbulence/field")), draws.atmosphere.w20_mps, ac.index)
     # JSBSim's state straight after run_ic is the requested initial condition, not yet resolved on
     # its gear: its first step moves the aircraft 0.2 m at once, and the gear then settles for about
     # 4 s (0.08 m/s, a few m/s^2). Let it settle before recording, so that the track starts truly at
@@ -98,6 +102,12 @@ def fly(
     # that integrates the track, such as nav/).
     for _ in range(int(SETTLE_S * fdm_hz)):
         ac.step()
+    # the CG's height on the settled gear (the pilot's flare and liftoff heights refer to it)
+    pilot.set_cg_height(ac.get("position/h-agl-ft") * FT_M)
+    from flightmode.sim.flight.roughness import GearRoughness
+
+    # runway and taxiway roughness felt through the gear (made at rest: the static loads set the tyres)
+    rough_tick = GearRoughness(ac, streams, fdm_hz).tick
 
     nch = len(ac.channels)
     nf = ac.n_every_step  # channels recorded every step; the rest at the pilot's ticks
@@ -140,12 +150,24 @@ def fly(
         if progress is not None and t >= next_progress:
             progress(t, pilot.phase)
             next_progress = t + 60.0
-        run()
         every = 1 if pilot.done else pilot.control_every
-        # the steps between ticks: record the fast channels and step, nothing else
-        for _ in range(every - 1):
-            ext(map(get, fast_nodes))
+        rough_tick(x, pilot.phase, every)  # the roughness forces' knots for these steps
+        if pilot.gust_sigma_mps is not None:
+            # turbulent air: a gust for every step (turbulence.GustFeed), then record and step
+            chunk = gusts.take(every, x, pilot.gust_sigma_mps)
+            gusts.write(chunk[0])
             run()
+            for g in chunk[1:]:
+                ext(map(get, fast_nodes))
+                gusts.write(g)
+                run()
+        else:
+            gusts.stop()
+            run()
+            # the steps between ticks: record the fast channels and step, nothing else
+            for _ in range(every - 1):
+                ext(map(get, fast_nodes))
+                run()
         step += every
         if step > limit_steps:
             raise FlightDivergedError(
@@ -171,7 +193,8 @@ def fly(
     phase_code = np.repeat(np.array([c[1] for c in changes], dtype=np.uint8), reps)
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
-    return _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
+    track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
+    return dataclasses.replace(track, conditions=draws.as_dict() | {"cg_height_m": pilot.prof.cg_height_m})
 
 
 def _gather(raw: np.ndarray, scales: np.ndarray, groups: dict[str, list[int]], block: int = 8192) -> dict[str, np.ndarray]:

@@ -7,7 +7,7 @@ f = a - g in body axes: a level aircraft at rest reads f_z = -9.81 m/s^2.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -61,6 +61,7 @@ class FlightTrack:
     airborne: np.ndarray
     turbulence_code: np.ndarray  # uint8 into flightmode.labels.SEVERITIES
     events: tuple[Event, ...]
+    conditions: dict = field(default_factory=dict)  # the flight's draws (sim.flight.draws.FlightDraws.as_dict)
 
     @property
     def n(self) -> int:

@@ -67,51 +67,42 @@ def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_
     assert abs(m["touchdown_centreline_offset_m"]) <= 10.0
 
 
-# MIL-F-8785C Figure 7 (p. 49; also MIL-HDBK-1797 Figure 268): sigma_w = sigma_u (ft/s) above
-# 2,000 ft against altitude (ft) for probability-of-exceedance curves 1..7; the table JSBSim's
-# Milspec model interpolates (linearly in altitude, FGWinds.cpp). Rows used here: curves 4 (1e-3),
-# 6 (1e-5) and 7 (1e-6), between 15,000 and 55,000 ft.
-POE_ALT_FT = (15000.0, 25000.0, 35000.0, 45000.0, 55000.0)
-POE_SIGMA_FTPS = {4: (8.0, 6.6, 5.0, 4.2, 2.7), 6: (22.1, 20.0, 16.0, 15.1, 12.1), 7: (30.7, 31.0, 25.2, 23.1, 17.5)}
-
-
 @pytest.mark.slow
 def test_turbulence_intensity_rises_with_severity(fly_cached):
-    """Three cruise segments of the default flight (240 s each, one seeded realisation apiece):
+    """Three cruise segments of the default flight (240 s each, one seeded realisation apiece), each
+    at a fixed EDR inside its ICAO Annex 3 band (light 0.1-0.2, moderate 0.2-0.45, severe 0.45-0.7):
 
     1. each segment's peak load-factor change falls in its ICAO/FAA band at the CG (FAA AIM 7-1-21,
        Table 7-1-10: light < 0.5 g, moderate 0.5-1.0 g, severe > 1.0 g);
     2. the gust intensity: the aircraft's load-factor response is linear in the gust velocity (small
-       angle-of-attack changes, a linear autopilot), and JSBSim's Milspec gust field is the same
-       shaping filters scaled by sigma_w (sigma_u = sigma_w, sigma_p and the q, r gusts are
-       proportional to it, the scale length is 1,750 ft at every severity). So the ratio of the
-       load-factor standard deviations of two segments at the same altitude and speed equals the
-       ratio of MIL-F-8785C's sigma_w for their curves at that altitude."""
-    from flightmode.sim.flight.pilot import MILSPEC
+       angle-of-attack changes, a linear autopilot), and the Dryden field (sim.flight.turbulence) is
+       the same shaping filters scaled by sigma_w = 9.1 EDR m/s above 2000 ft (the scale length is
+       1,750 ft at every intensity). So the ratio of the load-factor standard deviations of two
+       segments at the same altitude and speed equals the ratio of their EDRs."""
     from flightmode.sim.flight.plan import TurbulenceSegment
+    from flightmode.sim.flight.turbulence import EDR_BANDS
 
-    index = {"light": 4, "moderate": 6, "severe": 7}  # 1e-3, 1e-5, 1e-6 (sim.flight.pilot's choice)
-    assert {sev: MILSPEC[code][0] for sev, code in (("light", 1), ("moderate", 2), ("severe", 3))} == index
+    edr = {"light": 0.15, "moderate": 0.35, "severe": 0.6}
+    assert all(EDR_BANDS[k][0] < v < EDR_BANDS[k][1] for k, v in edr.items())
     segs = (
-        TurbulenceSegment(900.0, 240.0, "light"),
-        TurbulenceSegment(1300.0, 240.0, "moderate"),
-        TurbulenceSegment(1700.0, 240.0, "severe"),
+        TurbulenceSegment(1300.0, 240.0, "light", edr=edr["light"]),
+        TurbulenceSegment(1700.0, 240.0, "moderate", edr=edr["moderate"]),
+        TurbulenceSegment(2100.0, 240.0, "severe", edr=edr["severe"]),
     )
-    # flown to a little after the last segment (liftoff is about 15 min after the track starts)
+    # flown to a little after the last segment (liftoff is about 15 min after the track starts;
+    # cruise from about 21 to 43 min after liftoff)
     sc, tr = fly_cached("gva-lhr-a320", turbulence=segs, stop_after_s=3300.0)
-    assert tr.t_s[-1] > tr.event_time("liftoff") + 1940.0
+    assert tr.t_s[-1] > tr.event_time("liftoff") + 2340.0
     nz = -tr.specific_force_body_mps2[:, 2] / 9.80665
     t_lo = tr.event_time("liftoff")
     dt = 1.0 / tr.fs_hz
-    stds, peaks, sigma_w, rel_se = [], [], [], []
+    stds, peaks, rel_se = [], [], []
     for seg in segs:
         sel = (tr.t_s >= t_lo + seg.start_s + 10.0) & (tr.t_s < t_lo + seg.start_s + seg.duration_s)
         assert set(tr.phase[sel]) == {"cruise"}, "segment not in cruise: move it"
         x = nz[sel] - nz[sel].mean()
         stds.append(float(x.std()))
         peaks.append(float(np.abs(nz[sel] - np.median(nz[sel])).max()))
-        alt_ft = float(tr.alt_m[sel].mean()) / FT_M
-        sigma_w.append(float(np.interp(alt_ft, POE_ALT_FT, POE_SIGMA_FTPS[index[seg.severity]])))
         # sampling error of a standard deviation from a record of length T of a Gaussian process:
         # var(s^2) / s^4 = 2 tau / T, tau = integral of rho(lag)^2 over all lags (Bendat & Piersol,
         # Random Data, sec. 8.2), so s is good to sqrt(tau / 2T) relative; tau from the record's own
@@ -121,21 +112,26 @@ def test_turbulence_intensity_rises_with_severity(fly_cached):
         acf /= acf[0]
         tau = (1.0 + 2.0 * np.sum(acf[1 : int(30.0 / dt)] ** 2)) * dt
         rel_se.append(float(np.sqrt(tau / (2.0 * n * dt))))
-    calm = (tr.t_s >= t_lo + 1150.0) & (tr.t_s < t_lo + 1290.0)
+    calm = (tr.t_s >= t_lo + 1550.0) & (tr.t_s < t_lo + 1690.0)
     print(f"\nvertical load factor std (g): calm {nz[calm].std():.4f}, light {stds[0]:.4f}, "
           f"moderate {stds[1]:.4f}, severe {stds[2]:.4f}; peak |dn| (g): {[round(p, 3) for p in peaks]}; "
-          f"MIL-F-8785C sigma_w (ft/s): {[round(s, 2) for s in sigma_w]}; std rel. error {[round(e, 3) for e in rel_se]}")
+          f"EDR: {[seg.edr for seg in segs]}; std rel. error {[round(e, 3) for e in rel_se]}")
     assert nz[calm].std() < stds[0] < stds[1] < stds[2]
     # 1. ICAO/FAA intensity at the CG: light < 0.5 g change, moderate 0.5-1.0 g, severe > 1.0 g
     assert peaks[0] < 0.5
     assert 0.5 <= peaks[1] <= 1.0
-    assert peaks[2] > 1.0
-    # 2. std ratios = sigma_w ratios (3.2 moderate/light, 1.6 severe/moderate at FL360). The three
-    # segments are independent realisations, so each ratio carries the two segments' sampling
-    # errors in quadrature; 3 of those (about 18 %) separates every neighbouring curve of the table
-    # (curve 5 instead of 6 would halve the first ratio, curve 6 instead of 7 make the second 1.0).
-    # The calm-air background (std 0.001 g) adds in quadrature: < 0.1 % on the light segment.
+    # severe: at EDR 0.6 the A320 at FL360 peaks near 0.8 g in 240 s. Pratt's quasi-steady gust
+    # response, rho V C_La / (2 W/S) = 0.37 x 230 x 5.5 / (2 x 5200) = 0.045 g per m/s, times
+    # sigma_w = 5.5 m/s and a 240 s peak factor of ~3.5 gives 0.87 g: the ICAO severe EDR band
+    # (0.45-0.7) and its "> 1.0 g" description do not meet for this type at this level (the EDR
+    # criteria are per weight class, and SKYbrary notes the same EDR is moderate for an A320 and
+    # light for a 777). Asserted: beyond the moderate description's lower bound, and above moderate.
+    assert peaks[2] > max(0.5, peaks[1])
+    # 2. std ratios = EDR ratios (2.3 moderate/light, 1.7 severe/moderate). The three segments are
+    # independent realisations, so each ratio carries the two segments' sampling errors in
+    # quadrature; 3 of those is the tolerance (about 18 %). The background air outside the segments
+    # (the calm std printed above) is replaced by the segment's, not added.
     for i, j in ((0, 1), (1, 2), (0, 2)):
-        got, want = stds[j] / stds[i], sigma_w[j] / sigma_w[i]
+        got, want = stds[j] / stds[i], segs[j].edr / segs[i].edr
         tol = 3.0 * float(np.hypot(rel_se[i], rel_se[j]))
         assert abs(got / want - 1.0) <= tol, (segs[i].severity, segs[j].severity, got, want, tol)

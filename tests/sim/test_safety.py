@@ -27,7 +27,8 @@ def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
     root = ET.parse(path / "737" / "737.xml").getroot()
     assert root.findall("input") == [] and root.findall("output") == []
     forces = root.findall("external_reactions/force")
-    assert [f.get("name") for f in forces] == ["pushback"]
+    # the tug, and the runway roughness felt through each gear group (sim.flight.roughness)
+    assert [f.get("name") for f in forces] == ["pushback", "roughness-nose", "roughness-left", "roughness-right"]
     # the stock file does have them (so the stripping above is doing something)
     import jsbsim
 

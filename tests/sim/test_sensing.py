@@ -199,26 +199,39 @@ def _psd(x, fs):
 def test_in_flight_spectra_peak_between_10_and_30_hz(default_rec):
     """Seed 000 Fig. 6: peaks between 10 and 30 Hz in every flight stage, far above the static floor.
 
-    The largest value of the whole spectrum (every bin but DC; resolution 0.2 Hz) is taken, in calm
-    air. In the default scenario's light-turbulence segment (end of cruise, start of descent) the
+    The largest value of the spectrum above 2 Hz (resolution 0.2 Hz) is taken, outside turbulence
+    segments. That air is not still: its background turbulence (EDR < 0.1, Sharman & Pearson 2017)
+    moves the airframe as a rigid body below 2 Hz (the short-period and gust response), where the
+    largest peak of a climb may sit; the whole spectrum's largest bin is therefore asserted to be
+    either there or in the vibration band, never between. In the default scenario's light-turbulence segment (end of cruise, start of descent) the
     largest peak is the turbulence itself, below 1 Hz: asserted separately, with the vibration peak
     still standing 10 dB above the floor."""
     tr, rec = default_rec
     a = np.linalg.norm(rec.acc_g, axis=1)
     f, floor_psd = _psd(a[rec.sensor_static][:100_000], rec.odr_hz)
     floor = float(np.median(floor_psd[1:]))
-    # the static floor is white noise of (2.23 mg)^2 (seed 000 Table 1; the norm's noise is that of
-    # the axis along gravity): one-sided level sigma^2 / (fs / 2). The median of 256 bins, each
-    # chi2 with ~740 dof (5.2 % spread), is good to 1.25 x 5.2 % / sqrt(128) ~ 0.6 % (adjacent Hann
-    # bins correlated: half as many independent), biased by -2/(3 nu) = -0.1 %: 3 % is 5 errors
-    assert floor == pytest.approx(2.23e-3**2 / (rec.odr_hz / 2), rel=0.03)
+    # the static floor is the sensor's noise of (2.23 mg)^2 (seed 000 Table 1; the norm's noise is
+    # that of the axis along gravity), white plus its Gauss-Markov part: the median of the model's
+    # one-sided PSD over the same bins. The median of 256 bins, each chi2 with ~740 dof (5.2 %
+    # spread), is good to 1.25 x 5.2 % / sqrt(128) ~ 0.6 % (adjacent Hann bins correlated: half as
+    # many independent), biased by -2/(3 nu) = -0.1 %; the 0.2 Hz bins smear the 1.1 Hz corner by
+    # under 1 %: 3 % is more than 3 errors
+    import dataclasses
+
+    from flightmode.sim.sensor.accelerometer import get_preset, noise_psd_g2_per_hz
+
+    pr = dataclasses.replace(get_preset(rec.preset), odr_hz=rec.odr_hz)
+    assert floor == pytest.approx(float(np.median(noise_psd_g2_per_hz(pr, f[1:]))), rel=0.03)
     db = lambda p: round(float(10 * np.log10(p / floor)), 1)  # noqa: E731
     report = {}
     calm = rec.turbulence_severity == "none"
     for ph in ENGINE_PHASES:
         sel = (rec.phase == ph) & (rec.bag_state == "stowed") & calm
         f, p = _psd(a[sel], rec.odr_hz)
-        k = 1 + int(np.argmax(p[1:]))
+        k_all = 1 + int(np.argmax(p[1:]))
+        assert f[k_all] < 2.0 or 10.0 <= f[k_all] <= 30.0, (ph, f[k_all])
+        above = np.flatnonzero(f >= 2.0)
+        k = above[int(np.argmax(p[above]))]
         report[ph] = (round(float(f[k]), 1), db(p[k]))
         assert 10.0 <= f[k] <= 30.0, (ph, f[k])
         assert p[k] >= 10 * floor, (ph, db(p[k]))
@@ -234,20 +247,21 @@ def test_in_flight_spectra_peak_between_10_and_30_hz(default_rec):
     rest = rec.phase == "arrival_rest"
     f, p = _psd(a[rest], rec.odr_hz)
     band = (f >= 10) & (f <= 30)
-    assert p[band].max() < 2.0 * floor  # 3 dB
-    # and noise alone may not even reach that: a Welch bin of white noise is S chi2_nu / nu with
+    model = noise_psd_g2_per_hz(pr, f[band])
+    assert p[band].max() < 2.0 * model.max()  # 3 dB over the noise at its highest in the band
+    # and noise alone may not even reach that: a Welch bin of noise is S(f) chi2_nu / nu with
     # nu = 2 K / (1 + 2 c^2) (Welch 1967; K segments of 512, 50 % overlap, Hann: c = overlap
-    # correlation = 1/6), nu ~ 660 for the 900 s rest; the largest of M ~ 100 bins exceeds S x
-    # chi2.isf(1e-6 / M, nu) / nu (~1.34: union bound, probability < 1e-6) essentially never; the
-    # floor (median of 256 bins, nu ~ 740 each) is within 3 % of S (5 standard errors, above). So
-    # the bound is a noise-only fact and any residual vibration line above ~1.4 floor fails it.
+    # correlation = 1/6), nu ~ 660 for the 900 s rest; the largest ratio to the model over M ~ 100
+    # bins exceeds chi2.isf(1e-6 / M, nu) / nu (~1.34: union bound, probability < 1e-6) essentially
+    # never. So the bound is a noise-only fact and any residual vibration line above ~1.34 times
+    # the noise fails it.
     k_seg = (int(rest.sum()) - 512) // 256 + 1
     w = get_window("hann", 512)
     c2 = float(np.sum(w[:256] * w[256:]) ** 2 / np.sum(w**2) ** 2)  # 1/36
     nu = 2 * k_seg / (1 + 2 * c2)
-    bound = float(chi2.isf(1e-6 / band.sum(), nu) / nu) / 0.97
+    bound = float(chi2.isf(1e-6 / band.sum(), nu) / nu)
     assert bound < 2.0
-    assert p[band].max() < bound * floor, (p[band].max() / floor, bound)
+    assert np.max(p[band] / model) < bound, (np.max(p[band] / model), bound)
     report["arrival_rest 10-30 Hz max"] = db(p[band].max())
     print(f"\nlargest spectral peak (Hz, dB over the static floor): {report}")
 

@@ -1,0 +1,66 @@
+"""What varies from flight to flight, drawn once per flight from its ``flight`` streams: the climb's
+vertical rates (per type, :class:`~flightmode.sim.flight.aircraft_profiles.ClimbSchedule`), the
+touchdown sink speed the flare aims at, and the turbulence (:mod:`flightmode.sim.flight.turbulence`).
+Each draw has its own named stream, so adding one never moves another.
+
+Touchdown sink speed by landing quality (the scenario's ``[landing].quality``):
+
+- ``normal``: lognormal with a median of 2.0 ft/s, as video surveys of airline jets found at
+  Washington National and JFK (FAA DOT/FAA/AR-97/106, 1999, and its JFK predecessor), and a spread that
+  puts the once-in-1000 landing at 5.5 ft/s, the value NACA TN 3194 (Silsby, 1954, 478 landings)
+  gives for calm air (ln spread ln(5.5 / 2.0) / 3.09 = 0.327);
+- ``firm``: uniform 4.5-7 ft/s (270-420 ft/min), the upper tail of those surveys;
+- ``hard``: uniform 7-9.5 ft/s (420-570 ft/min), just below the 10 ft/s limit sink speed of
+  14 CFR 25.473(a) and the 600 ft/min hard-landing mark (SKYbrary, "Hard Landing"), so that the
+  landing stays within what the gear is certified for and the flight goes on.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flightmode.sim.flight.aircraft_profiles import AircraftProfile
+from flightmode.sim.flight.plan import FlightPlan
+from flightmode.sim.flight.turbulence import Atmosphere, draw_atmosphere
+from flightmode.units import FPS_MPS
+
+LANDING_QUALITIES = ("normal", "firm", "hard")
+SINK_NORMAL_MEDIAN_FPS = 2.0
+SINK_NORMAL_LN_STD = math.log(5.5 / 2.0) / 3.09  # P(> 5.5 ft/s) = 1e-3
+
+
+@dataclass(frozen=True, slots=True)
+class FlightDraws:
+    climb_vs_mps: tuple[float, float, float]  # below the CAS crossover, constant CAS, constant Mach
+    touchdown_sink_mps: float  # what the flare aims at
+    atmosphere: Atmosphere
+
+    def as_dict(self) -> dict:
+        a = self.atmosphere
+        return {"climb_vs_mps": list(self.climb_vs_mps), "touchdown_sink_target_mps": self.touchdown_sink_mps,
+                "surface_wind_mps": a.w20_mps, "background_edr_mid": a.edr_mid, "background_edr_upper": a.edr_upper,
+                "patch_edr": list(a.patch_edr)}
+
+
+def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
+    if quality == "normal":
+        fps = SINK_NORMAL_MEDIAN_FPS * math.exp(SINK_NORMAL_LN_STD * rng.standard_normal())
+        return min(fps, 9.5) * FPS_MPS  # the lognormal's far tail (1e-7 of landings) capped below the limit
+    lo, hi = (4.5, 7.0) if quality == "firm" else (7.0, 9.5)
+    return rng.uniform(lo, hi) * FPS_MPS
+
+
+def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDraws:
+    """One flight's draws from its ``flight`` streams (named: ``climb``, ``landing``, ``turbulence/atmosphere``)."""
+    c = profile.climb
+    r = streams.rng("climb")
+    climb = (c.vs_pre_cas.draw(r), c.vs_cas.draw(r), c.vs_mach.draw(r))
+    sink = draw_sink_mps(plan.landing_quality, streams.rng("landing"))
+    if plan.touchdown_sink_mps is not None:
+        sink = plan.touchdown_sink_mps
+    atm = draw_atmosphere(streams.rng("turbulence/atmosphere"), plan.turbulence, w20_mps=plan.surface_wind_mps,
+                          background_edr=plan.background_edr)
+    return FlightDraws(climb, float(sink), atm)

@@ -1,0 +1,47 @@
+"""flightmode's changes to the stock JSBSim models, each applied to the private copy of the model's
+XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each with its reason:
+
+- every type: the main gear's strut (:func:`flightmode.sim.flight.gear.soften_main_gear`): the stock
+  stiff springs and linear dampers made touchdowns 2-5 times too hard;
+- A320: the elevator's nose-up travel from 25 to 35 degrees. The stock model has no trimmable
+  horizontal stabiliser and trims with its elevator alone: on a 3-degree approach with 25 degrees of
+  flap it already needs 22 of its 25 degrees of nose-up elevator, so it cannot flare. The real
+  A320 trims with its stabiliser (13.5 degrees nose-up) and keeps its 30 degrees of elevator for
+  manoeuvre (Airbus A320 FCOM, flight controls description); the extra travel stands in for the
+  stabiliser's authority. The model's elevator coefficients are linear in the deflection, so the
+  extension changes nothing below 25 degrees.
+"""
+
+from __future__ import annotations
+
+import functools
+import xml.etree.ElementTree as ET
+
+from flightmode.errors import AircraftError
+from flightmode.sim.flight.gear import soften_main_gear
+
+
+def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:
+    """Move the nose-up end of the elevator's travel (the ``range`` minimum of the FCS's
+    ``aerosurface_scale`` elements that map the pitch command to the elevator angle, and the
+    ``domain`` minimum of those that normalise it back) to ``-nose_up_deg``."""
+    changed = 0
+    for scale in root.iterfind(".//flight_control//aerosurface_scale"):
+        name = (scale.get("name") or "").lower()
+        if "elevator" not in name:
+            continue
+        for tag in ("range", "domain"):
+            el = scale.find(f"{tag}/min")
+            if el is not None and float(el.text) < 0 and ("control" in name or tag == "domain"):
+                el.text = f"{-nose_up_deg:g}"
+                changed += 1
+    if changed == 0:
+        raise AircraftError("no elevator aerosurface_scale found to extend")
+
+
+def edits_for(profile) -> tuple:
+    """The model edits of a type (module docstring), as functions of the XML root."""
+    edits = [functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg)]
+    if profile.elevator_nose_up_deg is not None:
+        edits.append(functools.partial(extend_elevator_nose_up, nose_up_deg=profile.elevator_nose_up_deg))
+    return tuple(edits)

@@ -1,0 +1,192 @@
+"""Continuous atmospheric turbulence: a Dryden gust field whose intensity comes from eddy dissipation
+rate (EDR) draws, fed to JSBSim as gust velocities (``atmosphere/gust-*-fps``) at every FDM step.
+
+Why not JSBSim's own MIL-F-8785C model: above 2000 ft it only knows seven fixed intensity curves
+(probability-of-exceedance indices), so a continuous, drawn background intensity cannot be set; and
+its random numbers come from JSBSim's generator rather than the run's named streams. The filters
+here are the same discrete Dryden forms JSBSim's Milspec model uses (MIL-STD-1797A as given in
+Yeager, NASA CR-206937, 1998, eq. 30-32), with MIL-F-8785C's scale lengths and low-altitude model:
+
+- below 1000 ft: L_w = h, L_u = h / (0.177 + 0.000823 h)^1.2, sigma_w = 0.1 W20 and
+  sigma_u = sigma_w / (0.177 + 0.000823 h)^0.4 (h in ft; MIL-F-8785C 3.7.3.3, Fig. 10-11), with W20
+  the wind speed at 20 ft;
+- above 2000 ft: L_u = L_w = 1750 ft and sigma_u = sigma_w (MIL-F-8785C 3.7.2.1); in between, linear;
+- AR(1) updates per step T: x_u <- (1 - T/tau_u) x_u + sigma_u sqrt(2 T / tau_u) n,
+  x_v and x_w the same with 2 T / tau and sqrt(4 T / tau), tau = L / V (Yeager eq. 30-32).
+
+Intensity above 2000 ft from EDR (eps^(1/3), m^(2/3) s^-1): matching the von Karman vertical
+spectrum's inertial-range asymptote (MIL-HDBK-1797: sigma^2 (8 / 3 pi) (1.339 L)^(-5/3) L k^(-5/3))
+to Kolmogorov's transverse spectrum (4/3 x 18/55 x 1.5 eps^(2/3) k^(-5/3), Pope, Turbulent Flows,
+2000, sec. 6.5) gives sigma_w = 1.12 EDR L^(1/3): with L = 1750 ft, sigma_w = 9.1 EDR m/s.
+
+What is drawn (:func:`draw_atmosphere`, per flight, from the flight's ``turbulence`` stream):
+
+- the background EDR of the mid levels (2000 ft to FL200) and of the upper levels (above FL200), each
+  from Sharman and Pearson's upper-level climatology (J. Appl. Meteor. Climatol. 56, 2017:
+  ln EDR ~ N(-2.572, 0.5067)) restricted below the ICAO light threshold (EDR 0.1): air that is
+  never perfectly still, rarely felt;
+- the wind at 20 ft, which sets the boundary layer's gustiness: a Rayleigh distribution of mean
+  4.5 m/s (the European Wind Atlas' open-terrain climatology, Troen and Petersen, 1989, shape 2);
+- for every turbulence patch of the scenario, an EDR inside its category's ICAO Annex 3 band (peak
+  EDR for a medium aircraft: light 0.1-0.2, moderate 0.2-0.45, severe 0.45-0.7), unless the
+  scenario fixes it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flightmode.units import FT_M
+
+L_HIGH_M = 1750.0 * FT_M  # MIL-F-8785C 3.7.2.1: scale length above 2000 ft
+EDR_TO_SIGMA_W = 1.12 * L_HIGH_M ** (1.0 / 3.0)  # m/s per unit EDR (module docstring): 9.1
+# ICAO Annex 3 (Appendix 4, 2018 amendment) peak-EDR bands for a medium aircraft, and an upper
+# bound for "severe" draws
+EDR_BANDS = {"light": (0.1, 0.2), "moderate": (0.2, 0.45), "severe": (0.45, 0.7)}
+EDR_LN_MEAN, EDR_LN_STD = -2.572, 0.5067  # Sharman and Pearson (2017), upper-level climatology
+SURFACE_WIND_MEAN_MPS = 4.5  # Troen and Petersen (1989), open terrain: Rayleigh (Weibull k = 2)
+MID_TOP_M = 20_000.0 * FT_M  # the mid levels end at FL200
+
+
+@dataclass(frozen=True, slots=True)
+class Atmosphere:
+    """One flight's turbulence draws (:func:`draw_atmosphere`)."""
+
+    w20_mps: float  # wind speed at 20 ft above ground: the boundary layer's gust intensity
+    edr_mid: float  # background EDR, 2000 ft to FL200
+    edr_upper: float  # background EDR above FL200
+    patch_edr: tuple[float, ...] = ()  # the EDR of each turbulence patch of the plan, in order
+
+
+def _truncated_lognormal(rng: np.random.Generator, upper: float) -> float:
+    """A draw of the EDR climatology conditioned on EDR < upper (inverse transform: no rejection
+    loop, one uniform per draw)."""
+    from scipy.stats import norm
+
+    p_max = norm.cdf((math.log(upper) - EDR_LN_MEAN) / EDR_LN_STD)
+    return float(math.exp(EDR_LN_MEAN + EDR_LN_STD * norm.ppf(rng.uniform(0.0, p_max))))
+
+
+def draw_atmosphere(rng: np.random.Generator, patches=(), *, w20_mps: float | None = None,
+                    background_edr: float | None = None) -> Atmosphere:
+    """Draw one flight's turbulence (module docstring). ``patches``: the plan's turbulence segments
+    (``severity`` and an optional ``edr``); ``w20_mps`` / ``background_edr`` fix those draws. The
+    draws are always made in the same order, so fixing one never moves the others."""
+    w20 = float(rng.rayleigh(SURFACE_WIND_MEAN_MPS / math.sqrt(math.pi / 2.0)))
+    mid = _truncated_lognormal(rng, EDR_BANDS["light"][0])
+    upper = _truncated_lognormal(rng, EDR_BANDS["light"][0])
+    edrs = []
+    for seg in patches:
+        lo, hi = EDR_BANDS[seg.severity]
+        u = rng.uniform(lo, hi)
+        edrs.append(float(u if getattr(seg, "edr", None) is None else seg.edr))
+    if w20_mps is not None:
+        w20 = float(w20_mps)
+    if background_edr is not None:
+        mid = upper = float(background_edr)
+    return Atmosphere(w20, mid, upper, tuple(edrs))
+
+
+def dryden_parameters(h_m: float, sigma_high_mps: float, w20_mps: float) -> tuple[float, float, float, float]:
+    """(L_u, L_w, sigma_u, sigma_w) in m and m/s at height ``h_m`` above ground (module docstring):
+    MIL-F-8785C's low-altitude model below 1000 ft, ``sigma_high_mps`` with L = 1750 ft above
+    2000 ft, linear in between. Heights below 10 ft are taken as 10 ft (as JSBSim does)."""
+    h_ft = max(h_m / FT_M, 10.0)
+    if h_ft <= 1000.0:
+        k = 0.177 + 0.000823 * h_ft
+        sig_w = 0.1 * w20_mps
+        return (h_ft / k**1.2) * FT_M, h_ft * FT_M, sig_w / k**0.4, sig_w
+    if h_ft <= 2000.0:
+        f = (h_ft - 1000.0) / 1000.0
+        length = (1000.0 + 750.0 * f) * FT_M
+        sig = 0.1 * w20_mps + f * (sigma_high_mps - 0.1 * w20_mps)
+        return length, length, sig, sig
+    return L_HIGH_M, L_HIGH_M, sigma_high_mps, sigma_high_mps
+
+
+class GustField:
+    """Gust velocities for JSBSim, generated a block of ``block_steps`` FDM steps at a time with the
+    state carried across blocks (vectorised: scipy.signal.lfilter). The height, airspeed, heading and
+    intensity are taken at the start of each block (they change little in a second)."""
+
+    def __init__(self, fdm_hz: float, rng: np.random.Generator, block_steps: int = 120):
+        self.dt = 1.0 / fdm_hz
+        self.rng = rng
+        self.n = block_steps
+        self.state = np.zeros(3)  # x_u, x_v, x_w (m/s)
+
+    def reset(self) -> None:
+        self.state[:] = 0.0
+
+    def block(self, h_agl_m: float, tas_mps: float, heading_rad: float, sigma_high_mps: float,
+              w20_mps: float) -> np.ndarray:
+        """(block_steps, 3) gust velocity, north/east/down, m/s."""
+        from scipy.signal import lfilter
+
+        lu, lw, su, sw = dryden_parameters(h_agl_m, sigma_high_mps, w20_mps)
+        v = max(tas_mps, 10.0)
+        t = self.dt
+        # Yeager (1998) eq. 30-32: u first-order in tau_u; v and w with 2 T / tau
+        a = np.array([1.0 - t * v / lu, 1.0 - 2.0 * t * v / lu, 1.0 - 2.0 * t * v / lw])
+        b = np.array([su * math.sqrt(2.0 * t * v / lu), su * math.sqrt(4.0 * t * v / lu), sw * math.sqrt(4.0 * t * v / lw)])
+        noise = self.rng.standard_normal((3, self.n))
+        out = np.empty((3, self.n))
+        for i in range(3):
+            out[i], zf = lfilter([b[i]], [1.0, -a[i]], noise[i], zi=[a[i] * self.state[i]])
+            self.state[i] = out[i, -1]
+        c, s = math.cos(heading_rad), math.sin(heading_rad)
+        gust = np.empty((self.n, 3))
+        gust[:, 0] = c * out[0] - s * out[1]  # u along the heading, v to its right
+        gust[:, 1] = s * out[0] + c * out[1]
+        gust[:, 2] = out[2]
+        return gust
+
+
+def sigma_high_mps(edr: float) -> float:
+    """sigma_w above 2000 ft for an EDR (module docstring)."""
+    return EDR_TO_SIGMA_W * edr
+
+
+class GustFeed:
+    """Feeds a :class:`GustField` to a JSBSim aircraft: its ``atmosphere/gust-{north,east,down}-fps``
+    properties are written before every FDM step while the air is turbulent (the pilot decides when
+    and how strong: :attr:`Pilot.gust_sigma_mps`), and zeroed once when it stops."""
+
+    PROPS = ("atmosphere/gust-north-fps", "atmosphere/gust-east-fps", "atmosphere/gust-down-fps")
+
+    def __init__(self, ac, field: GustField, w20_mps: float, ix: dict):
+        self.nodes = [ac._node(p) for p in self.PROPS]
+        self.set = type(self.nodes[0]).set_double_value
+        self.field, self.w20, self.ix = field, w20_mps, ix
+        self.buffer: list[tuple[float, float, float]] = []
+        self.pos = 0
+        self.on = False
+
+    def take(self, n: int, x, sigma_high_mps: float) -> list[tuple[float, float, float]]:
+        """The next ``n`` steps' gusts (ft/s, north, east, down), generating blocks from the state row
+        ``x`` as needed."""
+        ix = self.ix
+        while len(self.buffer) - self.pos < n:
+            g = self.field.block(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps, self.w20)
+            self.buffer = self.buffer[self.pos:] + (g / FT_M).tolist()
+            self.pos = 0
+        out = self.buffer[self.pos : self.pos + n]
+        self.pos += n
+        self.on = True
+        return out
+
+    def write(self, g) -> None:
+        set_, (n, e, d) = self.set, self.nodes
+        set_(n, g[0])
+        set_(e, g[1])
+        set_(d, g[2])
+
+    def stop(self) -> None:
+        if self.on:
+            self.write((0.0, 0.0, 0.0))
+            self.on = False
+            self.field.reset()
+            self.buffer, self.pos = [], 0
