@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from flightmode.errors import AircraftError, did_you_mean
-from flightmode.units import FT_M, KT_MPS
+from flightmode.units import FT_M, G0_MPS2, KT_MPS
 
 
 @dataclass(frozen=True, slots=True)
@@ -21,10 +21,42 @@ class PilotTuning:
     """The pilot's procedures, limits and loop gains (the same for every type unless a profile sets
     its own). PID tuples are (kp, ki, kd, lo, hi) in the units named."""
 
-    # procedures
-    taxi_straight_mps: float = 20.0 * KT_MPS  # about 20 kt on straight taxiways (Airbus A319 FCOM)
-    taxi_decel_mps2: float = 0.5  # slowing for corners and stops
+    # taxi (sim.flight.taxi_route.draw_taxi draws each flight's values inside these (lo, hi) ranges).
+    # "ADS-B": the six real taxi segments of sim.flight.taxi_stats.ADSB_TAXI_ANCHORS.
+    # Straight taxiway speed: ADS-B speed p90 8.7-10.2 m/s taxi-out, 5.4-7.8 m/s taxi-in; the OpenAP
+    # A320 QAR sample's medians 14 kt out, 11 kt in; all under the A320 FCOM's 30 kt and the
+    # "about 20 kt" of the Boeing 737 FCTM
+    taxi_speed_out_mps: tuple = (7.5, 10.0)
+    taxi_speed_in_mps: tuple = (5.5, 8.0)
+    # apron taxilanes and stand lead-ins, where most of a taxi-in's turns are: ADS-B median speed in
+    # turns 3.6-5.7 m/s, taxi-in speed p50 2.7-4.2 m/s
+    taxi_apron_speed_mps: tuple = (3.5, 5.0)
+    # turns: lateral acceleration 0.10-0.13 g, below the 0.134 g of the ICAO Doc 9157 curve table;
+    # yaw rate at most 6-9 deg/s (ADS-B yaw-rate maxima 4.8-9.1 deg/s, never above 12)
+    taxi_lat_acc_mps2: tuple = (0.10 * G0_MPS2, 0.13 * G0_MPS2)
+    taxi_yaw_rate_max_dps: tuple = (6.0, 9.0)
+    # slowing before turns and stops, and the rollout's last deceleration: 0.03-0.05 g (ADS-B largest
+    # braking 0.029-0.062 g, 9 s smoothed); speeding up 0.02-0.04 g (ADS-B largest 0.014-0.047 g)
+    taxi_decel_mps2: tuple = (0.03 * G0_MPS2, 0.05 * G0_MPS2)
+    taxi_accel_mps2: tuple = (0.02 * G0_MPS2, 0.04 * G0_MPS2)
+    taxi_turns_per_min: tuple = (0.45, 0.8)  # ADS-B: 0.42-0.83 turns per minute of taxi
+    # taxi speed loop: brakes from the deceleration wanted over the brakes' gain (deceleration per unit
+    # brake command, measured at 10 m/s: JSBSim 737 7.0 m/s^2, A320 4.2), plus a PI on the over-speed;
+    # the command moves at most 0.05/s while rolling (0.35 m/s^3 on the 737: no deceleration step),
+    # 1/s at a standstill
+    taxi_brake_mps2: float = 7.0
+    taxi_brake_max_mps2: float = 0.06 * G0_MPS2  # the most the taxi brakes ask for (ADS-B: 0.03-0.06 g)
+    taxi_brake_pi: tuple = (0.03, 0.01)  # over-speed (m/s) -> brake command
+    taxi_brake_rate: tuple = (0.05, 0.1, 1.0)  # per second: applying, releasing, at a standstill
+    taxi_hold_brake: float = 0.5  # standing at a hold
+    taxi_ref_tau_s: float = 2.0  # the taxi speed reference's lag (sim.flight.controllers.Taxi)
+    # path following: pure-pursuit look-ahead (s of travel, at least 12 m) and nose-wheel angle limit
+    taxi_lookahead_s: float = 2.5
+    taxi_max_steer_deg: float = 40.0
+    rollout_ease_mps3: float = 0.3  # the autobrake's deceleration eases to the taxi deceleration at this rate
+    rollout_settle_mps: float = 2.0  # and has settled there this much above the exit speed (3-5 s before it)
     pushback_mps: float = 1.2  # a tug's pushing speed
+    pushback_decel_mps2: float = 0.2  # the tug starts the push and stops it at the end of its turn this gently
     accel_height_m: float = 1500.0 * FT_M  # thrust reduction and acceleration height after takeoff
     climb_out_m: float = 3000.0 * FT_M  # above the runway: initial climb ends, the climb begins
     speed_limit_alt_m: float = 10_000.0 * FT_M  # 250 kt below FL100 (ICAO Annex 11, Appendix 4)
@@ -108,8 +140,11 @@ class AircraftProfile:
     taxi_throttle_max: float
     reverse_throttle: float
     flare_height_ft: float
-    flare_gain: float  # pitch (rad) per rad of flight-path error in the flare, on top of the path loop
+    flare_pitch_kp: float  # elevator (normalised) per rad of attitude error in the flare, on top of the pitch loop
     climb: ClimbSchedule
+    # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
+    # sim.flight.controllers.FLARE_PITCH_GAIN
+    flare_accel_gain: float = 1.0
     # attitude and speed loop gains (flightmode.sim.flight.autopilot)
     pitch_kp: float = 2.0
     pitch_ki: float = 0.6
@@ -172,7 +207,7 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
         flare_height_ft=55.0,
-        flare_gain=7.0,
+        flare_pitch_kp=4.0,
         # WRAP B737
         climb=ClimbSchedule(Spread(11.41, 2.07, 8.01, 14.82), Spread(11.71, 1.96, 8.49, 14.93),
                             Spread(6.74, 1.42, 4.4, 9.08), 3400.0, 8900.0, 151.95),
@@ -181,7 +216,12 @@ PROFILES: dict[str, AircraftProfile] = {
         model="A320",
         description="Airbus A320 (JSBSim A320, CFM56-5)",
         wrap_type="A320",
-        taxi_turn_kt=6.0,  # the JSBSim A320's nose wheel skids above ~7 kt at full steering
+        # the JSBSim A320's nose wheel turns the aircraft slowly: whatever the steering angle, the yaw rate
+        # builds at 1.7 deg/s^2 at most (measured at 3-7 m/s), more slowly beyond 20 deg (the tyre
+        # skids), where the 737's reaches 6 deg/s^2. Its turns are flown at the lower half of the
+        # ADS-B yaw-rate maxima (4.8-9.1 deg/s), steered earlier and at most 30 deg.
+        tuning=PilotTuning(taxi_yaw_rate_max_dps=(5.0, 7.0), taxi_lookahead_s=5.0, taxi_max_steer_deg=30.0,
+                           taxi_brake_mps2=4.2),
         rotate_elevator=0.6,
         elevator_nose_up_deg=35.0,  # no trimmable stabiliser in the model (sim.flight.model_edits)
         n_engines=2,
@@ -212,7 +252,7 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
         flare_height_ft=70.0,  # a heavy, slow-responding model in landing trim: start early
-        flare_gain=8.0,
+        flare_pitch_kp=4.0,
         # WRAP A320
         climb=ClimbSchedule(Spread(10.25, 1.59, 7.63, 12.87), Spread(8.44, 1.31, 6.28, 10.6),
                             Spread(5.29, 1.03, 3.6, 6.97), 3700.0, 8800.0, 151.04),
@@ -250,7 +290,8 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.4,
         reverse_throttle=0.4,
         flare_height_ft=40.0,
-        flare_gain=5.0,
+        flare_pitch_kp=1.0,  # the fokker100 answers its elevator faster: 4 diverges in its flare
+        flare_accel_gain=1.0 / 3.0,  # and so does its flare loop at the full gain (JSBSim blew up, 2 of 8 seeds)
         # WRAP E190 (the nearest type WRAP models)
         climb=ClimbSchedule(Spread(10.44, 1.98, 7.18, 13.71), Spread(8.93, 1.62, 6.27, 11.6),
                             Spread(4.82, 1.14, 2.95, 6.7), 3000.0, 9200.0, 140.0),
@@ -286,7 +327,7 @@ PROFILES: dict[str, AircraftProfile] = {
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
         flare_height_ft=50.0,
-        flare_gain=5.0,
+        flare_pitch_kp=4.0,
         # WRAP B788
         climb=ClimbSchedule(Spread(9.58, 1.38, 7.32, 11.85), Spread(9.02, 1.77, 6.12, 11.93),
                             Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68),

@@ -56,6 +56,10 @@ class Autopilot:
         self.flaps = 0.0
         self.path: Path2D | None = None  # the taxi route being followed
         self.diff_brake = 0.0
+        self.parking_brake = 0.0  # the shutdown's brake command (sim.flight.controllers.Shutdown)
+        self.taxi_brake = 0.0  # the taxi speed loop's brake command, its mode and integrator
+        self.taxi_braking = False
+        self.taxi_brake_int = 0.0
         self.decel_f = 0.0  # filtered ground deceleration (m/s^2)
         self._gs_prev = 0.0
         self.waypoints = list(plan.waypoints) + [self.approach_fix()]
@@ -280,46 +284,64 @@ class Autopilot:
         # four models), the opposite of the nose wheel's positive-right steering angle
         self.ac.set("fcs/rudder-cmd-norm", clamp(-(4.0 * psi_err - 3.0 * r), -1.0, 1.0))
 
-    def follow(self, x, frame: RunwayFrame, v_max: float, lookahead_m: float, max_steer_deg: float):
-        """Pure pursuit along ``self.path``; returns (s, cross-track error, speed target)."""
+    def follow(self, x, frame: RunwayFrame, lookahead_m: float, max_steer_deg: float,
+               max_yaw_rate_radps: float = math.inf) -> tuple[float, float]:
+        """Pure pursuit along ``self.path``; returns (s, cross-track error). The path curvature it
+        steers for is capped so that the yaw rate it asks for stays within ``max_yaw_rate_radps``
+        (a nose wheel that lags would otherwise be asked for ever more as it falls behind). The
+        speed is the taxi route's (:meth:`speed_on_ground`)."""
         ix = self.ix
         rx, ry = frame.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         s, cross = self.path.project(rx, ry)
         target = self.path.point_at(s + lookahead_m)
         hdg = frame.heading_in_frame(x[ix["psi_rad"]])
-        steer, alpha = pure_pursuit_steer_rad(rx, ry, hdg, target, self.prof.wheelbase_m)
-        # yaw-rate feedback around the kinematic pure-pursuit angle: the gear's yaw response lags
-        # (badly on the A320 model), and without it the turns overshoot
+        _, alpha = pure_pursuit_steer_rad(rx, ry, hdg, target, self.prof.wheelbase_m)
         gs = self.gs(x)
         ld = max(math.hypot(target[0] - rx, target[1] - ry), 1.0)
-        r_des = gs * 2.0 * math.sin(alpha) / ld
-        r_err = r_des - x[ix["r_radps"]]
+        kappa_max = max_yaw_rate_radps / max(gs, 0.5)
+        kappa = clamp(2.0 * math.sin(alpha) / ld, -kappa_max, kappa_max)
+        steer = math.atan(self.prof.wheelbase_m * kappa)
+        # yaw-rate feedback around the kinematic pure-pursuit angle: the gear's yaw response lags
+        # (badly on the A320 model), and without it the turns overshoot
+        r_err = gs * kappa - x[ix["r_radps"]]
         steer += 1.5 * r_err
-        # differential braking where the nose wheel alone cannot hold the turn rate (as pilots do)
-        self.diff_brake = clamp(4.0 * r_err, -0.4, 0.4) if gs > 1.0 else 0.0
+        # a touch of differential braking where the nose wheel alone lags the turn rate (as pilots
+        # do); small, so that it never brakes the aircraft noticeably
+        self.diff_brake = clamp(1.0 * r_err, -0.03, 0.03) if gs > 1.0 else 0.0
         lim = math.radians(max_steer_deg)
         self.steer(clamp(steer, -lim, lim))
-        v_t = v_max
-        v_turn = self.prof.taxi_turn_kt * KT_MPS
-        if abs(steer) > math.radians(15.0):  # hard steering: no faster than a turn
-            v_t = v_turn
-        for sc in self.path.corners_s:
-            if sc > s - 15.0:
-                d = max(0.0, sc - s - 10.0)
-                v_t = min(v_t, math.sqrt(v_turn**2 + 2 * self.tune.taxi_decel_mps2 * d))
-        return s, cross, v_t
+        return s, cross
 
-    def speed_on_ground(self, gs: float, v_t: float) -> None:
-        """Throttle and brakes to a ground speed target, with the differential braking of
-        :meth:`follow`."""
-        err = v_t - gs
-        thr = self.ground_spd_pid(err, self.dt)
-        if v_t < 0.05:
+    def speed_on_ground(self, gs: float, v_ref: float, a_ref: float) -> None:
+        """Throttle and brakes to the taxi speed reference ``v_ref`` that changes at ``a_ref``
+        (m/s^2), with the differential braking of :meth:`follow`. Throttle: PI on the speed error.
+        Brakes (while the reference falls, or the aircraft is too fast): the deceleration wanted over
+        the brakes' gain, plus a PI on the over-speed; the command moves at a limited rate, so the
+        deceleration never steps. At a standstill with a zero reference: the hold brake."""
+        tu, dt = self.tune, self.dt
+        err = v_ref - gs
+        standing = v_ref < 0.05 and gs < 0.3
+        if self.taxi_braking:
+            if err > 0.3 and a_ref > -0.01:
+                self.taxi_braking = False
+                self.ground_spd_pid.reset()
+        elif err < -0.5 or (a_ref < -0.02 and err < 0.2) or v_ref < 0.05:
+            self.taxi_braking = True
+            self.taxi_brake_int = 0.0
+        kp, ki = tu.taxi_brake_pi
+        if standing:
+            target, thr = tu.taxi_hold_brake, 0.0
+        elif self.taxi_braking:
+            self.taxi_brake_int = clamp(self.taxi_brake_int - err * dt, -5.0, 5.0)
+            target = clamp(-a_ref / tu.taxi_brake_mps2 - kp * err + ki * self.taxi_brake_int, 0.0,
+                           tu.taxi_brake_max_mps2 / tu.taxi_brake_mps2)
             thr = 0.0
+        else:
+            target, thr = 0.0, self.ground_spd_pid(err, dt)
+        up, down, still = tu.taxi_brake_rate
+        rate = still if gs < 0.1 else (up if target > self.taxi_brake else down)
+        self.taxi_brake = rate_limit(self.taxi_brake, target, rate * dt)
         self.throttle(thr)
-        brake = 0.0
-        if err < -0.8 or v_t < 0.05:
-            brake = clamp(-0.3 * err, 0.15 if v_t < 0.05 else 0.0, 1.0)
-        d = self.diff_brake
-        self.ac.set("fcs/left-brake-cmd-norm", clamp(brake + max(0.0, -d), 0.0, 1.0))
-        self.ac.set("fcs/right-brake-cmd-norm", clamp(brake + max(0.0, d), 0.0, 1.0))
+        b, d = self.taxi_brake, self.diff_brake
+        self.ac.set("fcs/left-brake-cmd-norm", clamp(b + max(0.0, -d), 0.0, 1.0))
+        self.ac.set("fcs/right-brake-cmd-norm", clamp(b + max(0.0, d), 0.0, 1.0))

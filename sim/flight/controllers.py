@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 from flightmode.sim.flight.control import clamp, rate_limit
-from flightmode.sim.flight.taxi_route import taxi_in_path, taxi_out_path
+from flightmode.sim.flight.taxi_route import taxi_in_route
 from flightmode.units import FT_M, G0_MPS2, KT_MPS
 
 
@@ -77,31 +77,38 @@ class EngineStart(Controller):
 
 
 class Pushback(Controller):
-    """The tug (a body-axis force at the nose gear, a PI loop on ground speed) pushes straight back
-    across the apron, then turns the tail so the nose swings 90 deg left onto the taxiway (turn radius
-    = wheelbase / tan(35 deg)), and stops."""
+    """The tug (a body-axis force at the nose gear, a PI loop on ground speed) pushes the aircraft
+    straight back from its stand (``TaxiDraws.push_straight_m``), then turns the tail so the nose
+    swings 90 deg left onto the apron taxilane (turn radius = wheelbase / tan(35 deg)), slowing to a
+    stop over the last of the turn (``pushback_decel_mps2``), and stops."""
 
     def enter(self, x) -> None:
-        self.heading0 = x[self.p.ix["psi_rad"]]
+        ix = self.p.ix
+        self.heading0 = x[ix["psi_rad"]]
+        self.xy0 = self.ap.origin.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         self.turning = False
+        self.v_tug = 0.0  # the tug's speed target (backwards)
         self.ap.brakes(0.0)
         self.ap.tug_pid.reset()
 
     def tick(self, x) -> None:
-        ap, ix = self.ap, self.p.ix
+        ap, ix, tu = self.ap, self.p.ix, self.ap.tune
         v = ap.ground_speed_signed(x)
         turned = (x[ix["psi_rad"]] - self.heading0 + math.pi) % (2 * math.pi) - math.pi
         rx, ry = ap.origin.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         radius = self.p.prof.wheelbase_m / math.tan(math.radians(35.0))
-        if ry > -self.p.plan.taxi_out.taxiway_offset_m - radius:
+        if math.hypot(rx - self.xy0[0], ry - self.xy0[1]) >= self.p.taxi.push_straight_m:
             self.turning = True
         steering = math.radians(35.0) if self.turning else 0.0
-        done = turned < -math.radians(88.0)
-        target = 0.0 if done else -ap.tune.pushback_mps
-        ap.ac.set("external_reactions/pushback/magnitude", ap.tug_pid(target - v, ap.dt))
+        to_go_m = radius * max(0.0, math.radians(90.0) + turned) if self.turning else math.inf
+        done = turned < -math.radians(89.0)
+        # the tug starts and stops the push at pushback_decel_mps2 (no jolt)
+        speed = max(0.15, min(tu.pushback_mps, math.sqrt(2.0 * tu.pushback_decel_mps2 * to_go_m)))
+        self.v_tug = rate_limit(self.v_tug, 0.0 if done else speed, tu.pushback_decel_mps2 * ap.dt)
+        ap.ac.set("external_reactions/pushback/magnitude", ap.tug_pid(-self.v_tug - v, ap.dt))
         ap.steer(steering if not done else 0.0)
         if done:
-            ap.brakes(1.0)
+            ap.brakes(0.1)
             if abs(v) < 0.05:
                 ap.ac.set("external_reactions/pushback/magnitude", 0.0)
                 self.p.event("tug_disconnected")
@@ -109,56 +116,78 @@ class Pushback(Controller):
 
 
 class Taxi(Controller):
-    """Pure pursuit along a taxi route at the taxi speed, slowing for corners and stopping at its
-    holds (``holding`` meanwhile); :meth:`taxi` returns True at the route's end."""
+    """Pure pursuit along a taxi route (:class:`~flightmode.sim.flight.taxi_route.TaxiRoute`) at its
+    scheduled speed, stopping at its holds (``holding`` meanwhile); :meth:`taxi` returns True at the
+    route's end.
 
-    def start_route(self, path) -> None:
-        self.ap.path = path
+    The speed reference closes on the schedule (and each stop's braking curve) read one time
+    constant ``taxi_ref_tau_s`` of travel ahead, as a first-order lag whose rate stays between the
+    crew's acceleration and 10 % more than its deceleration: the lag makes every change of
+    acceleration gradual (a driver easing off the brakes as the speed is reached), the look-ahead
+    cancels the lag on the schedule's ramps, so that turns are still entered at their speed. The
+    throttle and brakes (:meth:`Autopilot.speed_on_ground`) follow that reference."""
+
+    def start_route(self, route, v0_mps: float) -> None:
+        ap = self.ap
+        self.route = route
+        ap.path = route.path
         self.stop_idx = 0
         self.hold_until: float | None = None
-        self.ap.ground_spd_pid.reset()
+        self.v_ref = v0_mps
+        ap.ground_spd_pid.reset()
 
     @property
     def holding(self) -> bool:
         return self.hold_until is not None
 
     def taxi(self, x, frame) -> bool:
-        ap, p = self.ap, self.p
+        ap, p, tau = self.ap, self.p, self.ap.tune.taxi_ref_tau_s
+        style = self.route.style
         gs = ap.gs(x)
-        s, cross, v_t = ap.follow(x, frame, ap.tune.taxi_straight_mps, max(12.0, 3.0 * gs), 70.0)
+        s, cross = ap.follow(x, frame, max(12.0, ap.tune.taxi_lookahead_s * gs), ap.tune.taxi_max_steer_deg,
+                             1.2 * style.yaw_rate_max_radps)
         if abs(cross) > 30.0:
             p.fail(f"left the taxiway: {cross:.0f} m from the taxi route")
         stops = ap.path.stops
-        decel = ap.tune.taxi_decel_mps2
+        decel = style.decel_mps2
+        ahead = gs * tau
+        v_cmd = min(self.route.speed_at(s), self.route.speed_at(s + ahead))
+        done = False
         if self.hold_until is not None:
-            v_t = 0.0
+            v_cmd = 0.0
             if p.t >= self.hold_until:
                 self.hold_until = None
                 ap.ground_spd_pid.reset()
                 if stops[self.stop_idx].name == "lineup":
-                    return True
+                    done = True
                 self.stop_idx += 1
-        elif self.stop_idx < len(stops):
-            st = stops[self.stop_idx]
-            d = st.s_m - s
-            v_t = min(v_t, math.sqrt(max(0.0, 2 * decel * (d - 2.0))))
-            if d < 3.0 and gs < 0.3:
-                self.hold_until = p.t + st.hold_s
-                p.event("hold", f"{st.name} {st.hold_s:.0f} s")
         else:
-            d = ap.path.length_m - s
-            v_t = min(v_t, math.sqrt(max(0.0, 2 * decel * (d - 2.0))))
-            if d < 3.0 and gs < 0.3:
-                return True
-        ap.speed_on_ground(gs, v_t)
-        return False
+            if self.stop_idx < len(stops):
+                st = stops[self.stop_idx]
+                d, hold = st.s_m - s, st
+            else:
+                d, hold = ap.path.length_m - s, None
+            v_cmd = min(v_cmd, math.sqrt(max(0.0, 2 * decel * (d - 1.0 - ahead))))
+            if d < 3.0 and gs < (TAXI_PARKED_MPS if hold is None else 0.3):
+                if hold is None:
+                    done = True
+                else:
+                    self.hold_until = p.t + hold.hold_s
+                    p.event("hold", f"{hold.name} {hold.hold_s:.0f} s")
+        a_ref = clamp((v_cmd - self.v_ref) / tau, -1.1 * decel, style.accel_mps2)
+        self.v_ref = max(0.0, self.v_ref + a_ref * ap.dt)
+        ap.speed_on_ground(gs, self.v_ref, a_ref)
+        return done
+
+
+# the stand is reached once the aircraft has come to rest on its taxi brakes: the parking brake set at
+# a walking pace (0.3 m/s) stopped it in one jolt, 0.07 g on the 737
+TAXI_PARKED_MPS = 0.05
 
 
 class TaxiOut(Taxi):
     def enter(self, x) -> None:
-        ix = self.p.ix
-        rx, ry = self.ap.origin.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
-        self.start_route(taxi_out_path(self.p.plan.taxi_out, (rx, ry), self.p.plan.origin.length_m))
+        self.start_route(self.p.taxi.route_out, 0.0)
 
     def tick(self, x) -> None:
         if self.hold_until is None and self.ap.flaps == 0.0:
@@ -320,36 +349,44 @@ class EnRoute(Controller):
 
 
 class Flare(Controller):
-    """Exponential flare: the sink rate commanded as (h + h_b) / tau, continuous at flare entry and
-    tending to the flight's drawn touchdown sink v_td (h: main-gear height). The flight-path loop
-    closes on the sink rate predicted ``FLARE_LEAD_S`` ahead from the vertical acceleration (the
-    specific force), as a pilot anticipates: without that lead the attitude's lag behind the
-    command makes the flare either late (a firm landing) or overdone (a balloon, then a drop)."""
+    """Constant-deceleration flare guidance: at every tick, the upward acceleration that would bring the
+    sink rate v (main-gear height h) to the flight's drawn touchdown sink v_td exactly at h = 0 is
+    a_req = (v^2 - v_td^2) / (2 h), the kinematics of a uniform deceleration. The pitch attitude is
+    moved at a rate proportional to the error between a_req and the measured vertical acceleration
+    (from the specific force), as a pilot eases the stick back while watching the sink rate. The
+    guidance corrects itself: a flare begun late asks for more, one overdone asks for less (a float is
+    allowed a gentle push, never a dive). Stock autoland flare laws are of this kinematic kind
+    (e.g. NASA TN D-6544, exponential and constant-deceleration flare paths)."""
 
     def enter(self, x) -> None:
-        self.tau: float | None = None
+        self.theta_cmd = x[self.p.ix["theta_rad"]]
 
     def tick(self, x) -> None:
         ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
-        mg_ft = (x[ix["agl_m"]] - prof.cg_height_m) / FT_M
-        target_fps = ap.draws.touchdown_sink_mps / FT_M
-        if self.tau is None:
-            # h_b = v_td h0 / (sink0 - v_td) makes (h0 + h_b) / tau = sink0 and h_b / tau = v_td
-            sink0_fps = max(x[ix["v_down_mps"]] / FT_M, target_fps + 2.0)
-            self.hb_ft = target_fps * mg_ft / (sink0_fps - target_fps)
-            self.tau = (mg_ft + self.hb_ft) / sink0_fps
-            ap.gamma_pid.reset(integral=x[ix["theta_rad"]] / ap.gamma_pid.ki)  # bumpless
-        vs_cmd = -max(target_fps, (mg_ft + self.hb_ft) / self.tau) * FT_M
+        h_m = x[ix["agl_m"]] - prof.cg_height_m - FLARE_AIM_M
+        sink = x[ix["v_down_mps"]]
+        target = ap.draws.touchdown_sink_mps
+        if h_m > FLARE_MIN_H_M:
+            a_req = (sink * abs(sink) - target * target) / (2.0 * h_m)
+        else:  # at the aim height: hold the touchdown sink until the wheels meet the runway
+            a_req = FLARE_HOLD_PER_S * (sink - target)
+        a_req = clamp(a_req, -FLARE_MAX_PUSH_MPS2, FLARE_MAX_UP_MPS2)
         # vertical acceleration (up) from the specific force: a = -f_z cos(theta) - g (near wings level)
         a_up = -x[ix["fz_mps2"]] * math.cos(x[ix["theta_rad"]]) - G0_MPS2
-        vs_pred = -x[ix["v_down_mps"]] + FLARE_LEAD_S * a_up
-        lo_deg = -3.0 if ap.theta_final is None else ap.theta_final - 1.0
-        ap.path_to(x, vs_cmd, lo_deg, 12.0, rate_dps=5.0, boost=prof.flare_gain, vs_now=vs_pred)
+        rate = clamp(prof.flare_accel_gain * FLARE_PITCH_GAIN * (a_req - a_up), -math.radians(2.0), math.radians(3.0))
+        if math.degrees(x[ix["alpha_rad"]]) > prof.alpha_stall_deg - FLARE_ALPHA_MARGIN_DEG:
+            rate = min(rate, 0.0)  # a float that bleeds speed: never pull towards the stall
+        lo = math.radians(-3.0 if ap.theta_final is None else ap.theta_final - 1.0)
+        self.theta_cmd = clamp(self.theta_cmd + rate * ap.dt, lo, math.radians(12.0))
+        ap.theta_cmd = self.theta_cmd
+        # a firmer attitude loop than in flight (the flare is seconds long; the cruise loop's soft
+        # gain lags it by degrees)
+        ap.pitch_to(x, self.theta_cmd, bias=prof.flare_pitch_kp * (self.theta_cmd - x[ix["theta_rad"]]))
+        mg_ft = (x[ix["agl_m"]] - prof.cg_height_m) / FT_M
         ap.throttle_smooth(0.0 if mg_ft < 20.0 else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
         rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         ap.heading_to(x, ap.dest.heading_rad - math.atan2(ry, 1500.0), 5.0)
         if x[ix["wow"]] > 0.5:
-            sink = x[ix["v_down_mps"]]
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
             if sink > ap.tune.max_touchdown_sink_mps:
                 p.fail(f"hard landing: touchdown sink rate {sink / FT_M:.1f} ft/s exceeds "
@@ -357,7 +394,18 @@ class Flare(Controller):
             p.fire("touchdown")
 
 
-FLARE_LEAD_S = 1.0  # the flare loop's anticipation of the sink rate
+# the flare guidance (Flare): pitch rate (rad/s) per m/s^2 of missing upward acceleration. An airliner
+# on approach gains about 4-5 g of load factor per radian of angle of attack, so this closes the
+# acceleration loop near 2 rad/s. Chosen over 0.7 rad/s by flying both on the A320 and 737 in gusts,
+# 6 seeds each: at 0.7 the A320's flare lagged into 8-10 ft/s touchdowns (2.3 g), at 2.1 its sinks
+# fell to 1.7-6 ft/s, the 737's about the same
+FLARE_PITCH_GAIN = 2.1 / (4.5 * G0_MPS2)
+FLARE_ALPHA_MARGIN_DEG = 3.0  # the flare stops pitching up this close to the type's stall angle
+FLARE_MAX_UP_MPS2 = 0.25 * G0_MPS2  # a flare pulls at most a quarter g
+FLARE_MAX_PUSH_MPS2 = 0.03 * G0_MPS2  # and pushes gently when floating
+FLARE_MIN_H_M = 0.3  # the guidance's height floor (a_req stays finite at contact)
+FLARE_HOLD_PER_S = 1.0  # below the aim height: upward acceleration per m/s of sink above the target
+FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far above the runway (the lag)
 
 
 class Rollout(Controller):
@@ -373,6 +421,7 @@ class Rollout(Controller):
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
         ap.pitch_pid.integral *= 0.5
         self.rev_thr = self.p.prof.reverse_throttle
+        self.nose_down = False
         ap.brake_pid.reset()
 
     def tick(self, x) -> None:
@@ -385,11 +434,23 @@ class Rollout(Controller):
         else:
             ap.ac.set("fcs/elevator-cmd-norm", 0.2)
         gs = ap.gs(x)
-        nose_down = x[ix["theta_rad"]] < math.radians(1.5)
+        # the nose wheel is down once the pitch falls below 1.5 deg (latched: some models sit at about
+        # that attitude on their gear, and an unlatched test froze the brakes whenever it flickered)
+        self.nose_down = self.nose_down or x[ix["theta_rad"]] < math.radians(1.5)
+        nose_down = self.nose_down
         rev = nose_down and gs > 70.0 * KT_MPS
         for i in range(prof.n_engines):
             ap.ac.set(f"propulsion/engine[{i}]/reverser-angle-rad", math.pi if rev else 0.0)
         target = p.plan.autobrake_decel_mps2
+        # below the easing speed the deceleration eases off linearly with the speed, to reach the
+        # crew's taxi deceleration at ``rollout_settle_mps`` above the exit speed at about
+        # ``rollout_ease_mps3``, and holds it to the exit speed (the taxi-in then goes on
+        # decelerating at that rate: no braking step at the hand-over)
+        a_taxi = p.taxi.style.decel_mps2
+        v_settled = ap.tune.exit_speed_mps + ap.tune.rollout_settle_mps
+        dv_ease = 0.5 * (target + a_taxi) * max(target - a_taxi, 0.0) / ap.tune.rollout_ease_mps3
+        if gs < v_settled + dv_ease:
+            target = a_taxi + (target - a_taxi) * max(0.0, gs - v_settled) / dv_ease
         self.rev_thr = clamp(self.rev_thr + 0.5 * ap.dt * (target - ap.decel_f), 0.0, prof.reverse_throttle)
         ap.throttle(self.rev_thr if rev else 0.0)
         if nose_down:
@@ -403,10 +464,20 @@ class Rollout(Controller):
 
 
 class TaxiIn(Taxi):
+    """Taxi to the stand from where the rollout handed over, decelerating on at the rollout's last
+    rate: the speed reference starts at the ground speed and the brakes where the autobrake left
+    them (no step)."""
+
     def enter(self, x) -> None:
-        ix = self.p.ix
-        rx, _ = self.ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
-        self.start_route(taxi_in_path(self.p.plan.taxi_in, rx))
+        ap, ix = self.ap, self.p.ix
+        rx, _ = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
+        gs = ap.gs(x)
+        tx = self.p.taxi
+        self.start_route(taxi_in_route(self.p.plan.taxi_in, tx.arrival, tx.style, rx, gs), gs)
+        ap.taxi_brake = 0.5 * (ap.ac.get("fcs/left-brake-cmd-norm") + ap.ac.get("fcs/right-brake-cmd-norm"))
+        ap.taxi_braking = True
+        kp, ki = ap.tune.taxi_brake_pi
+        ap.taxi_brake_int = (ap.taxi_brake - tx.style.decel_mps2 / ap.tune.taxi_brake_mps2) / ki
 
     def tick(self, x) -> None:
         if self.taxi(x, self.ap.dest):
@@ -414,16 +485,23 @@ class TaxiIn(Taxi):
 
 
 class Shutdown(Controller):
+    """Fuel cut off at the stand. The parking brake is set gradually from the taxi brake's hold
+    (``PARKING_BRAKE_RATE_PER_S``): set at once, JSBSim's gear friction at rest (a stiff spring)
+    kicked the 737 with 0.35 g fore-aft and could leave it rocking on its gear."""
+
     def enter(self, x) -> None:
         ap = self.ap
-        ap.brakes(1.0)
+        ap.parking_brake = ap.taxi_brake
+        ap.brakes(ap.parking_brake)
         ap.throttle(0.0)
         ap.steer(0.0)
         ap.ac.set("propulsion/active_engine", -1)
         ap.ac.set("propulsion/cutoff_cmd", 1)
 
     def tick(self, x) -> None:
-        self.ap.brakes(1.0)
+        ap = self.ap
+        ap.parking_brake = rate_limit(ap.parking_brake, 1.0, PARKING_BRAKE_RATE_PER_S * ap.dt)
+        ap.brakes(ap.parking_brake)
         # engines off: every N2 below 5 % after fuel cut-off (the end of the seed's flight time)
         if all(x[self.p.ix[f"n2_pct_{i}"]] < 5.0 for i in range(self.p.prof.n_engines)):
             self.p.t_engines_off = self.p.t
@@ -431,11 +509,16 @@ class Shutdown(Controller):
             self.p.fire("engines_off")
 
 
+PARKING_BRAKE_RATE_PER_S = 0.1
+
+
 class Parked(Controller):
     holding = True
 
     def tick(self, x) -> None:
-        self.ap.brakes(1.0)
+        ap = self.ap
+        ap.parking_brake = rate_limit(ap.parking_brake, 1.0, PARKING_BRAKE_RATE_PER_S * ap.dt)
+        ap.brakes(ap.parking_brake)
         if self.p.t - self.p.t_engines_off >= self.p.plan.post_shutdown_s:
             self.p.fire("recording_over")
 

@@ -30,6 +30,7 @@ from flightmode.units import FPS_MPS
 LANDING_QUALITIES = ("normal", "firm", "hard")
 SINK_NORMAL_MEDIAN_FPS = 2.0
 SINK_NORMAL_LN_STD = math.log(5.5 / 2.0) / 3.09  # P(> 5.5 ft/s) = 1e-3
+SINK_BANDS_FPS = {"firm": (4.5, 7.0), "hard": (7.0, 9.5)}  # module docstring
 
 
 @dataclass(frozen=True, slots=True)
@@ -49,7 +50,7 @@ def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
     if quality == "normal":
         fps = SINK_NORMAL_MEDIAN_FPS * math.exp(SINK_NORMAL_LN_STD * rng.standard_normal())
         return min(fps, 9.5) * FPS_MPS  # the lognormal's far tail (1e-7 of landings) capped below the limit
-    lo, hi = (4.5, 7.0) if quality == "firm" else (7.0, 9.5)
+    lo, hi = SINK_BANDS_FPS[quality]
     return rng.uniform(lo, hi) * FPS_MPS
 
 

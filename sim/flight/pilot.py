@@ -31,7 +31,7 @@ class Pilot:
     """Flies ``plan`` with ``profile`` on ``ac``; call :meth:`tick` every :attr:`control_every` FDM
     steps (``fdm_hz`` steps a second)."""
 
-    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, fdm_hz: float, draws):
+    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, fdm_hz: float, draws, taxi):
         self.ac = ac
         self.plan = plan
         self.prof = profile
@@ -47,6 +47,7 @@ class Pilot:
         self.severity_code = 0
         self.done = False
         self.draws = draws  # flightmode.sim.flight.draws.FlightDraws
+        self.taxi = taxi  # the flight's taxi routes and style (flightmode.sim.flight.taxi_route.TaxiDraws)
         self.ap = Autopilot(ac, plan, profile, draws, self.event)
         self.ap.dt = 3.0 / fdm_hz
         # one controller per phase; the four en-route phases share one (one set of loops)

@@ -34,7 +34,7 @@ from flightmode.sim.flight.model_edits import edits_for
 from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.pilot import Pilot
 from flightmode.sim.flight.plan import FlightPlan
-from flightmode.sim.flight.taxi_route import gate_position_out
+from flightmode.sim.flight.taxi_route import draw_taxi
 from flightmode.sim.flight.track import Event, FlightTrack, euler_to_quat_wxyz
 from flightmode.streams import Streams, as_streams
 from flightmode.units import FT_M, LB_KG
@@ -75,7 +75,7 @@ def fly(
 
     ``streams``: the flight's random streams (:class:`flightmode.streams.Streams`; a Generator or an
     integer seed is turned into streams), by name: ``climb``, ``landing``, ``turbulence/atmosphere``
-    (the draws) and ``turbulence/field`` (the gusts).
+    (the draws), ``turbulence/field`` (the gusts) and ``taxi`` (the taxi routes and speeds).
     ``progress(t_s, phase)`` is called about once per simulated minute. ``stop_after_s``: stop after
     that much simulated time (a preview, or a quick check: the track is then the exact prefix of the
     whole flight's, its in-flight window running to its end if the engines still run).
@@ -86,14 +86,15 @@ def fly(
     # flightmode's changes to the stock model: the gear's struts, the A320's elevator travel
     ac = JSBSimAircraft(plan.aircraft, 1.0 / fdm_hz, prof.n_engines, workdir=workdir, edits=edits_for(prof))
     origin = RunwayFrame(plan.origin)
-    gx, gy, gh = gate_position_out(plan.taxi_out)
+    taxi = draw_taxi(plan, prof, streams.rng("taxi"))  # the taxi routes and the departure stand
+    (gx, gy), gh = taxi.stand_xy_m, taxi.stand_heading_rad
     lat0, lon0 = origin.to_latlon(gx, gy)
     ac.init_on_ground(lat0, lon0, plan.origin.elevation_m, (plan.origin.heading_deg + math.degrees(gh)) % 360.0)
     _load_fuel(ac, prof.fuel_kg)
     ac.set("atmosphere/turb-type", 0)  # JSBSim's own turbulence is off: flightmode feeds its gusts
     ac.set("propulsion/cutoff_cmd", 1)
     draws = draw_flight(plan, prof, streams)
-    pilot = Pilot(ac, plan, prof, fdm_hz, draws)
+    pilot = Pilot(ac, plan, prof, fdm_hz, draws, taxi)
     gusts = GustFeed(ac, GustField(fdm_hz, streams.rng("turbulence/field")), draws.atmosphere.w20_mps, ac.index)
     # JSBSim's state straight after run_ic is the requested initial condition, not yet resolved on
     # its gear: its first step moves the aircraft 0.2 m at once, and the gear then settles for about
@@ -194,7 +195,7 @@ def fly(
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
     track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
-    return dataclasses.replace(track, conditions=draws.as_dict() | {"cg_height_m": pilot.prof.cg_height_m})
+    return dataclasses.replace(track, conditions=draws.as_dict() | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m})
 
 
 def _gather(raw: np.ndarray, scales: np.ndarray, groups: dict[str, list[int]], block: int = 8192) -> dict[str, np.ndarray]:

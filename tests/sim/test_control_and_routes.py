@@ -6,7 +6,9 @@ import pytest
 
 from flightmode.sim.flight.control import PID, rate_limit
 from flightmode.sim.flight.plan import TaxiPlan
-from flightmode.sim.flight.taxi_route import Path2D, gate_position_out, pure_pursuit_steer_rad, taxi_in_path, taxi_out_path
+import numpy as np
+
+from flightmode.sim.flight.taxi_route import GRID_M, Path2D, draw_taxi, pure_pursuit_steer_rad, taxi_in_route
 
 
 def test_pid_clamps_and_does_not_wind_up():
@@ -43,16 +45,54 @@ def test_pure_pursuit_steers_toward_the_target_side():
     assert straight == pytest.approx(0.0)
 
 
-def test_generated_taxi_routes_connect_stand_and_runway():
-    plan = TaxiPlan(length_m=2000.0, holds_s=(30.0, 60.0), lineup_hold_s=20.0)
-    gx, gy, gh = gate_position_out(plan)
-    assert gy < -plan.taxiway_offset_m and gh == pytest.approx(-math.pi / 2)
-    out = taxi_out_path(plan, (gx, -plan.taxiway_offset_m - 10.0), 3500.0)
-    assert out.points[-1] == pytest.approx((3500.0, 0.0))  # ends down the runway centreline
-    names = [s.name for s in out.stops]
-    assert names == ["hold1", "hold2", "hold_short", "lineup"]
+def _routes(seed: int, holds_s=(30.0, 60.0)):
+    import dataclasses
+
+    from flightmode.scenarios.scenario import Scenario
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+
+    plan = Scenario.builtin("gva-lhr-a320").plan
+    plan = dataclasses.replace(plan, taxi_out=dataclasses.replace(plan.taxi_out, length_m=2000.0, holds_s=holds_s),
+                               taxi_in=dataclasses.replace(plan.taxi_in, length_m=2500.0))
+    prof = get_profile(plan.aircraft)
+    tx = draw_taxi(plan, prof, np.random.default_rng(seed))
+    return plan, prof, tx
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_generated_taxi_routes_connect_stand_and_runway(seed):
+    plan, prof, tx = _routes(seed)
+    out = tx.route_out.path
+    assert out.points[-1] == pytest.approx((plan.origin.length_m, 0.0))  # ends down the runway centreline
+    assert [s.name for s in out.stops] == ["hold1", "hold2", "hold_short", "lineup"]
     lineup = out.point_at(out.s_of("lineup"))
-    assert lineup[1] == pytest.approx(0.0) and lineup[0] > 0.0  # lined up on the centreline
-    tin = taxi_in_path(plan, 1500.0)
-    assert tin.points[0] == pytest.approx((1500.0, 0.0))
-    assert tin.points[-1][1] == pytest.approx(-plan.taxiway_offset_m - plan.apron_depth_m)
+    assert lineup[1] == pytest.approx(0.0, abs=1e-6) and lineup[0] > 0.0  # lined up on the centreline
+    # the stand lies beyond the parallel taxiway, on the apron side (y < 0)
+    assert tx.stand_xy_m[1] < -plan.taxi_out.taxiway_offset_m
+    # sized to the plan: pushback (apron depth) + route to the line-up = the taxi-out length. The
+    # builders size the parallel run by one linear correction (a fillet's length changes a little
+    # when its leg moves), so within 1 % (the route is long enough here never to be clamped)
+    assert out.s_of("lineup") + plan.taxi_out.apron_depth_m == pytest.approx(plan.taxi_out.length_m, rel=0.01)
+    tin = taxi_in_route(plan.taxi_in, tx.arrival, tx.style, 1500.0, 10.0).path
+    assert tin.points[0] == pytest.approx((1500.0, 0.0))  # starts where the rollout handed over
+    assert tin.length_m == pytest.approx(plan.taxi_in.length_m, rel=0.01)
+    assert tin.points[-1][1] < -plan.taxi_in.taxiway_offset_m  # ends at a stand beyond the taxiway
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_taxi_speed_schedule_obeys_its_turn_and_braking_limits(seed):
+    """The schedule is the crew's limits, not a tuning: in every arc the speed is at most sqrt(a_lat R)
+    and r_max R (a_lat: lateral acceleration, r_max: yaw rate, both drawn for the flight), and from one
+    1 m grid point to the next the speed never falls faster than the drawn deceleration allows,
+    v1^2 >= v0^2 - 2 a ds (kinematics; 1e-9 for rounding)."""
+    _, _, tx = _routes(seed)
+    route, st = tx.route_out, tx.style
+    fl, path = route.fillet, route.path
+    for i in np.flatnonzero(np.isfinite(fl.seg_radius_m)):
+        r = float(fl.seg_radius_m[i])
+        mid = 0.5 * (path.s_at[i] + path.s_at[i + 1])
+        assert route.speed_at(mid) <= min(math.sqrt(st.lat_acc_mps2 * r), st.yaw_rate_max_radps * r) + 1e-9
+    v = route.speed_mps
+    assert np.all(v[1:] ** 2 >= v[:-1] ** 2 - 2.0 * st.decel_mps2 * GRID_M - 1e-9)
+    # every speed within the crew's straight-taxiway speed
+    assert v.max() <= st.straight_out_mps + 1e-9
