@@ -154,7 +154,7 @@ class Scenario:
                                    "sink_mps": p.touchdown_sink_mps}),
             "atmosphere": _drop_none({"surface_wind_mps": p.surface_wind_mps, "background_edr": p.background_edr}),
             "shutdown": {"post_shutdown_s": p.post_shutdown_s},
-            "carrier": dataclasses.asdict(c),
+            "carrier": _drop_none(dataclasses.asdict(c)),
             "sensor": _drop_none({"preset": self.sensor.preset, "odr_hz": self.sensor.odr_hz}),
         }
         if p.turbulence:
@@ -242,7 +242,7 @@ def _as_doc(value: Any) -> dict[str, Any]:
     if isinstance(value, SensorChoice):
         return _drop_none(dataclasses.asdict(value))
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return dataclasses.asdict(value)
+        return _drop_none(dataclasses.asdict(value))
     raise ScenarioError(f"replace: cannot use a {type(value).__name__} as a scenario section; give a dict of its keys")
 
 

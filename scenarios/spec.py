@@ -19,7 +19,7 @@ from typing import Any
 from flightmode.sim.sensor.accelerometer import PRESETS as SENSOR_PRESETS
 from flightmode.sim.flight.aircraft_profiles import PROFILES
 from flightmode.sim.sensor.carrier import KINDS as CARRIER_KINDS
-from flightmode.sim.sensor.carrier import PLACEMENTS, CarrierSpec
+from flightmode.sim.sensor.carrier import CABIN_ROWS, PACKINGS, PLACEMENTS, CarrierSpec
 from flightmode.errors import ScenarioError, did_you_mean
 from flightmode.sim.flight.geodesy import great_circle_distance_m
 from flightmode.sim.flight.plan import SEVERITIES, FlightPlan
@@ -141,6 +141,17 @@ SPEC: dict[str, dict[str, Key]] = {
         "putdown_ms": Key(float, "duration of that shock", _CARRIER.putdown_ms, lo=2, hi=1000),
         "pickup_height_m": Key(float, "height the bag is lifted when picked up", _CARRIER.pickup_height_m, lo=0, hi=3),
         "pickup_s": Key(float, "duration of the lift", _CARRIER.pickup_s, lo=0.1, hi=10),
+        "packing": Key(str, "what surrounds the sensor (soft handbag, rigid hard-shell case, boxed parcel); "
+                            "absent: the kind's (handbag soft, parcel boxed)", optional=True,
+                       choices=tuple(PACKINGS)),
+        "cabin_row": Key(str, "cabin row whose floor vibration the bag feels (ignored in the hold); absent: "
+                              "drawn per flight", optional=True, choices=CABIN_ROWS),
+        "stowed_yaw_deg": Key(float, "a handbag set down on board lies level; its sensor x axis this far from "
+                                     "the fuselage axis (0: along it); absent: drawn per put-down",
+                              optional=True, lo=0, hi=360),
+        "cruise_placement": Key(str, "a handbag moved there after reaching cruise and back before the descent "
+                                     "(baggage is stowed for taxi, takeoff and landing: 14 CFR 121.589); absent: "
+                                     "it stays put", optional=True, choices=tuple(PLACEMENTS)),
     },
     "sensor": {
         "preset": Key(str, "accelerometer preset", "lis302dl-logged16", choices=tuple(SENSOR_PRESETS)),

@@ -1,16 +1,31 @@
 """The bag around and during the flight: its timeline (segments aligned to the FlightTrack's events),
-and the motion models that give its specific force (gait, pick-up and put-down transients, the spring-damper
-mount that couples a stowed bag to the airframe).
+and the motion models that give its specific force (gait, pick-up and put-down transients). What
+couples a stowed bag to the airframe (support and packing stages) is :mod:`flightmode.sim.sensor.mount`.
 
 Timeline of a cabin handbag (the seed 000 case), in FlightTrack time (t = 0: aircraft parked at the
 gate, engines off); the recording starts before t = 0 when the terminal part needs it:
 
     terminal_walk -> terminal_rest -> terminal_walk -> terminal_rest (gate) -> boarding (walk)
-    -> stowed (under the seat / overhead bin / on a lap), handled now and then in cruise
+    -> stowed (under the seat / overhead bin / on a seat / on a lap), handled now and then in cruise
     -> deplaning (walk, after engines off) -> arrival_rest
 
 A parcel in the hold: truck (road vibration) -> loading (handled) -> in_hold -> unloading (handled)
--> truck -> arrival_rest. Every put-down gives the sensor a new random orientation.
+-> truck -> arrival_rest.
+
+Stowage. Carry-on baggage must be stowed for pushback, taxi, takeoff and landing (14 CFR 121.589;
+EASA Air OPS CAT.OP.MPA.160): a handbag given a ``cruise_placement`` (the empty seat beside, a lap)
+rests at its ``placement`` until the cruise, is moved there ``CRUISE_MOVE_DELAY_S`` into it (a
+handling, drawn uniformly) and put back at the end of the cruise (another handling); the in-cruise
+handlings fall between the two.
+
+Orientation. Off board and in hand, every put-down gives the sensor a uniformly random orientation.
+On board, a handbag rests on its base with the sensor lying level in it, z up (an assumption: seed
+000 does not say how its phone lay in flight; its static recordings had the Y axis along gravity),
+yawed by ``stowed_yaw_deg`` from the fuselage axis (drawn uniformly when absent) and tilted by a
+Rayleigh-distributed angle whose scale is the support's (``mount.PLACEMENTS``: 3 deg on a floor or
+bin, 5 deg on a seat cushion, 8 deg on a lap; assumptions). With yaw 0 the sensor's x axis lies along
+the fuselage, the axis the soft supports isolate best and seed 000 found quietest. A parcel is packed
+any way up: a uniformly random orientation.
 
 Gait (carried): vertical, lateral and fore-aft harmonics of the step frequency (1.6-2.2 Hz, drawn per
 walk, with a slow random pace variation); amplitudes for a hand-carried bag are assumptions
@@ -25,23 +40,22 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from flightmode.errors import CarrierError, did_you_mean
+from flightmode.sim.sensor.mount import CABIN_ROWS, PACKINGS, PLACEMENTS
 from flightmode.units import G0_MPS2 as G0
 
-PLACEMENTS = {  # natural frequency (Hz) and damping ratio of the bag-on-support mount, per axis
-    "under_seat": ((12.0, 12.0, 15.0), 0.25),
-    "overhead_bin": ((10.0, 10.0, 12.0), 0.2),
-    "lap": ((4.0, 4.0, 5.0), 0.45),
-    "hold": ((30.0, 30.0, 35.0), 0.1),
-}
+DEFAULT_PACKING = {"handbag": "soft", "parcel": "boxed"}
+CRUISE_MOVE_DELAY_S = (60.0, 600.0)  # moved 1-10 min into the cruise, the seat-belt sign off: assumption
+# placement -> the lever arm (aircraft_profiles.locations_m) of its rigid-body motion; the cabin row
+# (CarrierSpec.cabin_row) sets only the floor's vibration level, not this lever arm
 LOCATION_OF = {
     "under_seat": "cabin_seat_mid",
+    "seat": "cabin_seat_mid",
     "overhead_bin": "overhead_bin_mid",
     "lap": "cabin_seat_mid",
     "hold": "aft_hold",
 }
 KINDS = ("handbag", "parcel")
 BAG_STATES = ("carried", "resting", "stowed", "in_hold", "handled")
-
 
 
 @dataclass(frozen=True, slots=True)
@@ -67,6 +81,14 @@ class CarrierSpec:
     putdown_ms: float = 40.0
     pickup_height_m: float = 0.4  # lifted this far off its support when picked up
     pickup_s: float = 0.8  # over this long (peak 0.37 g with the defaults)
+    packing: str | None = None  # soft / rigid / boxed; None: the kind's (handbag soft, parcel boxed)
+    cabin_row: str | None = None  # front / mid / rear (the floor's vibration level); None: drawn per flight
+    stowed_yaw_deg: float | None = None  # sensor x from the fuselage axis when stowed level; None: drawn
+    cruise_placement: str | None = None  # where a handbag is moved for the cruise; None: it stays put
+
+    @property
+    def packing_name(self) -> str:
+        return DEFAULT_PACKING[self.kind] if self.packing is None else self.packing
 
     def validate(self) -> None:
         if self.kind not in KINDS:
@@ -87,6 +109,25 @@ class CarrierSpec:
                 raise CarrierError(f"carrier {name} = {getattr(self, name)}: must be > 0")
         if not self.pickup_height_m >= 0:
             raise CarrierError(f"carrier pickup_height_m = {self.pickup_height_m}: must be >= 0")
+        if self.packing is not None and self.packing not in PACKINGS:
+            raise CarrierError(f"carrier packing '{self.packing}'{did_you_mean(self.packing, PACKINGS)}: "
+                               f"allowed {', '.join(PACKINGS)}")
+        if self.cabin_row is not None and self.cabin_row not in CABIN_ROWS:
+            raise CarrierError(f"carrier cabin_row '{self.cabin_row}'{did_you_mean(self.cabin_row, CABIN_ROWS)}: "
+                               f"allowed {', '.join(CABIN_ROWS)}")
+        if self.stowed_yaw_deg is not None and not 0.0 <= self.stowed_yaw_deg <= 360.0:
+            raise CarrierError(f"carrier stowed_yaw_deg = {self.stowed_yaw_deg}: must be within 0-360")
+        if self.cruise_placement is not None:
+            cp = self.cruise_placement
+            if cp not in PLACEMENTS:
+                raise CarrierError(f"carrier cruise_placement '{cp}'{did_you_mean(cp, PLACEMENTS)}: "
+                                   f"allowed {', '.join(PLACEMENTS)}")
+            if self.kind != "handbag":
+                raise CarrierError("carrier cruise_placement: only a handbag is moved for the cruise")
+            if LOCATION_OF[cp] != LOCATION_OF[self.placement]:
+                same = [p for p in PLACEMENTS if LOCATION_OF[p] == LOCATION_OF[self.placement]]
+                raise CarrierError(f"carrier cruise_placement '{cp}': the bag stays at the passenger's seat; "
+                                   f"with placement '{self.placement}' allowed {', '.join(same)}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -98,12 +139,37 @@ class Segment:
     orientation: np.ndarray = field(repr=False)  # (3, 3) sensor -> frame (world NED, or body)
     on_board: bool = False
     walking: bool = False
+    placement: str | None = None  # where a stowed bag rests on board (CarrierSpec.placement or cruise_placement)
 
 
 def _rot(rng: np.random.Generator) -> np.ndarray:
     from scipy.spatial.transform import Rotation
 
     return Rotation.random(random_state=rng).as_matrix()
+
+
+LEVEL = np.diag([1.0, -1.0, -1.0])  # sensor -> body for a sensor lying level, z up, x forward
+
+
+def stowed_rot(spec: CarrierSpec, rng: np.random.Generator, placement: str | None = None) -> np.ndarray:
+    """The sensor's orientation (sensor -> body) when the bag is set down on board at ``placement``
+    (default: the spec's; module docstring, "Orientation"): a handbag's sensor lies level (z up),
+    yawed by ``stowed_yaw_deg`` (drawn uniformly when None) and tilted by a Rayleigh-distributed angle
+    (scale: the support's ``tilt_deg``) about a horizontal axis of uniform direction; a parcel's is
+    uniformly random. Draws (handbag): yaw, tilt, tilt direction, in this order (the yaw is drawn
+    even when fixed, so that fixing it moves no other draw)."""
+    from scipy.spatial.transform import Rotation
+
+    if spec.kind == "parcel":
+        return _rot(rng)
+    yaw = rng.uniform(0.0, 360.0)
+    tilt = rng.rayleigh(PLACEMENTS[placement or spec.placement].tilt_deg)
+    az = rng.uniform(0.0, 2.0 * np.pi)
+    if spec.stowed_yaw_deg is not None:
+        yaw = spec.stowed_yaw_deg
+    r = Rotation.from_euler("z", yaw, degrees=True) * Rotation.from_rotvec(
+        np.radians(tilt) * np.array([np.cos(az), np.sin(az), 0.0]))
+    return r.as_matrix() @ LEVEL
 
 
 def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[float, float] | None,
@@ -130,21 +196,34 @@ def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[fl
         if dur > 0:
             segs.append(Segment(t, t + dur, state, phase, _rot(rng), False, walking))
         t += dur
-    # on board: stowed, with handling events spread over the cruise
-    handling = []
+    # on board: stowed, with handling events spread over the cruise; a handbag with a cruise placement
+    # is moved there after reaching cruise and back before the descent (module docstring, "Stowage")
+    u_handling = np.empty(0)
     if cruise is not None and spec.handled_in_cruise > 0 and spec.kind == "handbag":
         c0, c1 = cruise
-        span = c1 - c0 - spec.handling_s
-        if span > 0:
-            handling = sorted(rng.uniform(c0, c0 + span, spec.handled_in_cruise))
+        if c1 - c0 - spec.handling_s > 0:
+            u_handling = rng.uniform(0.0, 1.0, spec.handled_in_cruise)
+    moves = []  # (t, placement after)
+    w0 = w1 = None
+    if cruise is not None:
+        c0, c1 = cruise
+        w0, w1 = c0, c1 - spec.handling_s  # where in-cruise handlings start
+        if spec.cruise_placement is not None:
+            t_move = c0 + rng.uniform(*CRUISE_MOVE_DELAY_S)
+            t_back = c1 - spec.handling_s
+            if t_back - t_move > 3.0 * spec.handling_s:
+                moves = [(t_move, spec.cruise_placement), (t_back, spec.placement)]
+                w0, w1 = t_move + spec.handling_s, t_back - spec.handling_s
+    events_on = sorted([(float(w0 + (w1 - w0) * u), None) for u in u_handling] + moves, key=lambda e: e[0])
     t_deplane = t_off + spec.deplane_after_engines_off_s
-    cur = t_stow
-    for h in handling:
+    cur, where = t_stow, spec.placement
+    for h, after in events_on:
         if h > cur:
-            segs.append(Segment(cur, h, stow_state, None, _rot(rng), True))
+            segs.append(Segment(cur, h, stow_state, None, stowed_rot(spec, rng, where), True, placement=where))
             segs.append(Segment(h, h + spec.handling_s, "handled", None, _rot(rng), True, True))
             cur = h + spec.handling_s
-    segs.append(Segment(cur, t_deplane, stow_state, None, _rot(rng), True))
+            where = after or where
+    segs.append(Segment(cur, t_deplane, stow_state, None, stowed_rot(spec, rng, where), True, placement=where))
     post = [("carried", "deplaning", spec.deplaning_s, True)]
     if spec.kind == "parcel":
         post = [("handled", "unloading", spec.deplaning_s, True), ("carried", "truck", spec.truck_s, False)]
@@ -247,20 +326,3 @@ def pickup_pulse_mps2(dt: float, spec: CarrierSpec) -> np.ndarray:
     u = np.arange(m + 2) / (m + 1)
     h = spec.pickup_height_m * u**3 * (10.0 - 15.0 * u + 6.0 * u * u)
     return (h[2:] - 2.0 * h[1:-1] + h[:-2]) / (dt * dt)
-
-
-def mount_sos(placement: str, fs_hz: float) -> list[np.ndarray]:
-    """Per-axis base-excitation transmissibility of the spring-damper mount, as SOS (bilinear).
-
-    H(s) = (2 zeta wn s + wn^2) / (s^2 + 2 zeta wn s + wn^2): unity at DC (the bag feels the steady
-    specific force of the floor), resonant near fn, and -40 dB/decade... -20 dB/decade above.
-    """
-    from scipy.signal import bilinear, tf2sos
-
-    fns, zeta = PLACEMENTS[placement]
-    out = []
-    for fn in fns:
-        wn = 2 * np.pi * fn
-        b, a = bilinear([2 * zeta * wn, wn * wn], [1.0, 2 * zeta * wn, wn * wn], fs=fs_hz)
-        out.append(tf2sos(b, a))
-    return out

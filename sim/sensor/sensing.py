@@ -7,9 +7,11 @@ channels, at its own rate, are interpolated linearly to it), chunk by chunk with
 accelerometer's own filter and sampling decide what reaches its output (aliasing included).
 
 Frames: on board, the floor's specific force is the FlightTrack's at the bag's lever arm (body
-axes) plus airframe vibration, passed through the placement's spring-damper mount; the sensor
-frame is rotated from the body frame by the bag's orientation, drawn anew at every put-down. Off
-board, the bag is in a local north/east/down frame: specific force = motion - gravity.
+axes) plus airframe vibration (:mod:`flightmode.sim.sensor.vibration`), passed through the mount of
+where the bag rests (:mod:`flightmode.sim.sensor.mount`: support and packing stages); the floor's
+level and the mounts are drawn once per flight (:func:`draw_path`); the sensor frame is rotated
+from the body frame by the bag's orientation, drawn anew at every put-down. Off board, the bag is in
+a local north/east/down frame: specific force = motion - gravity.
 
 Labels per output sample: ``phase`` (the bag's: terminal_walk ... boarding, then the
 aircraft's phases while on board, deplaning, arrival_rest), ``in_flight_window``, ``airborne``,
@@ -27,6 +29,7 @@ import numpy as np
 from scipy.signal import sosfilt, sosfilt_zi
 
 from flightmode.sim.sensor import carrier as car
+from flightmode.sim.sensor import mount as mnt
 from flightmode.errors import SensorError
 from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, UnitDraw, draw_unit
 from flightmode.sim.flight import atmosphere
@@ -34,7 +37,7 @@ from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.labels import PHASE_CODE
 from flightmode.sim.sensor.recording import Recording
 from flightmode.sim.flight.track import FlightTrack
-from flightmode.sim.sensor.vibration import VibrationModel, initial_state, vibration_g
+from flightmode.sim.sensor.vibration import FloorDraw, VibrationModel, draw_floor, initial_state, vibration_g
 from flightmode.streams import Streams, as_streams
 from flightmode.units import G0_MPS2 as G0
 
@@ -74,9 +77,10 @@ def sense(
     spec: car.CarrierSpec,
     preset: AccelerometerPreset,
     streams: Streams | np.random.Generator | int,
-    vibration: VibrationModel = VibrationModel(),
+    vibration: VibrationModel | None = None,
     unit: UnitDraw | None = None,
     gyro: GyroSpec | None = None,
+    mount: mnt.MountDraw | None = None,
 ) -> Recording:
     """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``.
 
@@ -86,6 +90,10 @@ def sense(
     road), ``vibration``, ``noise`` (the output noise) and ``gyro``. Changing one draw never moves
     another's numbers. Pass ``unit`` to impose a unit instead of drawing one (e.g. a perfect
     ``UnitDraw()``).
+
+    The path from the floor to the sensor is drawn per flight (:func:`draw_path`: streams ``mount``
+    and ``floor``): ``mount`` imposes the mount (on every placement), ``vibration`` the floor's
+    vibration model as it is (no type, location or flight factor applied).
     """
     _check_track(track)
     preset.validate()
@@ -97,6 +105,10 @@ def sense(
     cruise = (float(track.t_s[cruise_idx[0]]), float(track.t_s[cruise_idx[-1]])) if cruise_idx.size else None
     segs = car.build_timeline(spec, events, cruise, streams.rng("timeline"))
     rng_motion, rng_vib, rng_noise = streams.rng("motion"), streams.rng("vibration"), streams.rng("noise")
+    floor_draw, mount_draws = draw_path(track.aircraft, spec, streams)
+    vibration = floor_draw.model if vibration is None else vibration
+    if mount is not None:
+        mount_draws = {p: mount for p in mount_draws}
     seg_t0 = np.array([s.t0_s for s in segs])
     t_start, t_end = segs[0].t0_s, segs[-1].t1_s
     fs = FS_INTERNAL_HZ
@@ -124,8 +136,8 @@ def sense(
     chans = np.vstack(
         [track.specific_force_at(loc).T, track.n1_pct.T, track.n2_pct.T, qbar, track.ground_speed_mps, track.wow]
     )
-    mount = car.mount_sos(spec.placement, fs)
-    mount_zi = [np.zeros((sos.shape[0], 2)) for sos in mount]
+    mounts = {p: mnt.mount_sos(m, fs) for p, m in mount_draws.items()}
+    mount_zi = {p: [np.zeros((sos.shape[0], 2)) for sos in m] for p, m in mounts.items()}
     mount_running = False
     vstate = initial_state(ne, vibration, fs, rng_vib)
     chain = SensorChain(preset, unit, fs)
@@ -138,7 +150,7 @@ def sense(
         ks = range(int(si[0]), int(si[-1]) + 1)
         runs = np.searchsorted(si, np.arange(ks.start, ks.stop + 1), side="left")
         if any(segs[k].on_board for k in ks):
-            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng_vib, mount, mount_zi,
+            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng_vib, mounts, mount_zi,
                                              mount_running)
             mount_running = True
         else:
@@ -156,8 +168,8 @@ def sense(
                     f_frame += motion[k][j].T
             elif s.state == "handled":  # held in the cabin: the floor's force plus the arm's motion
                 f_frame = fl[:, a:b] + motion[k][j].T
-            else:  # stowed: through the mount
-                f_frame = bag[:, a:b]
+            else:  # stowed: through the mount of where it rests
+                f_frame = bag[s.placement][:, a:b]
             _transients(segs, k, transients, j, f_frame)
             np.matmul(s.orientation.T, f_frame, out=f_sensor[:, a:b])  # sensor <- frame: R^T f
         f_sensor *= 1.0 / G0
@@ -182,6 +194,16 @@ def sense(
     )
 
 
+def draw_path(aircraft: str, spec: car.CarrierSpec, streams: Streams) -> tuple[FloorDraw, dict[str, mnt.MountDraw]]:
+    """One flight's draws of the path from the airframe to the sensor, each from its own stream: the
+    mounts (support, packing, cabin row, for the placement and the cruise placement: stream
+    ``mount``, :func:`~flightmode.sim.sensor.mount.draw_mounts`), then the floor's vibration at
+    that row for that type (stream ``floor``, :func:`~flightmode.sim.sensor.vibration.draw_floor`)."""
+    spec.validate()
+    mounts = mnt.draw_mounts(spec, streams.rng("mount"))
+    return draw_floor(aircraft, mounts[spec.placement].cabin_row, streams.rng("floor")), mounts
+
+
 def _track_rows_at(rows: np.ndarray, track: FlightTrack, t: np.ndarray) -> np.ndarray:
     """Rows (channels, track.n) of per-FDM-step values, linearly interpolated at the times ``t``
     (held at the track's ends)."""
@@ -197,11 +219,12 @@ def _track_rows_at(rows: np.ndarray, track: FlightTrack, t: np.ndarray) -> np.nd
     return out
 
 
-def _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mount, mount_zi, mount_running):
+def _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mounts, mount_zi, mount_running):
     """One chunk on board: the floor's specific force at the bag's place (rows x, y, z, body axes,
-    m/s^2) from the track plus airframe vibration, and the bag's through the mount. Updates
-    ``mount_zi`` in place (started in its steady state unless ``mount_running``); returns the floor
-    without vibration (what a handled bag's arm adds to), the bag's, and the new vibration state."""
+    m/s^2) from the track plus airframe vibration, and the bag's through the mount of each placement
+    (``mounts``: placement -> per-axis SOS). Updates ``mount_zi`` in place (started in their steady
+    state unless ``mount_running``); returns the floor without vibration (what a handled bag's arm
+    adds to), {placement: the bag's}, and the new vibration state."""
     ch = _track_rows_at(chans, track, t)
     fl = ch[0:3]
     n1, n2 = ch[3 : 3 + ne], ch[3 + ne : 3 + 2 * ne]
@@ -212,13 +235,17 @@ def _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mount, mount
         floor, vstate = vibration_g(n1, n2, qb, gs, wow, fs, track.aircraft, vibration, vstate, rng)
         floor *= G0
         floor += fl
-    if not mount_running:  # start the mounts in their steady state (DC gain 1)
+    bags = {}
+    for p, mount in mounts.items():
+        zi = mount_zi[p]
+        if not mount_running:  # start the mounts in their steady state (DC gain 1)
+            for ax in range(3):
+                zi[ax] = sosfilt_zi(mount[ax]) * floor[ax, 0]
+        bag = np.empty_like(floor)
         for ax in range(3):
-            mount_zi[ax] = sosfilt_zi(mount[ax]) * floor[ax, 0]
-    bag = np.empty_like(floor)
-    for ax in range(3):
-        bag[ax], mount_zi[ax] = sosfilt(mount[ax], floor[ax], zi=mount_zi[ax])
-    return fl, bag, vstate
+            bag[ax], zi[ax] = sosfilt(mount[ax], floor[ax], zi=zi[ax])
+        bags[p] = bag
+    return fl, bags, vstate
 
 
 def _transients(segs, k, transients, j, f_frame) -> None:

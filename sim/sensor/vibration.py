@@ -1,33 +1,61 @@
 """Airframe vibration at the cabin floor / hold, generated at the internal rate (>= 1 kHz) so that
-the accelerometer's own filter and sampling decide what survives (aliasing included).
+the accelerometer's own filter and sampling decide what survives (aliasing included), and what
+varies of it from flight to flight (:func:`draw_floor`).
 
-Components (all amplitudes are flightmode assumptions: no public cabin or cargo vibration PSD was
-found, and Mansfield and Aggarwal's review of 26 in-aircraft studies (Vibration 5(1), 2022) gives
-no usable magnitudes; they are named parameters of :class:`VibrationModel` and documented here):
+Components (:class:`VibrationModel`):
 
 - engine lines: each engine's fan (N1) and core (N2) rotation, f = rpm / 60 with the N1 first and
-  second harmonics; amplitude 0.5 + 0.5 N1/100 of its full-power value while running (idle is
-  already felt: seed 000 section 2), fading out below 15 % N1;
-- airframe structural modes between 10 and 30 Hz: lightly damped resonators driven by white noise
-  whose level rises with engine power and with dynamic pressure (airflow);
+  second harmonics; amplitude ``engine_idle_share`` + (1 - it) (N1/100)^2 of its full-power value
+  while running (a fixed residual unbalance m e gives a force m e omega^2, growing as the square of
+  the shaft speed: Den Hartog, "Mechanical Vibrations", 4th ed., 1956, ch. 6; the share felt at idle
+  is seed 000 section 2's "as soon as the engines are turned on"), fading out below 15 % N1;
+- airframe structural modes between 10 and 30 Hz (seed 000 section 4.2, Fig. 6: peaks between 10
+  and 30 Hz in every flight stage), resonators driven by white noise whose RMS is the sum of an
+  engine part (the same N1 law) and an airflow part proportional to the dynamic pressure q (the
+  boundary layer's pressure fluctuations: MIL-STD-810G Method 514.6, Annex D, makes the jet-aircraft
+  vibration PSD grow as q^2, i.e. the RMS as q);
 - runway: roughness (broadband, level proportional to ground speed) and pavement-joint bumps every
   ``joint_spacing_m`` (an impulse train at v / spacing Hz) while on the gear;
 - no vibration at all with the engines stopped and the aircraft at rest.
 
-Directions: body z (vertical) carries the most, then y and x (``axis_share``).
+Directions (``axis_share``): vertical 1, lateral 0.6, fore-aft 0.3. The fuselage is stiffest along its
+axis, so fore-aft is taken as the lowest; the values themselves are assumptions, set with the mounts
+(:mod:`flightmode.sim.sensor.mount`) so that seed 000's Tables 4 and 5 are reproduced.
 
-Engine spool speeds (rpm at 100 %): CFM56-5B N1 5000 / N2 14460 (EASA type certificate data sheet E.067); CFM56-3 (737) 5490 /
-15183; Rolls-Royce Tay 650 (fokker100) 8400 / 12500; Trent 1000 (787-8) 2683 / 13391 (public type
-certificate data sheets, rounded).
+Magnitudes. No public cabin-floor vibration PSD of a jet airliner was found. Mansfield and
+Aggarwal's review of 26 in-aircraft studies (Vibration 5(1), 2022) finds energy at frequencies the
+ISO 2631 weighting attenuates and a significant effect of the flight phase, but no magnitudes to
+use; MIL-STD-810's jet and cargo curves are test envelopes (several g RMS), far above what a bag in a
+cabin feels. The amplitudes are therefore flightmode assumptions (about 20 mg RMS vertical on a
+mid-cabin floor in cruise), calibrated together with the mounts against seed 000's Tables 4-5.
+
+What varies between flights (:func:`draw_floor`), each a named parameter:
+
+- the type (``TYPE_LEVEL``): no per-type source was found, all 1.0; types differ by their engines'
+  spool speeds (the lines) and by where the engines are (``ENGINE_POSITION``);
+- the location (``LOCATION_LEVEL``): the cabin row by engine position, and the hold. The ordering of
+  the rows, middle quietest, then front, rear worst, is the in-flight measurement of Li et al.
+  ("Evaluation of vibration caused discomfort in passenger aircraft cabin", Acta Aeronautica et
+  Astronautica Sinica 43(6), 525945, 2022, ISO 2631-1 comfort by seat position); the factors are
+  assumptions, larger at the rear for rear-mounted engines (the Fokker 100's Tay 650s) and for the
+  hold (no trim, seats or carpet between the bag and the skin);
+- the flight (``FLIGHT_LN_SIGMA``): a lognormal factor of ln-spread 0.2 on every amplitude (load,
+  speed, airframe): an assumption, kept modest because seed 000 (section 6) reports the analyses of
+  its other flights "similar" to its two tables;
+- the mode frequencies (``MODE_JITTER``): within +-10 % per flight (payload and fuel): assumption.
+
+Engine spool speeds (rpm at 100 %): CFM56-5B N1 5000 / N2 14460 (EASA type certificate data sheet
+E.067); CFM56-3 (737) 5490 / 15183; Rolls-Royce Tay 650 (fokker100) 8400 / 12500; Trent 1000 (787-8)
+2683 / 13391 (public type certificate data sheets, rounded).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
-
-import numpy as np
 from functools import lru_cache
 
+import numpy as np
 from scipy.signal import iirpeak, lfilter, sosfilt, tf2sos
 
 ENGINE_RPM = {  # model -> (N1 rpm at 100 %, N2 rpm at 100 %)
@@ -40,11 +68,11 @@ ENGINE_RPM = {  # model -> (N1 rpm at 100 %, N2 rpm at 100 %)
 
 @dataclass(frozen=True, slots=True)
 class VibrationModel:
-    """Amplitudes calibrated against seed 000, the only measured evidence at hand: engines running
-    are visible at once (section 2, Fig. 2), and in flight 1 the per-axis moving variance sat below
-    4 sigma^2 with probabilities 8e-2 (x), 2e-3 (y), 2e-6 (z) (Table 4). These values do not reproduce
-    that table: on the default flight the stowed handbag's per-axis fractions of in-flight checks under
-    4 sigma^2 are about 4e-4 (measured; the vibration model is too uniform and the air too still)."""
+    """The floor's vibration (module docstring). The defaults are a mid-cabin floor of a type of
+    level 1.0 on an average flight; :func:`draw_floor` scales them per flight. With the mounts of
+    :mod:`flightmode.sim.sensor.mount` they reproduce seed 000's Tables 4-5 to within a decade per
+    cell on the built-in flights gva-lhr-a320 and hel-zrh-f100-calm
+    (tests/sim/test_vibration_variability.py)."""
 
     n1_line_g: float = 4.5e-3  # first N1 harmonic at 100 % N1, per engine
     n1_h2_g: float = 1.5e-3  # second N1 harmonic at 100 % N1
@@ -52,11 +80,65 @@ class VibrationModel:
     mode_hz: tuple[float, ...] = (11.0, 16.5, 22.0, 27.5)  # airframe modes (10-30 Hz)
     mode_q: float = 8.0
     mode_engine_g: float = 6.0e-3  # modal RMS per mode at 100 % N1 (both engines)
-    mode_airflow_g: float = 6.0e-3  # modal RMS per mode at q = 15 kPa (cruise-like)
+    mode_airflow_g: float = 6.0e-3  # modal RMS per mode at q = airflow_q_ref_pa
     roughness_g_per_mps: float = 0.45e-3  # runway roughness RMS per m/s of ground speed
     joint_spacing_m: float = 5.0
     joint_impulse_g: float = 20.0e-3  # peak of one joint bump (decays through the modes)
-    axis_share: tuple[float, float, float] = (0.35, 0.5, 1.0)  # x, y, z relative weights
+    axis_share: tuple[float, float, float] = (0.3, 0.6, 1.0)  # x, y, z relative weights
+    engine_idle_share: float = 0.5  # engine excitation at 0 % N1 relative to 100 % (the rest grows as N1^2)
+    airflow_q_ref_pa: float = 15000.0  # dynamic pressure at which the airflow drive is mode_airflow_g
+
+
+# ---------------------------------------------------------------------- what varies between flights
+ENGINE_POSITION = {"A320": "wing", "737": "wing", "fokker100": "rear", "787-8": "wing"}  # type descriptions
+TYPE_LEVEL = {"A320": 1.0, "737": 1.0, "fokker100": 1.0, "787-8": 1.0}  # assumption: no per-type source
+# floor level by cabin row (or hold) and engine position, relative to a mid-cabin seat; the ordering of
+# the cabin rows is Li et al. (2022)'s, the magnitudes are assumptions (module docstring)
+LOCATION_LEVEL = {
+    "wing": {"front": 1.2, "mid": 1.0, "rear": 1.5, "hold": 1.3},
+    "rear": {"front": 1.0, "mid": 1.2, "rear": 2.0, "hold": 1.5},
+}
+FLIGHT_LN_SIGMA = 0.2  # flight-to-flight spread of the level (ln), same type and place: assumption
+MODE_JITTER = 0.1  # airframe mode frequencies drawn within +-10 % per flight: assumption
+
+
+@dataclass(frozen=True, slots=True)
+class FloorDraw:
+    """One flight's draw of the floor vibration (:func:`draw_floor`): the factors, and the model."""
+
+    type_level: float
+    location_level: float
+    flight_level: float
+    mode_scale: float
+    model: VibrationModel
+
+    def as_dict(self) -> dict:
+        return {"type_level": self.type_level, "location_level": self.location_level,
+                "flight_level": self.flight_level, "mode_scale": self.mode_scale}
+
+
+def draw_floor(aircraft: str, location: str, rng: np.random.Generator,
+               base: VibrationModel = VibrationModel()) -> FloorDraw:
+    """One flight's floor vibration at ``location`` (a cabin row ``front`` / ``mid`` / ``rear`` or
+    ``hold``) of ``aircraft``: ``base`` with its amplitudes scaled by the type's level, the location's
+    (by engine position) and a lognormal flight-to-flight factor, and its mode frequencies jittered.
+    Draws, in this order: the flight factor (one normal), the mode scale (one uniform)."""
+    if aircraft not in ENGINE_POSITION:
+        from flightmode.errors import SensorError, did_you_mean
+
+        raise SensorError(f"no vibration data for aircraft '{aircraft}'{did_you_mean(aircraft, ENGINE_POSITION)}")
+    t = TYPE_LEVEL[aircraft]
+    loc = LOCATION_LEVEL[ENGINE_POSITION[aircraft]][location]
+    fl = float(np.exp(FLIGHT_LN_SIGMA * rng.standard_normal()))
+    ms = float(rng.uniform(1.0 - MODE_JITTER, 1.0 + MODE_JITTER))
+    k = t * loc * fl
+    model = dataclasses.replace(
+        base, n1_line_g=base.n1_line_g * k, n1_h2_g=base.n1_h2_g * k, n2_line_g=base.n2_line_g * k,
+        mode_engine_g=base.mode_engine_g * k, mode_airflow_g=base.mode_airflow_g * k,
+        roughness_g_per_mps=base.roughness_g_per_mps * k, joint_impulse_g=base.joint_impulse_g * k,
+        mode_hz=tuple(round(f * ms, 6) for f in base.mode_hz),
+    )
+    return FloorDraw(t, loc, fl, ms, model)
 
 
 @dataclass(frozen=True, slots=True)
@@ -65,7 +147,7 @@ class VibrationState:
 
     phases: np.ndarray  # (n_engines, 3) radians: N1, 2*N1, N2
     detune: np.ndarray  # (n_engines,) relative spool-speed offset: real engines never run in sync
-    mode_zi: np.ndarray  # (n_sections, 3 axes, 2): state of the mode bank
+    mode_zi: np.ndarray  # (n_modes, 3 axes, 2): state of each mode's resonator
     joint_pos_m: float  # distance rolled since the last joint
 
 
@@ -76,7 +158,7 @@ def initial_state(n_engines: int, model: VibrationModel, fs_hz: float, rng: np.r
         # add with a fixed random phase (and could cancel). Real engines differ by a few tenths of
         # a percent, so each gets a fixed offset within +-0.3 % (the lines beat instead)
         detune=rng.uniform(-0.003, 0.003, n_engines),
-        mode_zi=np.zeros((_mode_bank(model.mode_hz, model.mode_q, fs_hz).shape[0], 3, 2)),
+        mode_zi=np.zeros((len(model.mode_hz), 3, 2)),
         joint_pos_m=float(rng.uniform(0.0, model.joint_spacing_m)),
     )
 
@@ -108,7 +190,7 @@ def vibration_g(
     rpm1, rpm2 = ENGINE_RPM[aircraft]
     dt = 1.0 / fs_hz
     share = np.asarray(model.axis_share)
-    level_e = _running_level(n1_pct)  # (n_engines, N)
+    level_e = _running_level(n1_pct, model)  # (n_engines, N)
     # engine lines: phase = integral of 2 pi f dt, continuous across chunks
     phases = state.phases.copy()
     line = np.zeros(n, dtype=np.float32)
@@ -125,7 +207,7 @@ def vibration_g(
             phases[e] = (phases[e] + np.array([th1[-1], 2.0 * th1[-1], th2[-1]])) % (2.0 * np.pi)
     # structural modes: white noise through resonators, excitation level from power and airflow
     power = level_e.mean(axis=0)
-    level = model.mode_engine_g * power + model.mode_airflow_g * np.clip(qbar_pa / 15000.0, 0.0, 2.0)
+    level = model.mode_engine_g * power + model.mode_airflow_g * np.clip(qbar_pa / model.airflow_q_ref_pa, 0.0, 2.0)
     # runway: roughness and joint bumps feed the same modes while rolling
     rolling = on_ground & (ground_speed_mps > 0.5)
     rough = model.roughness_g_per_mps * ground_speed_mps * rolling
@@ -136,35 +218,43 @@ def vibration_g(
     joints[hit] = model.joint_impulse_g
     new_joint = float(dist[-1] % model.joint_spacing_m) if n else state.joint_pos_m
     # the modes as one parallel bank (each resonator normalised to unit output RMS for unit white
-    # input), realised as one filter: one noise stream per axis drives all modes
+    # input), one second-order section per mode: one noise stream per axis drives all modes
     sos = _mode_bank(model.mode_hz, model.mode_q, fs_hz)
     drive = rng.standard_normal((3, n), dtype=np.float32) * (level + rough)
     drive[2] += joints
-    y, mode_zi = sosfilt(sos, drive, axis=-1, zi=state.mode_zi)
+    y = np.zeros((3, n))
+    mode_zi = np.empty_like(state.mode_zi)
+    for m, sec in enumerate(sos):  # parallel form: each mode filters the same drive, summed
+        ym, zi = sosfilt(sec[None, :], drive, axis=-1, zi=state.mode_zi[m][None])
+        y += ym
+        mode_zi[m] = zi[0]
     # the engine lines and the modes reach the floor through the same fixed axis weights
-    # (axis_share: fore-aft 0.35, lateral 0.5, vertical 1)
+    # (axis_share: fore-aft 0.3, lateral 0.6, vertical 1)
     y += line
     y *= share[:, None]
     return y, VibrationState(phases, state.detune, mode_zi, new_joint)
 
 
-def _running_level(n1_pct: np.ndarray) -> np.ndarray:
-    """Engine excitation level: 0.5 + 0.5 N1/100 while running (N1 >= 15 %: idle is already
-    clearly felt in the cabin), fading linearly to zero as the engine spools down below 15 %."""
+def _running_level(n1_pct: np.ndarray, model: VibrationModel) -> np.ndarray:
+    """Engine excitation level relative to full power: ``engine_idle_share`` + (1 - it) (N1/100)^2
+    while running (the rotor's unbalance force grows as the square of its speed, m e omega^2; the
+    share that does not is what is felt at idle, seed 000 section 2), fading linearly to zero as
+    the engine spools down below 15 % N1."""
     n1 = np.asarray(n1_pct, float)
-    return (0.5 + 0.005 * n1) * np.clip(n1 / 15.0, 0.0, 1.0)
+    s = model.engine_idle_share
+    return (s + (1.0 - s) * (n1 / 100.0) ** 2) * np.clip(n1 / 15.0, 0.0, 1.0)
 
 
 @lru_cache(maxsize=16)
 def _mode_bank(mode_hz: tuple[float, ...], q: float, fs_hz: float) -> np.ndarray:
-    """Sum of unit-RMS resonators (parallel form) as one SOS filter."""
-    b_tot, a_tot = np.zeros(1), np.ones(1)
+    """The unit-RMS resonators of the bank, one SOS row each (n_modes, 6), to be run in parallel and
+    summed (a single transfer function of their sum is ill-conditioned beyond a few modes)."""
+    rows = []
     for f0 in mode_hz:
         b, a = iirpeak(f0, q, fs=fs_hz)
         b = b / np.sqrt(_rms_gain(b, a))
-        b_tot = np.polyadd(np.polymul(b_tot, a), np.polymul(b, a_tot))
-        a_tot = np.polymul(a_tot, a)
-    return tf2sos(b_tot, a_tot)
+        rows.append(tf2sos(b, a)[0])
+    return np.array(rows)
 
 
 def _rms_gain(b: np.ndarray, a: np.ndarray) -> float:
@@ -175,4 +265,15 @@ def _rms_gain(b: np.ndarray, a: np.ndarray) -> float:
     return float(np.sum(h**2))
 
 
-__all__ = ["VibrationModel", "VibrationState", "initial_state", "vibration_g", "ENGINE_RPM"]
+__all__ = [
+    "ENGINE_POSITION",
+    "ENGINE_RPM",
+    "LOCATION_LEVEL",
+    "TYPE_LEVEL",
+    "FloorDraw",
+    "VibrationModel",
+    "VibrationState",
+    "draw_floor",
+    "initial_state",
+    "vibration_g",
+]
