@@ -8,6 +8,7 @@
                       [--sigma2-from] [--tables]
     flightmode path RUN_DIR [--sensors run,ideal,...]
     flightmode view RUN_DIR_OR_RRD [--web]
+    flightmode validate RUN_DIR [--paper-flight 1|2] [--json] [--strict]
 
 Errors that flightmode raises on purpose (bad scenario, unknown aircraft, failed flight, a file that
 is not a run) print one line on stderr and exit with status 2, with no traceback. Only Typer and
@@ -173,7 +174,7 @@ def _print_path_lines(path) -> None:
     )
     console.print(
         f"  unaided dead reckoning from the gate at rest (recurrence): final error {rec['final_m']:,.0f} m. Integrating "
-        f"twice drifts: white noise as t^1.5 (this sensor's alone: {path.random_walk_m:,.0f} m RMS after "
+        f"twice drifts: noise as t^1.5 (this sensor's alone: {path.random_walk_m:,.0f} m RMS after "
         f"{path.span_s / 60:.0f} min), a constant offset b as b t^2 / 2 (this unit's zero-g offset alone: "
         f"{path.offset_drift_m:,.0f} m). flightmode path RUN_DIR prints the table.",
         highlight=False,
@@ -268,6 +269,48 @@ def path_cmd(
         _die(e)
 
 
+@app.command("validate")
+def validate_cmd(
+    run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`.")],
+    paper_flight: Annotated[int, typer.Option("--paper-flight", help="Seed 000 flight whose P_FA table to compare: 1 (Table 4) or 2 (Table 5, calm).")] = 1,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the checks as JSON instead of a table.")] = False,
+    strict: Annotated[bool, typer.Option("--strict", help="Exit with status 1 if any check fails.")] = False,
+) -> None:
+    """Set the run's figures beside their public anchors (WRAP, ADS-B taxi tracks, ICAO, NASA, seed 000)."""
+    from flightmode.scenarios.validate import validate_run
+
+    try:
+        checks = validate_run(run_dir, paper_flight)
+    except FlightmodeError as e:
+        _die(e)
+    failed = sum(not c.passed for c in checks)
+    if as_json:
+        import json
+
+        typer.echo(json.dumps({"run_dir": str(run_dir), "passed": len(checks) - failed, "failed": failed,
+                               "checks": [_finite(c.as_dict()) for c in checks]}, indent=1, allow_nan=False))
+    else:
+        table = Table(title=f"{run_dir}: the run beside its anchors", title_justify="left")
+        for col, kw in (("group", {}), ("figure", {}), ("anchor", {"justify": "right"}), ("this run", {"justify": "right"}),
+                        ("", {}), ("source / note", {})):
+            table.add_column(col, **kw)
+        for c in checks:
+            mark = Text("pass", style="green") if c.passed else Text("FAIL", style="bold red")
+            note = c.source + (f"; {c.note}" if c.note else "")
+            table.add_row(c.group, f"{c.figure} ({c.unit})", c.anchor_text(), f"{c.value:.4g}", mark, note)
+        console.print(table)
+        console.print(f"{len(checks) - failed} of {len(checks)} checks pass", highlight=False)
+    if strict and failed:
+        raise typer.Exit(code=1)
+
+
+def _finite(d: dict) -> dict:
+    """JSON has no infinities: a value of -inf (a fraction of zero on a log scale) becomes null."""
+    import math
+
+    return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()}
+
+
 @app.command("view")
 def view_cmd(
     source: Annotated[Path, typer.Argument(help="A run folder (its recording.rrd) or an .rrd file.")],
@@ -299,16 +342,6 @@ def view_cmd(
             raise FlightmodeError(f"the Rerun viewer exited with status {code} ({' '.join(cmd)})")
     except FlightmodeError as e:
         _die(e)
-
-
-def _print_sensor(rec) -> None:
-    s = rec.summary()
-    console.print(
-        f"sensed with {s['preset']} at {s['odr_hz']:g} Hz: {s['samples']:,} samples over "
-        f"{s['duration_s'] / 60:.1f} min ({rec.carrier.kind}, {rec.carrier.placement}); "
-        f"truly static {100 * s['static_fraction']:.0f} % of the time, {s['clipped_samples']} clipped samples",
-        highlight=False,
-    )
 
 
 def _print_sensor(rec) -> None:

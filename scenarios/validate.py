@@ -1,0 +1,570 @@
+"""`flightmode validate`: one run beside the public figures it should resemble.
+
+Every figure of a run folder (its ``truth.parquet``, ``run.json`` and, when present, its
+``samples.parquet``) is measured here and set beside an *anchor*: a range taken from a public source,
+named in the row. A row passes when the run's value lies inside the range (bounds included). A
+figure the run cannot show (no cruise above 10,000 ft on a circuit, no turbulence patch, no sensor
+stream) is left out rather than failed.
+
+Groups and anchors:
+
+- **takeoff, climb, descent, landing** (kinematics): OpenAP WRAP (Sun, Ellerbroek and Hoekstra,
+  "WRAP: an open-source kinematic aircraft performance model", Transp. Res. C 98, 2019), read at run
+  time from the installed ``openap`` package for the aircraft profile's ``wrap_type``; its minimum and
+  maximum are the range. Times to 10,000 / 20,000 / 30,000 ft integrate WRAP's climb bands (initial
+  climb to 1,500 ft, then the rates below the CAS crossover, at constant CAS, at constant Mach) at
+  their maximum and minimum rates.
+- **touchdown**: the sink speed against the scenario's landing quality (the distributions of
+  :mod:`flightmode.sim.flight.draws`: FAA DOT/FAA/AR-97/106 video surveys, NACA TN 3194, 14 CFR
+  25.473) and the peak load factor at the centre of gravity (normal landings well under 1.5 g;
+  Boeing 737 AMM inspection at 2.1 g; Airbus A320 AMM hard landing at 2.6 g).
+- **taxi**: :func:`flightmode.sim.flight.taxi_stats.flight_taxi_statistics` against the smallest and
+  largest value of the same figure over the six real ADS-B taxi segments
+  (:data:`~flightmode.sim.flight.taxi_stats.ADSB_TAXI_ANCHORS`), and no braking step above 0.1 g.
+- **turbulence**: the vertical load factor's 60 s standard deviation and peak change in the air,
+  per turbulence category: calm air never still, each category's peak change inside its ICAO
+  description at the centre of gravity (light < 0.5 g, moderate 0.5-1.0 g, severe > 1.0 g), the
+  boundary layer rougher than calm cruise (MIL-F-8785C 3.7.3.3).
+- **ground**: the runway rolls rougher than taxiing (the issue's ordering; speed), the cockpit within
+  +-0.4 g (NASA, Morris and Hall, 1965).
+- **seed 000** (with a samples file): Table 2's spread of 1 s moving variances at rest (the paper's
+  2 sigma^2 and 2.5 sigma^2 rows imply 0.398 and 0.348; within 30 %), Fig. 6's vibration peak in
+  10-30 Hz, and Tables 4 / 5's per-axis fractions of in-flight checks under 3 / 4 / 5 sigma^2 and
+  their product P_FA^t, each within one order of magnitude of the paper's cell (``paper_flight`` 1:
+  Table 4, Geneva-London; 2: Table 5, the calm flight). A run of n in-flight checks cannot resolve a
+  fraction far below 1/n, so the paper's cell is compared with the run's 95 % Clopper-Pearson
+  interval: the row's value is the log10 distance from the cell to that interval (0 inside it).
+- the rollout/taxi-in hand-over: no braking *step* above 0.1 g (the rise of the deceleration within
+  2 s), the autobrake's steady deceleration itself being allowed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+from flightmode.errors import InputDataError
+
+
+@dataclass(frozen=True, slots=True)
+class Check:
+    """One figure of the run beside its anchor. ``lo`` / ``hi``: the anchor's range (None: open)."""
+
+    group: str
+    figure: str
+    unit: str
+    value: float
+    lo: float | None
+    hi: float | None
+    source: str
+    note: str = ""
+
+    @property
+    def passed(self) -> bool:
+        if not math.isfinite(self.value):
+            return False
+        return (self.lo is None or self.value >= self.lo) and (self.hi is None or self.value <= self.hi)
+
+    def anchor_text(self) -> str:
+        f = _fmt
+        if self.lo is not None and self.hi is not None:
+            return f"{f(self.lo)} .. {f(self.hi)}"
+        if self.lo is not None:
+            return f">= {f(self.lo)}"
+        if self.hi is not None:
+            return f"<= {f(self.hi)}"
+        return "-"
+
+    def as_dict(self) -> dict:
+        return asdict(self) | {"passed": self.passed}
+
+
+def _fmt(x: float) -> str:
+    if x == 0 or not math.isfinite(x):
+        return f"{x:g}"
+    a = abs(x)
+    if a >= 1000 or a < 0.01:
+        return f"{x:.2g}"
+    return f"{x:.3g}"
+
+
+# --------------------------------------------------------------------------------------- kinematics
+WRAP_SOURCE = "OpenAP WRAP {type} (ADS-B; Sun et al. 2019)"
+# WRAP's cruise altitudes are those of airline flights of every length; a circuit or a hop flies lower
+# by choice (checked from 500 km: short-haul jets reach their usual levels from there)
+CRUISE_CHECK_MIN_ROUTE_M = 500e3
+
+
+def _wrap(wrap_type: str):
+    from openap import WRAP
+
+    return WRAP(wrap_type)
+
+
+def _wrap_range(w, name: str, scale: float = 1.0) -> tuple[float, float]:
+    d = getattr(w, name)()
+    lo, hi = sorted((float(d["minimum"]) * scale, float(d["maximum"]) * scale))
+    return lo, hi
+
+
+def wrap_time_to_altitude_s(w, alt_m: float, first_m: float = 1500 * 0.3048) -> tuple[float, float]:
+    """(fastest, slowest) time from liftoff to ``alt_m`` above the runway by WRAP's climb bands: the
+    initial climb to 1,500 ft, the rate below the CAS crossover, at constant CAS, at constant Mach
+    (crossover altitudes at WRAP's defaults), each band at its maximum then its minimum rate."""
+    edges = [0.0, first_m, float(w.climb_cross_alt_concas()["default"]) * 1e3,
+             float(w.climb_cross_alt_conmach()["default"]) * 1e3, math.inf]
+    rates = [_wrap_range(w, n) for n in ("initclimb_vs", "climb_vs_pre_concas", "climb_vs_concas", "climb_vs_conmach")]
+    fast = slow = 0.0
+    for (h0, h1), (vlo, vhi) in zip(zip(edges[:-1], edges[1:]), rates):
+        dh = max(0.0, min(h1, alt_m) - h0)
+        fast += dh / vhi
+        slow += dh / vlo
+    return fast, slow
+
+
+def _mean_rate_between(t: np.ndarray, h: np.ndarray, h0: float, h1: float) -> float:
+    """Mean vertical rate (m/s) between the first crossings of heights h0 and h1 (climb: h0 < h1;
+    descent: h0 > h1, crossings after the highest point). NaN if the track never crosses both."""
+    if h0 < h1:
+        i0, i1 = np.argmax(h >= h0), np.argmax(h >= h1)
+        if h[i0] < h0 or h[i1] < h1:
+            return math.nan
+    else:
+        top = int(np.argmax(h))
+        i0, i1 = top + np.argmax(h[top:] <= h0), top + np.argmax(h[top:] <= h1)
+        if h[i0] > h0 or h[i1] > h1:
+            return math.nan
+    return float((h[i1] - h[i0]) / (t[i1] - t[i0])) if t[i1] > t[i0] else math.nan
+
+
+def kinematic_checks(track, plan, wrap_type: str) -> list[Check]:
+    """Takeoff, climb, cruise, descent and landing figures against WRAP (module docstring)."""
+    from flightmode.sim.flight.flight_metrics import flight_metrics
+    from flightmode.units import FT_M
+
+    w = _wrap(wrap_type)
+    src = WRAP_SOURCE.format(type=wrap_type)
+    m = flight_metrics(track, plan)
+    out = [
+        Check("takeoff", "liftoff ground speed", "m/s", m["liftoff_gs_mps"], *_wrap_range(w, "takeoff_speed"), src),
+        Check("takeoff", "takeoff acceleration", "m/s^2", m["takeoff_accel_mps2"],
+              *_wrap_range(w, "takeoff_acceleration"), src),
+        Check("climb", "initial climb rate (to 1,500 ft)", "m/s", m["initial_climb_vs_mps"],
+              *_wrap_range(w, "initclimb_vs"), src),
+    ]
+    t = track.t_s
+    h = track.alt_m - plan.origin.elevation_m
+    t_lo = track.event_time("liftoff")
+    top = float(np.max(h))
+    for ft in (10_000, 20_000, 30_000):
+        target = ft * FT_M
+        if top < target:
+            continue
+        t_reach = float(t[np.argmax(h >= target)] - t_lo)
+        fast, slow = wrap_time_to_altitude_s(w, target)
+        out.append(Check("climb", f"time to {ft:,} ft after liftoff", "min", t_reach / 60.0, fast / 60.0, slow / 60.0,
+                         src + ", integrated by band"))
+    x_cas = float(w.climb_cross_alt_concas()["default"]) * 1e3
+    x_mach = float(w.climb_cross_alt_conmach()["default"]) * 1e3
+    bands = (("below the CAS crossover", 1500 * FT_M, x_cas, "climb_vs_pre_concas"),
+             ("at constant CAS", x_cas, x_mach, "climb_vs_concas"),
+             ("at constant Mach", x_mach, None, "climb_vs_conmach"))
+    cruise_m = float(m["cruise_alt_m"]) - plan.origin.elevation_m
+    climb = np.isin(track.phase, ("initial_climb", "climb"))
+    tc, hc = t[climb], h[climb]
+    for label, h0, h1, name in bands:
+        # the last 1,000 ft below the cruise level are the level-off, not the band's climb
+        h1 = min(h1, cruise_m - 1000 * FT_M) if h1 is not None else cruise_m - 1000 * FT_M
+        if hc.size == 0 or h1 - h0 < 1000 * FT_M:
+            continue
+        out.append(Check("climb", f"climb rate {label}", "m/s", _mean_rate_between(tc, hc, h0, h1),
+                         *_wrap_range(w, name), src))
+    from flightmode.sim.flight.geodesy import gc_distance_m
+
+    route_m = gc_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg)
+    if route_m >= CRUISE_CHECK_MIN_ROUTE_M:
+        out.append(Check("cruise", "cruise altitude", "km", m["cruise_alt_m"] / 1e3, *_wrap_range(w, "cruise_alt"), src,
+                         f"set by the scenario; route {route_m / 1e3:,.0f} km"))
+    hd = track.alt_m - plan.destination.elevation_m
+    xd_mach = float(w.descent_cross_alt_conmach()["default"]) * 1e3
+    xd_cas = float(w.descent_cross_alt_concas()["default"]) * 1e3
+    desc = np.isin(track.phase, ("descent", "approach"))
+    td, hdd = t[desc], hd[desc]
+    dbands = (("at constant Mach", min(cruise_m, float(hdd.max()) if hdd.size else 0.0) - 300 * FT_M, xd_mach,
+               "descent_vs_conmach"),
+              ("at constant CAS", min(xd_mach, cruise_m - 300 * FT_M), xd_cas, "descent_vs_concas"),
+              ("below the CAS crossover", min(xd_cas, cruise_m - 300 * FT_M), 3000 * FT_M, "descent_vs_post_concas"))
+    for label, h0, h1, name in dbands:
+        if hdd.size == 0 or h0 - h1 < 1000 * FT_M:
+            continue
+        out.append(Check("descent", f"descent rate {label}", "m/s", _mean_rate_between(td, hdd, h0, h1),
+                         *_wrap_range(w, name), src))
+    out += [
+        Check("landing", "final approach rate (1,000-100 ft)", "m/s", m["final_approach_vs_mps"],
+              *_wrap_range(w, "finalapp_vs"), src),
+        Check("landing", "touchdown ground speed", "m/s", m["touchdown_gs_mps"], *_wrap_range(w, "landing_speed"), src),
+        Check("landing", "rollout deceleration (touchdown to exit)", "m/s^2", -m["rollout_decel_mps2"],
+              *_wrap_range(w, "landing_acceleration"), src),
+    ]
+    return out
+
+
+# --------------------------------------------------------------------------------------- touchdown
+# peak load factor at the CG by landing quality (module docstring; gear sizing in sim.flight.gear)
+TOUCHDOWN_PEAK_G = {
+    "normal": (1.0, 1.5, "normal landings peak well under 1.5 g at the CG (FAA/UDRI statistical loads data)"),
+    "firm": (1.2, 2.1, "firm: below the Boeing 737 AMM hard-landing inspection, 2.1 g"),
+    "hard": (1.6, 2.6, "hard: up to the Airbus A320 AMM hard-landing mark, 2.6 g at the CG"),
+}
+
+
+def touchdown_checks(track, plan) -> list[Check]:
+    """Sink speed and peak CG load factor at touchdown against the landing quality's anchors."""
+    from flightmode.sim.flight import draws
+    from flightmode.sim.flight.flight_metrics import flight_metrics
+    from flightmode.units import FPS_MPS, G0_MPS2
+
+    m = flight_metrics(track, plan)
+    q = plan.landing_quality
+    if q == "normal":
+        # the normal distribution's 0.1 % and 99.9 % points (lognormal, median 2.0 ft/s)
+        z = 3.09 * draws.SINK_NORMAL_LN_STD
+        lo, hi = draws.SINK_NORMAL_MEDIAN_FPS * math.exp(-z), draws.SINK_NORMAL_MEDIAN_FPS * math.exp(z)
+        src = "FAA DOT/FAA/AR-97/106 (median 2 ft/s), NACA TN 3194 (5.5 ft/s once in 1000)"
+    else:
+        lo, hi = draws.SINK_BANDS_FPS[q]
+        src = "upper tail of FAA DOT/FAA/AR-97/106; 14 CFR 25.473(a) 10 ft/s limit"
+    t_td = track.event_time("touchdown")
+    near = (track.t_s >= t_td - 0.5) & (track.t_s <= t_td + 3.0)
+    peak = float((-track.specific_force_body_mps2[near, 2] / G0_MPS2).max())
+    glo, ghi, gsrc = TOUCHDOWN_PEAK_G[q]
+    return [
+        Check("touchdown", f"sink speed ({q} landing)", "ft/s", m["touchdown_sink_mps"] / FPS_MPS, lo, hi, src,
+              f"drawn target {track.conditions.get('touchdown_sink_target_mps', math.nan) / FPS_MPS:.2f} ft/s"
+              if "touchdown_sink_target_mps" in track.conditions else ""),
+        Check("touchdown", f"peak load factor at the CG ({q} landing)", "g", peak, glo, ghi, gsrc),
+    ]
+
+
+# --------------------------------------------------------------------------------------- taxi
+TAXI_FIGURES = (("speed_p50_mps", "taxi speed p50", "m/s"), ("speed_p90_mps", "taxi speed p90", "m/s"),
+                ("speed_in_turns_p50_mps", "taxi speed in turns p50", "m/s"),
+                ("yaw_rate_p90_dps", "taxi yaw rate p90", "deg/s"), ("yaw_rate_max_dps", "taxi yaw rate max", "deg/s"),
+                ("turns_per_min", "turns per taxi minute", "1/min"), ("brake_max_g", "taxi braking max", "g"))
+TAXI_BRAKE_LIMIT_G = 0.1  # no step above about 0.1 g outside a rejected takeoff (what passengers feel)
+
+
+def adsb_taxi_ranges() -> dict[str, tuple[float, float]]:
+    """Smallest and largest value of each taxi figure over the real ADS-B segments."""
+    from flightmode.sim.flight.taxi_stats import ADSB_TAXI_ANCHORS
+
+    segs = [s for track in ADSB_TAXI_ANCHORS.values() for s in track.values()]
+    return {k: (min(s[k] for s in segs), max(s[k] for s in segs)) for k, _, _ in TAXI_FIGURES}
+
+
+def taxi_checks(track) -> list[Check]:
+    from flightmode.sim.flight.taxi_stats import flight_taxi_statistics
+
+    ranges = adsb_taxi_ranges()
+    src = "6 real ADS-B taxi segments (TK1745 IST, N899DN MSP; min..max)"
+    out = []
+    for leg, st in flight_taxi_statistics(track).items():
+        for key, label, unit in TAXI_FIGURES:
+            if key not in st:
+                continue
+            out.append(Check("taxi", f"{label} ({leg.replace('_', '-')})", unit, float(st[key]), *ranges[key], src))
+        out.append(Check("taxi", f"largest braking step ({leg.replace('_', '-')})", "g", float(st["brake_max_g"]),
+                         None, TAXI_BRAKE_LIMIT_G, "passenger comfort: about 0.1 g (issue 13; no public rule found)"))
+    # the hand-over from rollout to taxi-in: the largest braking step across it, 10 s either side
+    # (the autobrake's own steady deceleration, 0.15 g at LO, is not a step; a brake applied at
+    # once, as the hand-over once did at 0.44 g, is)
+    t_x = _phase_start(track, "taxi_in")
+    if t_x is not None:
+        out.append(Check("taxi", f"braking step at the rollout/taxi-in hand-over (rise within {HANDOVER_STEP_S:g} s)",
+                         "g", _max_braking_rise_g(track, t_x - 10, t_x + 10), None, TAXI_BRAKE_LIMIT_G,
+                         "passenger comfort: about 0.1 g (issue 13)",
+                         f"largest deceleration {_max_braking_g(track, t_x - 10, t_x + 10):.3f} g"))
+    return out
+
+
+def _phase_start(track, phase: str) -> float | None:
+    from flightmode.labels import PHASE_CODE
+
+    idx = np.flatnonzero(track.phase_code == PHASE_CODE[phase])
+    return float(track.t_s[idx[0]]) if idx.size else None
+
+
+PFA_CONFIDENCE = 0.95  # the run's fractions of in-flight checks are compared through this interval
+HANDOVER_STEP_S = 2.0  # a braking "step": the deceleration's rise within this long
+
+
+def _max_braking_rise_g(track, t0: float, t1: float) -> float:
+    """Largest rise (g) of the deceleration (from the 1 s mean ground speed, over 1 s) within any
+    ``HANDOVER_STEP_S`` between t0 and t1: how much braking came on at once."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    from flightmode.units import G0_MPS2
+
+    sel = (track.t_s >= t0) & (track.t_s <= t1)
+    n = max(1, int(round(track.fs_hz)))
+    v = np.convolve(track.ground_speed_mps[sel], np.ones(n) / n, mode="valid")
+    m = int(round(HANDOVER_STEP_S * track.fs_hz)) + 1
+    if v.size < n + m:
+        return math.nan
+    decel = -(v[n:] - v[:-n])
+    w = sliding_window_view(decel, m)
+    return float(max(0.0, np.max(w[:, -1] - w.min(axis=1))) / G0_MPS2)
+
+
+def _max_braking_g(track, t0: float, t1: float) -> float:
+    """Largest deceleration (g) of the 1 s mean ground speed between t0 and t1."""
+    from flightmode.units import G0_MPS2
+
+    sel = (track.t_s >= t0) & (track.t_s <= t1)
+    n = max(1, int(round(track.fs_hz)))
+    v = np.convolve(track.ground_speed_mps[sel], np.ones(n) / n, mode="valid")
+    if v.size < n + 1:
+        return math.nan
+    return float(max(0.0, -np.min(v[n:] - v[:-n])) / G0_MPS2)
+
+
+# --------------------------------------------------------------------------------------- turbulence
+WINDOW_S = 60.0
+ICAO_PEAK_G = {"light": (None, 0.5), "moderate": (0.5, 1.0), "severe": (1.0, None)}
+ICAO_SOURCE = "ICAO turbulence descriptions: change at the CG light < 0.5 g, moderate 0.5-1.0, severe > 1.0"
+
+
+def load_factor_windows(track, sel: np.ndarray, window_s: float = WINDOW_S) -> tuple[np.ndarray, np.ndarray]:
+    """(std, peak |change from the median|) of the vertical load factor at the CG over each whole
+    ``window_s`` run of consecutive selected samples."""
+    from flightmode.units import G0_MPS2
+
+    nz = -track.specific_force_body_mps2[:, 2] / G0_MPS2
+    n = int(round(window_s * track.fs_hz))
+    stds, peaks = [], []
+    idx = np.flatnonzero(sel)
+    if idx.size == 0:
+        return np.array([]), np.array([])
+    cuts = np.flatnonzero(np.diff(idx) > 1) + 1
+    for run in np.split(idx, cuts):
+        k = run.size // n
+        if k == 0:
+            continue
+        x = nz[run[: k * n]].reshape(k, n)
+        stds.append(x.std(axis=1))
+        peaks.append(np.abs(x - np.median(x, axis=1, keepdims=True)).max(axis=1))
+    if not stds:
+        return np.array([]), np.array([])
+    return np.concatenate(stds), np.concatenate(peaks)
+
+
+def turbulence_checks(track) -> list[Check]:
+    from flightmode.labels import SEVERITY_CODE
+    from flightmode.units import FT_M
+
+    out = []
+    air = track.airborne & np.isin(track.phase, ("climb", "cruise", "descent"))
+    calm = air & (track.turbulence_code == SEVERITY_CODE["none"])
+    cruise_calm = calm & (track.phase == "cruise")
+    std_c, _ = load_factor_windows(track, cruise_calm)
+    if std_c.size:
+        out.append(Check("turbulence", "60 s load-factor std, calm cruise (p5 of windows)", "g",
+                         float(np.percentile(std_c, 5)), 1e-3, None,
+                         "calm air is never still: EDR climatology median 0.076 (Sharman and Pearson 2017)",
+                         f"median {np.median(std_c):.4f} g over {std_c.size} windows"))
+        low = track.airborne & (track.agl_m < 2000 * FT_M) & (track.turbulence_code == SEVERITY_CODE["none"]) & \
+            np.isin(track.phase, ("initial_climb", "climb", "descent", "approach"))
+        std_l, _ = load_factor_windows(track, low, 30.0)
+        std_c30, _ = load_factor_windows(track, cruise_calm, 30.0)
+        if std_l.size and std_c30.size:
+            out.append(Check("turbulence", "boundary layer / calm cruise, 30 s std (medians)", "ratio",
+                             float(np.median(std_l) / np.median(std_c30)), 1.0, None,
+                             "MIL-F-8785C 3.7.3.3: low-altitude gusts scale with the surface wind"))
+    for sev in ("light", "moderate", "severe"):
+        s = air & (track.turbulence_code == SEVERITY_CODE[sev])
+        std, peak = load_factor_windows(track, s)
+        if peak.size == 0:
+            continue
+        lo, hi = ICAO_PEAK_G[sev]
+        out.append(Check("turbulence", f"60 s peak load-factor change, {sev} (median of windows)", "g",
+                         float(np.median(peak)), lo, hi, ICAO_SOURCE,
+                         f"60 s std median {np.median(std):.3f} g (p5 {np.percentile(std, 5):.3f}, "
+                         f"p95 {np.percentile(std, 95):.3f}), {std.size} windows"))
+    return out
+
+
+# --------------------------------------------------------------------------------------- ground
+NASA_COCKPIT_G = 0.4  # Morris and Hall (NASA, 1965): runway acceptable while the cockpit stays within +-0.4 g
+
+
+def ground_roughness_g(track, lever_arm_m=(0.0, 0.0, 0.0)) -> dict[str, np.ndarray]:
+    """The vertical load-factor increment (g, quasi-static part below 0.2 Hz removed) at a point of the
+    airframe, per ground window: the takeoff roll (brake release to 8 s before liftoff: no rotation),
+    the rollout (8 s after touchdown on: the nose wheel down), both above 10 m/s, and taxiing above
+    3 m/s."""
+    from scipy.signal import butter, sosfiltfilt
+
+    from flightmode.units import G0_MPS2
+
+    fz = -track.specific_force_at(lever_arm_m)[:, 2] / G0_MPS2
+    dn = sosfiltfilt(butter(2, 0.2, "high", fs=track.fs_hz, output="sos"), fz)
+    t, ph, gs = track.t_s, track.phase, track.ground_speed_mps
+    win = {
+        "takeoff_roll": (ph == "takeoff_roll") & (gs > 10.0) & (t < track.event_time("liftoff") - 8.0),
+        "rollout": (ph == "rollout") & (gs > 10.0) & (t > track.event_time("touchdown") + 8.0),
+        "taxi": np.isin(ph, ["taxi_out", "taxi_in"]) & (gs > 3.0),
+    }
+    return {k: dn[s] for k, s in win.items()}
+
+
+def ground_checks(track) -> list[Check]:
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+
+    cg = ground_roughness_g(track)
+    cockpit = ground_roughness_g(track, (0.4 * get_profile(track.aircraft).length_m, 0.0, 0.0))
+    rms = {k: float(np.sqrt(np.mean(v**2))) if v.size else math.nan for k, v in cg.items()}
+    out = []
+    for k in ("takeoff_roll", "rollout"):
+        out.append(Check("ground", f"{k.replace('_', ' ')} / taxi, RMS vertical load factor", "ratio",
+                         rms[k] / rms["taxi"], 1.0, None,
+                         "runway rolls are the roughest ground phases (ISO 8608 profile: response grows with speed)",
+                         f"RMS {rms[k]:.4f} g vs taxi {rms['taxi']:.4f} g"))
+    peak = max(float(np.abs(v).max()) for v in cockpit.values() if v.size)
+    out.append(Check("ground", "cockpit peak vertical increment on the ground", "g", peak, None, NASA_COCKPIT_G,
+                     "NASA (Morris and Hall 1965): acceptable runway within +-0.4 g at the cockpit"))
+    return out
+
+
+# --------------------------------------------------------------------------------------- seed 000
+# seed 000 Table 2: P_M at 2 sigma^2 and 2.5 sigma^2 imply a spread sigma_MV / E[MV] of 0.398 and 0.348
+# for the paper's Gaussian form (eq. 13, mean 1): the rows the paper's 35 h could resolve
+TABLE2_SPREAD = {2.0: 0.398, 2.5: 0.348}
+TABLE2_TOLERANCE = 0.30  # the issue: within 30 %
+# seed 000 Table 4 (flight 1) and Table 5 (flight 2): per-axis fraction of in-flight checks under
+# k sigma^2 (NMV, W = 1 s) and P_FA^t, for k = 3, 4, 5
+PAPER_TABLES = {
+    1: {"x": (5e-2, 8e-2, 1e-1), "y": (7e-4, 2e-3, 4e-3), "z": (9e-7, 2e-6, 2e-4), "t": (2e-10, 3e-10, 8e-8)},
+    2: {"x": (3e-1, 6e-1, 7e-1), "y": (1e-2, 1e-1, 4e-1), "z": (7e-3, 7e-2, 2e-1), "t": (2e-5, 4e-3, 6e-2)},
+}
+TABLE_KS = (3.0, 4.0, 5.0)
+
+
+def fraction_interval(k: int, n: int, confidence: float = PFA_CONFIDENCE) -> tuple[float, float]:
+    """Clopper-Pearson interval of a fraction observed as k of n (scipy.stats.binomtest)."""
+    from scipy.stats import binomtest
+
+    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=confidence, method="exact")
+    return float(ci.low), float(ci.high)
+
+
+def _order_check(group: str, figure: str, ours: float, interval: tuple[float, float], paper: float,
+                 counted: str, source: str) -> Check:
+    """The paper's cell against the run's fraction: ``value`` is the log10 distance from the paper's
+    value to the run's confidence interval (0 inside it), which must be within one order. A flight of
+    n checks cannot tell a fraction of 1e-6 from 0 when n is thousands: the interval says what the run
+    resolves, and the check asks that the paper's cell lie within an order of it."""
+    lo, hi = interval
+    if paper > hi:
+        dist = math.log10(paper / hi) if hi > 0 else math.inf
+    elif paper < lo:
+        dist = math.log10(paper / lo)
+    else:
+        dist = 0.0
+    return Check(group, figure, "log10 from CI", dist, -1.0, 1.0, source,
+                 f"run {ours:.2g}{counted}, {PFA_CONFIDENCE:.0%} CI {lo:.1e}..{hi:.1e}; paper {paper:.0e}")
+
+
+def seed000_checks(columns: dict, info: dict, paper_flight: int) -> list[Check]:
+    """Seed 000 Tables 2, 4/5 and Fig. 6 on the run's samples (module docstring)."""
+    from scipy.signal import welch
+
+    from flightmode.detector.evaluation import pfa_table
+    from flightmode.detector.moving_variance import moving_variance
+    from flightmode.detector.recommended import labels_of, recommended_params
+    from flightmode.scenarios.pipeline import stream_sigma2
+
+    if paper_flight not in PAPER_TABLES:
+        raise InputDataError(f"paper flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
+    t, acc = columns["t_s"], columns["acc_g"]
+    fs = float(info["sensor"]["odr_hz"])
+    params = recommended_params(fs)
+    sigma2, _ = stream_sigma2("preset", columns, info, params.window)
+    labels = labels_of(columns)
+    out = []
+    # Table 2: spread of the 1 s NMV over truly static windows outside the flight
+    static = np.asarray(labels["sensor_static"], bool) & ~np.asarray(labels["in_flight_window"], bool)
+    mv = moving_variance(acc, params.window, "nmv", 1.0)  # every window's variance, at its closing sample
+    n = params.window
+    whole = np.convolve(static.astype(float), np.ones(n), mode="valid") == n  # window [i, i + n) static
+    ends = np.arange(n - 1, acc.shape[0], n)
+    ok = whole[ends - (n - 1)]
+    if ok.sum() >= 100:
+        v = mv[ends[ok]] / sigma2[None, :]
+        spread = v.std(axis=0) / v.mean(axis=0)
+        for ax, s in zip("xyz", spread):
+            for k, implied in TABLE2_SPREAD.items():
+                out.append(Check("seed 000", f"Table 2 spread of 1 s NMV at rest, {ax} (vs {k:g} sigma^2 row)", "ratio",
+                                 float(s / implied), 1 - TABLE2_TOLERANCE, 1 + TABLE2_TOLERANCE,
+                                 "seed 000 Table 2 (eq. 13 inverted)", f"spread {s:.3f} vs {implied}, {int(ok.sum())} windows"))
+    # Fig. 6: the largest peak above 2 Hz of each engine phase's spectrum (bag stowed, calm) in 10-30 Hz
+    phase = np.asarray(labels["phase"]).astype(str)
+    bag = np.asarray(columns.get("bag_state", np.full(phase.shape, "stowed"))).astype(str)
+    turb = np.asarray(columns.get("turbulence_severity", np.full(phase.shape, "none"))).astype(str)
+    a = np.linalg.norm(acc, axis=1)
+    for ph in ("taxi_out", "climb", "cruise", "descent"):
+        sel = (phase == ph) & (bag == "stowed") & (turb == "none")
+        if sel.sum() < 4 * 512:
+            continue
+        f, p = welch(a[sel] - a[sel].mean(), fs=fs, nperseg=512)
+        above = np.flatnonzero(f >= 2.0)
+        k = above[int(np.argmax(p[above]))]
+        out.append(Check("seed 000", f"Fig. 6 largest vibration peak above 2 Hz, {ph}", "Hz", float(f[k]), 10.0, 30.0,
+                         "seed 000 Fig. 6: peaks between 10 and 30 Hz in every flight stage"))
+    # Tables 4 / 5
+    rows = {r["T_sigma"]: r for r in pfa_table(t, acc, labels, params, sigma2, ks=TABLE_KS, time_thresholds_s=(4.0,))}
+    paper = PAPER_TABLES[paper_flight]
+    table = 4 if paper_flight == 1 else 5
+    for i, k in enumerate(TABLE_KS):
+        r = rows[k]
+        n_checks = int(r["checks"])
+        if n_checks == 0:
+            continue
+        src = f"seed 000 Table {table} (flight {paper_flight})"
+        lo_t = hi_t = 1.0
+        for ax in "xyz":
+            k_ax = int(round(r[f"P_FA_{ax}"] * n_checks))
+            lo, hi = fraction_interval(k_ax, n_checks)
+            lo_t, hi_t = lo_t * lo, hi_t * hi
+            out.append(_order_check("seed 000", f"Table {table} P_FA^{ax} at {k:g} sigma^2", r[f"P_FA_{ax}"], (lo, hi),
+                                    paper[ax][i], f" ({k_ax} of {n_checks} checks)", src))
+        # the paper's P_FA^t is the product of the axes' fractions (seed 000 eq. 14's independence);
+        # its interval here: the product of the axes' bounds (each at 95 %, so wider than 95 %)
+        out.append(_order_check("seed 000", f"Table {table} P_FA^t at {k:g} sigma^2", r["P_FA_t"], (lo_t, hi_t),
+                                paper["t"][i], " (product of the axes)", src))
+    return out
+
+
+# --------------------------------------------------------------------------------------- the run
+def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
+    """Every check of a run folder (module docstring), in the order printed."""
+    from flightmode.scenarios.run_io import read_samples, read_track, run_scenario
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+
+    if paper_flight not in PAPER_TABLES:
+        raise InputDataError(f"paper flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
+    run_dir = Path(run_dir)
+    track, info = read_track(run_dir)
+    plan = run_scenario(info, str(run_dir / "run.json")).plan
+    checks = kinematic_checks(track, plan, get_profile(track.aircraft).wrap_type)
+    checks += touchdown_checks(track, plan)
+    checks += taxi_checks(track)
+    checks += turbulence_checks(track)
+    checks += ground_checks(track)
+    samples = run_dir / "samples.parquet"
+    if samples.is_file():
+        columns, sinfo = read_samples(samples)
+        checks += seed000_checks(columns, sinfo or info, paper_flight)
+    return checks

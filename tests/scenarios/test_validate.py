@@ -1,0 +1,112 @@
+"""`flightmode validate`: the anchors' arithmetic, and the built-in flights beside their anchors."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from flightmode.scenarios.validate import Check, adsb_taxi_ranges, wrap_time_to_altitude_s
+
+
+def test_a_check_passes_inside_its_closed_range_only():
+    c = lambda v, lo, hi: Check("g", "f", "u", v, lo, hi, "s")  # noqa: E731
+    assert c(1.0, 1.0, 2.0).passed and c(2.0, 1.0, 2.0).passed and not c(2.0001, 1.0, 2.0).passed
+    assert c(-5.0, None, 0.0).passed and c(5.0, 0.0, None).passed and not c(-1.0, 0.0, None).passed
+    assert not c(math.nan, None, None).passed and not c(-math.inf, -1.0, 1.0).passed
+    assert c(1.0, 1.0, 2.0).anchor_text() == "1 .. 2" and c(1.0, None, 0.1).anchor_text() == "<= 0.1"
+
+
+def test_wrap_times_to_altitude_integrate_its_bands():
+    """WRAP A320 (OpenAP, measured from ADS-B): the initial climb to 1,500 ft at 9.15-16.04 m/s, then
+    7.63-12.87 m/s to the CAS crossover at 3.7 km, 6.28-10.6 m/s to the Mach crossover at 8.8 km and
+    3.6-6.97 m/s above. The times to 10,000 ft are those sums by hand; and the defaults (12.59, 10.25,
+    8.43, 5.28 m/s) lie between the fastest and slowest, as the published ~6 / 16 / 23 min to 3.7 /
+    8.8 / 10.9 km do."""
+    from openap import WRAP
+
+    w = WRAP("A320")
+    h1, h = 1500 * 0.3048, 10_000 * 0.3048
+    fast, slow = wrap_time_to_altitude_s(w, h)
+    assert fast == pytest.approx(h1 / 16.04 + (h - h1) / 12.87, rel=1e-3)  # WRAP's figures to 4 digits
+    assert slow == pytest.approx(h1 / 9.15 + (h - h1) / 7.63, rel=1e-3)
+    for alt_m, minutes in ((3700.0, 6.0), (8800.0, 16.0), (10900.0, 23.0)):
+        f, s = wrap_time_to_altitude_s(w, alt_m)
+        assert f / 60 < minutes < s / 60
+
+
+def test_the_taxi_anchors_span_the_real_segments():
+    r = adsb_taxi_ranges()
+    # the six real segments: medians between walking pace and 30 kt, yaw peaks under 12 deg/s
+    assert 1.0 < r["speed_p50_mps"][0] <= r["speed_p50_mps"][1] < 30 * 0.5144
+    assert r["yaw_rate_max_dps"][1] < 12.0 and r["turns_per_min"][0] > 0.0
+
+
+def _run_folder(tmp_path_factory, fly_cached, name: str):
+    from flightmode.scenarios import pipeline
+
+    sc, track = fly_cached(name)
+    r = pipeline.run(sc, out=tmp_path_factory.mktemp(name), track=track, stages=("fly", "sense", "write"))
+    return r.written["run_json"].parent
+
+
+# groups every built-in airliner flight must pass today (the closing note lists what else fails)
+MUST_PASS = ("takeoff", "climb", "cruise", "descent", "landing", "ground")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["gva-lhr-a320", "ist-osl-737", "hel-zrh-f100"])
+def test_builtin_flights_beside_their_anchors(tmp_path_factory, fly_cached, name):
+    from flightmode.scenarios.validate import validate_run
+
+    checks = validate_run(_run_folder(tmp_path_factory, fly_cached, name))
+    by_group: dict[str, list[Check]] = {}
+    for c in checks:
+        by_group.setdefault(c.group, []).append(c)
+    print(f"\n{name}: {sum(c.passed for c in checks)} of {len(checks)} pass; failing: "
+          + "; ".join(f"{c.figure} {c.value:.3g} (anchor {c.anchor_text()})" for c in checks if not c.passed))
+    # every kinematic group is there (WRAP has every type flown), each figure inside WRAP's range
+    for g in MUST_PASS:
+        assert by_group.get(g), f"no {g} checks"
+        bad = [f"{c.figure}: {c.value:.4g} not in {c.anchor_text()}" for c in by_group[g] if not c.passed]
+        assert not bad, bad
+    # the climb reaches 10,000 ft on every airliner route, so its time is checked
+    assert any(c.figure.startswith("time to 10,000 ft") for c in by_group["climb"])
+    # air never perfectly still in cruise
+    calm = [c for c in by_group["turbulence"] if "calm cruise" in c.figure]
+    assert calm and calm[0].passed, calm
+    # seed 000 Table 2: the 1 s variances at rest spread as the paper's rows imply (within 30 %)
+    t2 = [c for c in by_group["seed 000"] if c.figure.startswith("Table 2")]
+    assert len(t2) == 6 and all(c.passed for c in t2), [(c.figure, c.value) for c in t2]
+
+
+def test_cli_prints_one_table_and_json(pattern_run):
+    from typer.testing import CliRunner
+
+    from flightmode.scenarios.cli import app
+
+    run, _ = pattern_run
+    r = CliRunner().invoke(app, ["validate", str(run)], env={"COLUMNS": "220"})
+    assert r.exit_code == 0, r.output
+    assert "liftoff ground speed" in r.output and "checks pass" in r.output
+    j = CliRunner().invoke(app, ["validate", str(run), "--json"])
+    assert j.exit_code == 0
+    doc = json.loads(j.output)
+    assert doc["passed"] + doc["failed"] == len(doc["checks"]) > 10
+    # a circuit at 2,500 ft: no cruise-level check, no climb bands beyond the initial climb
+    figures = [c["figure"] for c in doc["checks"]]
+    assert "cruise altitude" not in figures and not any(f.startswith("time to") for f in figures)
+    strict = CliRunner().invoke(app, ["validate", str(run), "--strict"])
+    assert strict.exit_code == (1 if doc["failed"] else 0)
+
+
+def test_cli_names_a_folder_that_is_not_a_run(tmp_path):
+    from typer.testing import CliRunner
+
+    from flightmode.scenarios.cli import app
+
+    r = CliRunner().invoke(app, ["validate", str(tmp_path)])
+    assert r.exit_code == 2 and "not a flight run folder" in r.output
+    r = CliRunner().invoke(app, ["validate", str(tmp_path), "--paper-flight", "3"])
+    assert r.exit_code == 2 and "seed 000 has flights 1 (Table 4) and 2 (Table 5)" in r.output
