@@ -152,6 +152,10 @@ class Taxi(Controller):
         decel = style.decel_mps2
         ahead = gs * tau
         v_cmd = min(self.route.speed_at(s), self.route.speed_at(s + ahead))
+        if abs(cross) > TAXI_OFF_LINE_M:
+            # off the centre line (a nose wheel that lags behind a reversal of turn, as the JSBSim
+            # A320's does): slow down, as a crew would, so that the same yaw rate turns tighter
+            v_cmd = min(v_cmd, TAXI_RECOVER_MPS)
         done = False
         if self.hold_until is not None:
             v_cmd = 0.0
@@ -179,6 +183,9 @@ class Taxi(Controller):
         ap.speed_on_ground(gs, self.v_ref, a_ref)
         return done
 
+
+TAXI_OFF_LINE_M = 1.5  # off the taxi route's centre line by more than this, the crew slows down
+TAXI_RECOVER_MPS = 1.5  # to this speed, until back on the line
 
 # the stand is reached once the aircraft has come to rest on its taxi brakes: the parking brake set at
 # a walking pace (0.3 m/s) stopped it in one jolt, 0.07 g on the 737
