@@ -540,6 +540,12 @@ def seed000_checks(columns: dict, info: dict, paper_flight: int) -> list[Check]:
             lo_t, hi_t = lo_t * lo, hi_t * hi
             out.append(_order_check("seed 000", f"Table {table} P_FA^{ax} at {k:g} sigma^2", r[f"P_FA_{ax}"], (lo, hi),
                                     paper[ax][i], f" ({k_ax} of {n_checks} checks)", src))
+        if k == 4.0:  # how often the recommended threshold is challenged in flight (informational)
+            joint = int(round(r["P_FA_t_joint"] * n_checks))
+            axes = ", ".join(f"{ax} {int(round(r[f'P_FA_{ax}'] * n_checks))}" for ax in "xyz")
+            out.append(Check("seed 000", "in-flight checks under 4 sigma^2 on all axes at once", "checks", float(joint),
+                             0.0, None, "seed 000 eq. 7 (the temporary static decision); informational",
+                             f"per axis: {axes} of {n_checks}"))
         # the paper's P_FA^t is the product of the axes' fractions (seed 000 eq. 14's independence);
         # its interval here: the product of the axes' bounds (each at 95 %, so wider than 95 %)
         out.append(_order_check("seed 000", f"Table {table} P_FA^t at {k:g} sigma^2", r["P_FA_t"], (lo_t, hi_t),
