@@ -59,18 +59,31 @@ def fly_cached(_flight_cache_dir):
 
 
 @pytest.fixture(scope="session")
-def run_cached(fly_cached):
+def run_cached(fly_cached, _flight_cache_dir):
     """run_cached(name, seed=None, stages=(fly, sense, detect), **changes) -> RunResult of
-    ``flightmode.run`` (no files written), on the session's cached flight."""
+    ``flightmode.run`` (no files written), on the session's cached flight; like the flights, each
+    result is computed once per session whatever the number of workers (pickled, renamed into
+    place, under a lock)."""
+    from filelock import FileLock
+
     from flightmode.scenarios import pipeline
 
     memo: dict = {}
 
     def _run(name: str, seed: int | None = None, stages=("fly", "sense", "detect"), **changes):
         sc, track = fly_cached(name, seed, **changes)
-        key = (sc.digest(), tuple(stages))
+        key = f"{sc.digest()}-run-{'-'.join(stages)}"
         if key not in memo:
-            memo[key] = pipeline.run(sc, track=track, stages=stages)
+            path = _flight_cache_dir / f"{key}.pkl"
+            with FileLock(str(path) + ".lock"):
+                if path.exists():
+                    result = pickle.loads(path.read_bytes())
+                else:
+                    result = pipeline.run(sc, track=track, stages=stages)
+                    tmp = path.with_suffix(f".tmp-{os.getpid()}")
+                    tmp.write_bytes(pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL))
+                    os.replace(tmp, path)
+            memo[key] = result
         return memo[key]
 
     return _run

@@ -43,12 +43,12 @@ def test_the_taxi_anchors_span_the_real_segments():
     assert r["yaw_rate_max_dps"][1] < 12.0 and r["turns_per_min"][0] > 0.0
 
 
-def _run_folder(tmp_path_factory, fly_cached, name: str):
+def _run_folder(tmp_path_factory, run_cached, name: str):
+    """The built-in's run folder (truth, samples, run.json), written from the session's run."""
     from flightmode.scenarios import pipeline
 
-    sc, track = fly_cached(name)
-    r = pipeline.run(sc, out=tmp_path_factory.mktemp(name), track=track, stages=("fly", "sense", "write"))
-    return r.written["run_json"].parent
+    written = pipeline.write(tmp_path_factory.mktemp(name), run_cached(name), rrd=False)
+    return written["run_json"].parent
 
 
 # groups every built-in airliner flight must pass today (the closing note lists what else fails)
@@ -57,10 +57,10 @@ MUST_PASS = ("takeoff", "climb", "cruise", "descent", "landing", "ground")
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["gva-lhr-a320", "ist-osl-737", "hel-zrh-f100"])
-def test_builtin_flights_beside_their_anchors(tmp_path_factory, fly_cached, name):
+def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name):
     from flightmode.scenarios.validate import validate_run
 
-    checks = validate_run(_run_folder(tmp_path_factory, fly_cached, name))
+    checks = validate_run(_run_folder(tmp_path_factory, run_cached, name))
     by_group: dict[str, list[Check]] = {}
     for c in checks:
         by_group.setdefault(c.group, []).append(c)
