@@ -145,6 +145,8 @@ class AircraftProfile:
     # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
     # sim.flight.controllers.FLARE_PITCH_GAIN
     flare_accel_gain: float = 1.0
+    # maximum operating altitude (type certificate data sheet): the highest step climb (sim.flight.step_climb)
+    ceiling_ft: float = 37_000.0
     # attitude and speed loop gains (flightmode.sim.flight.autopilot)
     pitch_kp: float = 2.0
     pitch_ki: float = 0.6
@@ -180,6 +182,7 @@ PROFILES: dict[str, AircraftProfile] = {
     "737": AircraftProfile(
         model="737",
         description="Boeing 737 (JSBSim 737, CFM56)",
+        ceiling_ft=37_000.0,  # FAA TCDS A16WE: 737-300/-400/-500 (the CFM56-3 classics)
         wrap_type="B737",
         n_engines=2,
         length_m=33.4,
@@ -215,6 +218,7 @@ PROFILES: dict[str, AircraftProfile] = {
     "A320": AircraftProfile(
         model="A320",
         description="Airbus A320 (JSBSim A320, CFM56-5)",
+        ceiling_ft=39_100.0,  # EASA TCDS A.064: A320 maximum operating altitude 39,100 ft (39,800 ft by modification)
         wrap_type="A320",
         # the JSBSim A320's nose wheel turns the aircraft slowly: whatever the steering angle, the yaw rate
         # builds at 1.7 deg/s^2 at most (measured at 3-7 m/s), more slowly beyond 20 deg (the tyre
@@ -260,6 +264,7 @@ PROFILES: dict[str, AircraftProfile] = {
     "fokker100": AircraftProfile(
         model="fokker100",
         description="Fokker 100 (JSBSim fokker100, Rolls-Royce Tay): stand-in for seed 000's Avro RJ85",
+        ceiling_ft=35_000.0,  # EASA TCDS (Fokker F28 Mk 0100): maximum operating altitude 35,000 ft
         wrap_type="E190",
         rotate_elevator=0.1,  # a light, pitch-sensitive model: a gentle pull (nz < 1.3 g)
         n_engines=2,
@@ -299,6 +304,7 @@ PROFILES: dict[str, AircraftProfile] = {
     "787-8": AircraftProfile(
         model="787-8",
         description="Boeing 787-8 (JSBSim 787-8, Trent 1000)",
+        ceiling_ft=43_100.0,  # FAA TCDS T00021SE: 787-8 maximum operating altitude 43,100 ft
         wrap_type="B788",
         cabin_half_width_m=2.9,
         n_engines=2,

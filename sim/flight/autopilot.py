@@ -56,6 +56,7 @@ class Autopilot:
         self.flaps = 0.0
         self.path: Path2D | None = None  # the taxi route being followed
         self.diff_brake = 0.0
+        self.cruise_alt_m = plan.cruise_alt_m  # the current cruise level (step climbs raise it)
         self.parking_brake = 0.0  # the shutdown's brake command (sim.flight.controllers.Shutdown)
         self.taxi_brake = 0.0  # the taxi speed loop's brake command, its mode and integrator
         self.taxi_braking = False

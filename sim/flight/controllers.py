@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from flightmode.sim.flight.control import clamp, rate_limit
+from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
 from flightmode.units import FT_M, G0_MPS2, KT_MPS
 
@@ -283,7 +284,9 @@ class EnRoute(Controller):
         phase = p.phase
         d = ap.distance_to_go_m(x)
         h = x[ix["alt_m"]]
-        h_tgt = min(p.plan.cruise_alt_m, ap.path_alt_m(d))
+        if phase == "cruise":
+            self._step_climb(x, d)
+        h_tgt = min(ap.cruise_alt_m, ap.path_alt_m(d))
         v_new = ap.speed_target_mps(x, d, climbing=phase == "climb", on_approach_legs=phase != "climb")
         if ap.v_tgt is None:
             ap.v_tgt = v_new
@@ -298,19 +301,22 @@ class EnRoute(Controller):
                 return
             ap.spd_pid.hi = 1.0
             p.fire("level")
-        if p.phase == "cruise" and h_tgt < p.plan.cruise_alt_m - 1.0:
+            # the weight the first cruise level is taken as optimum for (sim.flight.step_climb)
+            self.ref = (ap.ac.get("inertia/weight-lbs"), ap.cruise_alt_m)
+        if p.phase == "cruise" and h_tgt < ap.cruise_alt_m - 1.0:
             p.fire("top_of_descent")
         if p.phase in ("descent", "approach"):
             ap.configure_approach(d, x[ix["ias_mps"]])
         # vertical: altitude error -> vertical speed -> flight-path angle -> pitch
         gs = ap.gs(x)
-        on_path = h_tgt < p.plan.cruise_alt_m
+        on_path = h_tgt < ap.cruise_alt_m
         slope = (ap.path_alt_m(d) - ap.path_alt_m(d - 100.0)) / 100.0 if on_path else 0.0
         vs_ff = -gs * slope
         if ap.loc_mode:
             vs_cmd = clamp(vs_ff + 0.1 * (h_tgt - h), -8.0, 3.0)
         else:
-            vs_cmd = clamp(vs_ff + 0.05 * (h_tgt - h), -15.0, 10.0)
+            vs_max = STEP_VS_MPS if phase == "cruise" else 10.0  # a step climb at cruise thrust
+            vs_cmd = clamp(vs_ff + 0.05 * (h_tgt - h), -15.0, vs_max)
         if ap.vs_cmd is None:
             ap.vs_cmd = -x[ix["v_down_mps"]]
         ap.vs_cmd = rate_limit(ap.vs_cmd, vs_cmd, 0.8 * ap.dt)
@@ -332,6 +338,26 @@ class EnRoute(Controller):
         if ap.loc_mode and agl - prof.cg_height_m < prof.flare_height_ft * FT_M:
             p.fire("flare_height")
 
+
+    ref: tuple[float, float] | None = None  # (weight lbs, altitude m) at the first level-off
+    next_check_s = 0.0
+
+    def _step_climb(self, x, d_m: float) -> None:
+        """Raise the cruise level by one step when it is due (:mod:`flightmode.sim.flight.step_climb`)
+        and the flight would stay at the new level for ``STEP_MIN_CRUISE_S`` before its descent;
+        checked every ``STEP_CHECK_S``."""
+        ap, p = self.ap, self.p
+        if self.ref is None or p.t < self.next_check_s:
+            return
+        self.next_check_s = p.t + STEP_CHECK_S
+        new = next_level_m(ap.cruise_alt_m, ap.ac.get("inertia/weight-lbs"), self.ref[0], self.ref[1],
+                           p.prof.ceiling_ft * FT_M)
+        if new is None or abs(x[p.ix["alt_m"]] - ap.cruise_alt_m) > 30.0:
+            return
+        if ap.path_alt_m(d_m - ap.gs(x) * STEP_MIN_CRUISE_S) < new:
+            return  # too close to the top of descent
+        p.event("step_climb", f"{ap.cruise_alt_m / FT_M:.0f} ft -> {new / FT_M:.0f} ft")
+        ap.cruise_alt_m = new
 
     def _climb(self, x, v_tgt: float, to_go_m: float) -> None:
         """The climb as airline pilots fly it on the FMS: the vertical rate of this flight's draw for
@@ -400,6 +426,8 @@ class Flare(Controller):
                        f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s")
             p.fire("touchdown")
 
+
+STEP_CHECK_S = 60.0  # how often the cruise checks whether a step climb is due
 
 # the flare guidance (Flare): pitch rate (rad/s) per m/s^2 of missing upward acceleration. An airliner
 # on approach gains about 4-5 g of load factor per radian of angle of attack, so this closes the
