@@ -23,7 +23,7 @@ from flightmode.sim.sensor.carrier import CABIN_ROWS, PACKINGS, PLACEMENTS, Carr
 from flightmode.errors import ScenarioError, did_you_mean
 from flightmode.sim.flight.geodesy import great_circle_distance_m
 from flightmode.sim.flight.plan import SEVERITIES, FlightPlan
-from flightmode.units import NM_M
+from flightmode.units import FT_M, NM_M
 
 _CARRIER = CarrierSpec()  # the [carrier] defaults are CarrierSpec's own (one place)
 
@@ -283,6 +283,11 @@ def _check_distance(source: str, plan: FlightPlan) -> None:
     have = route_length_m(plan)
     if plan.cruise_alt_m <= max(plan.origin.elevation_m, plan.destination.elevation_m) + 300.0:
         raise _fail(source, "[cruise].altitude_m", plan.cruise_alt_m, "must be at least 300 m above both airports")
+    ceiling_m = PROFILES[plan.aircraft].ceiling_ft * FT_M if plan.aircraft in PROFILES else math.inf
+    if plan.cruise_alt_m > ceiling_m + 0.5:
+        raise _fail(source, "[cruise].altitude_m", plan.cruise_alt_m,
+                    f"above the {plan.aircraft}'s maximum operating altitude, {ceiling_m:.0f} m "
+                    f"({PROFILES[plan.aircraft].ceiling_ft:,.0f} ft); lower the cruise")
     if have < need:
         max_alt = plan.origin.elevation_m + (have - 10.0 * NM_M) / (
             1.0 / CLIMB_GRADIENT + 1.0 / math.tan(math.radians(plan.descent_angle_deg))

@@ -52,6 +52,9 @@ def test_replace_is_validated_like_a_file_and_changes_only_what_it_names():
         sc.replace(crusie={"mach": 0.5})
     with pytest.raises(ScenarioError, match=r"\[scenario\]\.seed = -1: must be >= 0"):
         sc.replace(seed=-1)
+    # above the type's maximum operating altitude (the A320's 39,100 ft, 11,918 m): named, with the limit
+    with pytest.raises(ScenarioError, match=r"\[cruise\]\.altitude_m = 12000.0: above the A320's maximum operating altitude, 11918 m"):
+        Scenario.builtin("gva-lhr-a320").replace(cruise={"altitude_m": 12000.0})
 
 
 def _doc(name="pattern"):
