@@ -183,6 +183,9 @@ PROFILES: dict[str, AircraftProfile] = {
         model="737",
         description="Boeing 737 (JSBSim 737, CFM56)",
         ceiling_ft=37_000.0,  # FAA TCDS A16WE: 737-300/-400/-500 (the CFM56-3 classics)
+        # the two real 737 taxi-outs (N899DN, a 737-900, MSP: speed p50 6.3 and 7.3 m/s, p90 7.8 and
+        # 10.2) against 7.9 m/s p50 over 19 seeded ist-osl flights at the default straight speeds
+        tuning=PilotTuning(taxi_speed_out_mps=(6.5, 9.0)),
         wrap_type="B737",
         n_engines=2,
         length_m=33.4,
