@@ -16,6 +16,7 @@ FT_M: float = 0.3048  # international foot, exactly
 NM_M: float = 1852.0  # nautical mile, exactly
 KT_MPS: float = NM_M / 3600.0  # knot: one nautical mile per hour
 FPM_MPS: float = FT_M / 60.0  # ft/min -> m/s
+KMH_MPS: float = 1000.0 / 3600.0  # km/h -> m/s
 FPS_MPS: float = FT_M  # ft/s -> m/s
 LB_KG: float = 0.45359237  # international avoirdupois pound, exactly
 LBF_N: float = LB_KG * G0_MPS2  # pound-force: 4.4482216152605 N

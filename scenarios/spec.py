@@ -22,6 +22,7 @@ from flightmode.sim.sensor.carrier import KINDS as CARRIER_KINDS
 from flightmode.sim.sensor.carrier import CABIN_ROWS, PACKINGS, PLACEMENTS, CarrierSpec
 from flightmode.errors import ScenarioError, did_you_mean
 from flightmode.sim.flight.geodesy import great_circle_distance_m
+from flightmode.sim.flight.draws import LANDING_QUALITIES
 from flightmode.sim.flight.plan import SEVERITIES, FlightPlan
 from flightmode.units import FT_M, NM_M
 
@@ -112,7 +113,7 @@ SPEC: dict[str, dict[str, Key]] = {
     "landing": {
         "autobrake_decel_mps2": Key(float, "autobrake deceleration target", 1.5, lo=0.5, hi=3.5),
         "quality": Key(str, "touchdown sink speed distribution (normal, firm, hard)", "normal",
-                       choices=("normal", "firm", "hard")),
+                       choices=LANDING_QUALITIES),
         "sink_mps": Key(float, "touchdown sink speed the flare aims at (1 ft/s = 0.3048 m/s); absent: drawn by "
                         "quality", optional=True, lo=0.15, hi=2.9),
     },

@@ -140,14 +140,13 @@ def _mean_rate_between(t: np.ndarray, h: np.ndarray, h0: float, h1: float) -> fl
     return float((h[i1] - h[i0]) / (t[i1] - t[i0])) if t[i1] > t[i0] else math.nan
 
 
-def kinematic_checks(track, plan, wrap_type: str) -> list[Check]:
-    """Takeoff, climb, cruise, descent and landing figures against WRAP (module docstring)."""
-    from flightmode.sim.flight.flight_metrics import flight_metrics
+def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
+    """Takeoff, climb, cruise, descent and landing figures against WRAP (module docstring); ``m``: the
+    track's :func:`~flightmode.sim.flight.flight_metrics.flight_metrics`."""
     from flightmode.units import FT_M
 
     w = _wrap(wrap_type)
     src = WRAP_SOURCE.format(type=wrap_type)
-    m = flight_metrics(track, plan)
     out = [
         Check("takeoff", "liftoff ground speed", "m/s", m["liftoff_gs_mps"], *_wrap_range(w, "takeoff_speed"), src),
         Check("takeoff", "takeoff acceleration", "m/s^2", m["takeoff_accel_mps2"],
@@ -221,13 +220,12 @@ TOUCHDOWN_PEAK_G = {
 }
 
 
-def touchdown_checks(track, plan) -> list[Check]:
-    """Sink speed and peak CG load factor at touchdown against the landing quality's anchors."""
+def touchdown_checks(track, plan, m: dict) -> list[Check]:
+    """Sink speed and peak CG load factor at touchdown against the landing quality's anchors (``m``:
+    the track's flight metrics)."""
     from flightmode.sim.flight import draws
-    from flightmode.sim.flight.flight_metrics import flight_metrics
     from flightmode.units import FPS_MPS, G0_MPS2
 
-    m = flight_metrics(track, plan)
     q = plan.landing_quality
     if q == "normal":
         # the normal distribution's 0.1 % and 99.9 % points (lognormal, median 2.0 ft/s)
@@ -301,34 +299,33 @@ PFA_CONFIDENCE = 0.95  # the run's fractions of in-flight checks are compared th
 HANDOVER_STEP_S = 2.0  # a braking "step": the deceleration's rise within this long
 
 
-def _max_braking_rise_g(track, t0: float, t1: float) -> float:
-    """Largest rise (g) of the deceleration (from the 1 s mean ground speed, over 1 s) within any
-    ``HANDOVER_STEP_S`` between t0 and t1: how much braking came on at once."""
-    from numpy.lib.stride_tricks import sliding_window_view
-
+def _decel_1s_g(track, t0: float, t1: float) -> np.ndarray:
+    """The deceleration (g) between t0 and t1, from the 1 s mean ground speed, over 1 s."""
     from flightmode.units import G0_MPS2
 
     sel = (track.t_s >= t0) & (track.t_s <= t1)
     n = max(1, int(round(track.fs_hz)))
     v = np.convolve(track.ground_speed_mps[sel], np.ones(n) / n, mode="valid")
+    return -(v[n:] - v[:-n]) / G0_MPS2
+
+
+def _max_braking_rise_g(track, t0: float, t1: float) -> float:
+    """Largest rise (g) of the 1 s deceleration within any ``HANDOVER_STEP_S`` between t0 and t1: how
+    much braking came on at once."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    decel = _decel_1s_g(track, t0, t1)
     m = int(round(HANDOVER_STEP_S * track.fs_hz)) + 1
-    if v.size < n + m:
+    if decel.size < m:
         return math.nan
-    decel = -(v[n:] - v[:-n])
     w = sliding_window_view(decel, m)
-    return float(max(0.0, np.max(w[:, -1] - w.min(axis=1))) / G0_MPS2)
+    return float(max(0.0, np.max(w[:, -1] - w.min(axis=1))))
 
 
 def _max_braking_g(track, t0: float, t1: float) -> float:
     """Largest deceleration (g) of the 1 s mean ground speed between t0 and t1."""
-    from flightmode.units import G0_MPS2
-
-    sel = (track.t_s >= t0) & (track.t_s <= t1)
-    n = max(1, int(round(track.fs_hz)))
-    v = np.convolve(track.ground_speed_mps[sel], np.ones(n) / n, mode="valid")
-    if v.size < n + 1:
-        return math.nan
-    return float(max(0.0, -np.min(v[n:] - v[:-n])) / G0_MPS2)
+    decel = _decel_1s_g(track, t0, t1)
+    return float(max(0.0, decel.max())) if decel.size else math.nan
 
 
 # --------------------------------------------------------------------------------------- turbulence
@@ -557,6 +554,7 @@ def seed000_checks(columns: dict, info: dict, paper_flight: int) -> list[Check]:
 def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
     """Every check of a run folder (module docstring), in the order printed."""
     from flightmode.scenarios.run_io import read_samples, read_track, run_scenario
+    from flightmode.sim.flight.flight_metrics import flight_metrics
     from flightmode.sim.flight.aircraft_profiles import get_profile
 
     if paper_flight not in PAPER_TABLES:
@@ -564,8 +562,9 @@ def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
     run_dir = Path(run_dir)
     track, info = read_track(run_dir)
     plan = run_scenario(info, str(run_dir / "run.json")).plan
-    checks = kinematic_checks(track, plan, get_profile(track.aircraft).wrap_type)
-    checks += touchdown_checks(track, plan)
+    m = flight_metrics(track, plan)
+    checks = kinematic_checks(track, plan, get_profile(track.aircraft).wrap_type, m)
+    checks += touchdown_checks(track, plan, m)
     checks += taxi_checks(track)
     checks += turbulence_checks(track)
     checks += ground_checks(track)

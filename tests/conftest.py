@@ -22,14 +22,27 @@ def _flight_cache_dir(tmp_path_factory, worker_id):
     return d
 
 
+def _shared(path, compute):
+    """``compute()`` once per test session whatever the number of workers: the first to need it
+    computes and stores it (pickled, renamed into place) under a lock, the others load it."""
+    from filelock import FileLock
+
+    with FileLock(str(path) + ".lock"):
+        if path.exists():
+            return pickle.loads(path.read_bytes())
+        value = compute()
+        tmp = path.with_suffix(f".tmp-{os.getpid()}")
+        tmp.write_bytes(pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+        os.replace(tmp, path)
+        return value
+
+
 @pytest.fixture(scope="session")
 def fly_cached(_flight_cache_dir):
     """fly_cached(name, seed=None, stop_after_s=None, **scenario_changes) -> (scenario, track): the
     scenario (a built-in with ``Scenario.replace`` changes) flown by the pipeline's own ``fly`` with
     the run's ``flight`` streams, exactly as ``flightmode.run`` flies it (``stop_after_s``: only that
     much of it, the exact prefix)."""
-    from filelock import FileLock
-
     from flightmode.scenarios import pipeline
     from flightmode.scenarios.scenario import Scenario
 
@@ -43,15 +56,8 @@ def fly_cached(_flight_cache_dir):
             sc = sc.replace(**changes)
         key = sc.digest() + ("" if stop_after_s is None else f"-stop{stop_after_s:g}")
         if key not in memo:
-            path = _flight_cache_dir / f"{key}.pkl"
-            with FileLock(str(path) + ".lock"):
-                if path.exists():
-                    track = pickle.loads(path.read_bytes())
-                else:
-                    track = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=stop_after_s)
-                    tmp = path.with_suffix(f".tmp-{os.getpid()}")
-                    tmp.write_bytes(pickle.dumps(track, protocol=pickle.HIGHEST_PROTOCOL))
-                    os.replace(tmp, path)
+            track = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.fly(
+                sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=stop_after_s))
             memo[key] = (sc, track)
         return memo[key]
 
@@ -64,8 +70,6 @@ def run_cached(fly_cached, _flight_cache_dir):
     ``flightmode.run`` (no files written), on the session's cached flight; like the flights, each
     result is computed once per session whatever the number of workers (pickled, renamed into
     place, under a lock)."""
-    from filelock import FileLock
-
     from flightmode.scenarios import pipeline
 
     memo: dict = {}
@@ -74,16 +78,7 @@ def run_cached(fly_cached, _flight_cache_dir):
         sc, track = fly_cached(name, seed, **changes)
         key = f"{sc.digest()}-run-{'-'.join(stages)}"
         if key not in memo:
-            path = _flight_cache_dir / f"{key}.pkl"
-            with FileLock(str(path) + ".lock"):
-                if path.exists():
-                    result = pickle.loads(path.read_bytes())
-                else:
-                    result = pipeline.run(sc, track=track, stages=stages)
-                    tmp = path.with_suffix(f".tmp-{os.getpid()}")
-                    tmp.write_bytes(pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL))
-                    os.replace(tmp, path)
-            memo[key] = result
+            memo[key] = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.run(sc, track=track, stages=stages))
         return memo[key]
 
     return _run

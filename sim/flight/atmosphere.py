@@ -30,5 +30,14 @@ def pressure_pa(alt_m) -> np.ndarray:
     return np.where(h < H_TROPO_M, tropo, strato)
 
 
+def pressure_altitude_m(p_pa) -> np.ndarray:
+    """The altitude whose ISA pressure is ``p_pa``: :func:`pressure_pa` inverted in closed form, layer
+    by layer (troposphere: h = (T0 / L) ((p / p0)^(1 / exp) - 1); stratosphere: logarithmic)."""
+    p = np.asarray(p_pa, float)
+    tropo = T0_K / LAPSE_KPM * ((p / P0_PA) ** (1.0 / _EXP) - 1.0)
+    strato = H_TROPO_M - R_AIR * T_TROPO_K / _c.g * np.log(p / P_TROPO_PA)
+    return np.where(p > P_TROPO_PA, tropo, strato)
+
+
 def density_kgpm3(alt_m) -> np.ndarray:
     return pressure_pa(alt_m) / (R_AIR * temperature_k(alt_m))

@@ -313,6 +313,11 @@ class Autopilot:
         self.steer(clamp(steer, -lim, lim))
         return s, cross
 
+    def set_parking_brake(self, rate_per_s: float) -> None:
+        """Move the parking brake toward fully set at ``rate_per_s`` and apply it to both sides."""
+        self.parking_brake = rate_limit(self.parking_brake, 1.0, rate_per_s * self.dt)
+        self.brakes(self.parking_brake)
+
     def speed_on_ground(self, gs: float, v_ref: float, a_ref: float) -> None:
         """Throttle and brakes to the taxi speed reference ``v_ref`` that changes at ``a_ref``
         (m/s^2), with the differential braking of :meth:`follow`. Throttle: PI on the speed error.

@@ -534,9 +534,7 @@ class Shutdown(Controller):
         ap.ac.set("propulsion/cutoff_cmd", 1)
 
     def tick(self, x) -> None:
-        ap = self.ap
-        ap.parking_brake = rate_limit(ap.parking_brake, 1.0, PARKING_BRAKE_RATE_PER_S * ap.dt)
-        ap.brakes(ap.parking_brake)
+        self.ap.set_parking_brake(PARKING_BRAKE_RATE_PER_S)
         # engines off: every N2 below 5 % after fuel cut-off (the end of the seed's flight time)
         if all(x[self.p.ix[f"n2_pct_{i}"]] < 5.0 for i in range(self.p.prof.n_engines)):
             self.p.t_engines_off = self.p.t
@@ -551,9 +549,7 @@ class Parked(Controller):
     holding = True
 
     def tick(self, x) -> None:
-        ap = self.ap
-        ap.parking_brake = rate_limit(ap.parking_brake, 1.0, PARKING_BRAKE_RATE_PER_S * ap.dt)
-        ap.brakes(ap.parking_brake)
+        self.ap.set_parking_brake(PARKING_BRAKE_RATE_PER_S)
         if self.p.t - self.p.t_engines_off >= self.p.plan.post_shutdown_s:
             self.p.fire("recording_over")
 

@@ -49,7 +49,7 @@ class FlightDraws:
 def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
     if quality == "normal":
         fps = SINK_NORMAL_MEDIAN_FPS * math.exp(SINK_NORMAL_LN_STD * rng.standard_normal())
-        return min(fps, 9.5) * FPS_MPS  # the lognormal's far tail (1e-7 of landings) capped below the limit
+        return min(fps, SINK_BANDS_FPS["hard"][1]) * FPS_MPS  # the lognormal's far tail (1e-7 of landings) capped below the limit
     lo, hi = SINK_BANDS_FPS[quality]
     return rng.uniform(lo, hi) * FPS_MPS
 

@@ -133,32 +133,16 @@ def displacement_psd_m3(n_cpm, gd_n0_m3: float) -> np.ndarray:
     return gd_n0_m3 * (n / ISO_8608_N0) ** -2.0
 
 
-def _z_k1(z: np.ndarray) -> np.ndarray:
-    """z K1(z) for z > 0 (K1: modified Bessel function of the second kind), by the polynomial
-    approximations of Abramowitz and Stegun, "Handbook of Mathematical Functions" (1964), 9.8.3 and
-    9.8.7 (z <= 2, error < 1e-8) and 9.8.8 (z > 2); no SciPy import on the flight's path."""
-    out = np.empty_like(z)
-    lo = z <= 2.0
-    x = z[lo]
-    t = (x / 3.75) ** 2
-    i1 = x * (0.5 + t * (0.87890594 + t * (0.51498869 + t * (0.15084934 + t * (0.02658733 + t * (0.00301532 + t * 0.00032411))))))
-    y = (0.5 * x) ** 2
-    out[lo] = x * np.log(0.5 * x) * i1 + 1.0 + y * (0.15443144 + y * (-0.67278579 + y * (-0.18156897 + y * (
-        -0.01919402 + y * (-0.00110404 + y * -0.00004686)))))
-    x = z[~lo]
-    y = 2.0 / x
-    out[~lo] = np.sqrt(x) * np.exp(-x) * (1.25331414 + y * (0.23498619 + y * (-0.03655620 + y * (0.01504268 + y * (
-        -0.00780353 + y * (0.00325614 + y * -0.00068245))))))
-    return out
-
-
 def track_coherence(n_cpm, separation_m: float) -> np.ndarray:
     """Coherence of two parallel tracks ``separation_m`` apart on an isotropic surface whose track
-    PSD falls as n^-2: rho = z K1(z), z = 2 pi n d (module docstring; 1 at z = 0)."""
+    PSD falls as n^-2: rho = z K1(z), z = 2 pi n d (module docstring; 1 at z = 0; K1: the modified
+    Bessel function of the second kind, scipy.special.k1)."""
+    from scipy.special import k1
+
     z = 2.0 * math.pi * np.abs(np.asarray(n_cpm, dtype=float)) * separation_m
     rho = np.ones_like(z)
     pos = z > 0.0
-    rho[pos] = _z_k1(z[pos])
+    rho[pos] = z[pos] * k1(z[pos])
     return np.clip(rho, 0.0, 1.0)
 
 

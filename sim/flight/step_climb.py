@@ -20,7 +20,7 @@ assumption, a typical cruise-thrust climb).
 
 from __future__ import annotations
 
-from flightmode.sim.flight.atmosphere import pressure_pa
+from flightmode.sim.flight.atmosphere import pressure_altitude_m, pressure_pa
 from flightmode.units import FT_M, FPM_MPS
 
 STEP_FT = 2000.0
@@ -31,10 +31,7 @@ STEP_VS_MPS = 1000.0 * FPM_MPS
 
 def optimum_alt_m(weight: float, ref_weight: float, ref_alt_m: float) -> float:
     """The altitude (m, ISA) whose pressure is p(ref_alt) weight / ref_weight (module docstring)."""
-    from scipy.optimize import brentq
-
-    p_opt = float(pressure_pa(ref_alt_m)) * weight / ref_weight
-    return float(brentq(lambda h: float(pressure_pa(h)) - p_opt, -500.0, 25_000.0, xtol=0.01))
+    return float(pressure_altitude_m(float(pressure_pa(ref_alt_m)) * weight / ref_weight))
 
 
 def next_level_m(alt_m: float, weight: float, ref_weight: float, ref_alt_m: float, ceiling_m: float) -> float | None:

@@ -42,9 +42,8 @@ import numpy as np
 
 from flightmode.errors import ScenarioError
 from flightmode.sim.flight.plan import FlightPlan, TaxiPlan
-from flightmode.units import KT_MPS
+from flightmode.units import KMH_MPS, KT_MPS
 
-KMH_MPS = 1.0 / 3.6
 # ICAO Doc 9157 (Aerodrome Design Manual) part 2, taxiway curves: design radius for a taxi speed
 # (16 km/h -> 15 m, 32 -> 60, 48 -> 135, 64 -> 240, 80 -> 375, 96 -> 540 m): v^2 / R = 1.32 m/s^2
 # (0.134 g) along the whole table, the lateral acceleration taxiway curves are designed for.
@@ -394,16 +393,19 @@ class TaxiRoute:
     """A taxi route: its path (:class:`Path2D`, stops included) and its speed schedule on a 1 m grid
     (:meth:`speed_at`)."""
 
-    def __init__(self, fl: Filleted, zone_speed_mps: np.ndarray, style: TaxiStyle, stops: tuple[Stop, ...] = ()):
+    def __init__(self, fl: Filleted, zone_speed_mps: np.ndarray, style: TaxiStyle, stops: tuple[Stop, ...] = (),
+                 speed_mps: np.ndarray | None = None):
         self.path = Path2D(fl.points, stops)
         self.fillet = fl
         self.style = style
         self.zone_speed_mps = zone_speed_mps
-        self.speed_mps = _speed_schedule(self.path, fl, zone_speed_mps, style)
+        self.speed_mps = _speed_schedule(self.path, fl, zone_speed_mps, style) if speed_mps is None else speed_mps
         self._v = self.speed_mps.tolist()
 
     def with_stops(self, stops: tuple[Stop, ...]) -> TaxiRoute:
-        return TaxiRoute(self.fillet, self.zone_speed_mps, self.style, stops)
+        """The same route with these stops (the speed schedule does not depend on them: the Taxi
+        controller brakes for each stop itself)."""
+        return TaxiRoute(self.fillet, self.zone_speed_mps, self.style, stops, self.speed_mps)
 
     def speed_at(self, s_m: float) -> float:
         """The schedule's speed at arc length ``s_m`` (linear between grid points)."""

@@ -94,3 +94,14 @@ def test_taxi_speed_schedule_obeys_its_turn_and_braking_limits(seed):
     assert np.all(v[1:] ** 2 >= v[:-1] ** 2 - 2.0 * st.decel_mps2 * GRID_M - 1e-9)
     # every speed within the crew's straight-taxiway speed
     assert v.max() <= st.straight_out_mps + 1e-9
+
+
+def test_every_type_turns_within_the_icao_taxiway_curve_design():
+    """ICAO Doc 9157 part 2 designs taxiway curves for v^2 / R = 1.32 m/s^2 (its speed-radius table,
+    16 km/h on 15 m to 96 km/h on 540 m): no crew is drawn a lateral acceleration in turns above it."""
+    from flightmode.sim.flight.aircraft_profiles import PROFILES
+    from flightmode.sim.flight.taxi_route import ICAO_CURVE_LAT_ACC_MPS2
+
+    assert ICAO_CURVE_LAT_ACC_MPS2 == pytest.approx((96 / 3.6) ** 2 / 540.0, rel=0.02)  # the table's far end
+    for name, prof in PROFILES.items():
+        assert prof.tuning.taxi_lat_acc_mps2[1] <= ICAO_CURVE_LAT_ACC_MPS2, name

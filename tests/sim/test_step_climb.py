@@ -16,11 +16,19 @@ from flightmode.units import FT_M
 def test_optimum_level_rises_as_the_stratosphere_scale_height_says():
     # above the tropopause (11 km) the ISA is isothermal at 216.65 K, so p ~ exp(-g h / (R T)): with
     # p_opt proportional to the weight, a weight ratio w puts the optimum H ln(1/w) higher, H = R T / g
-    # (R = R* / M, M = 28.9644 g/mol: U.S. Standard Atmosphere 1976). 2 cm: the solver's tolerance.
+    # (R = R* / M, M = 28.9644 g/mol: U.S. Standard Atmosphere 1976). 2 cm: far above the rounding of
+    # the closed-form inverse (sim.flight.atmosphere.pressure_altitude_m).
     scale_m = constants.R / 0.0289644 * 216.65 / constants.g
     for w in (0.97, 0.9, 0.8):
         assert optimum_alt_m(w, 1.0, 11_500.0) - 11_500.0 == pytest.approx(scale_m * math.log(1.0 / w), abs=0.02)
     assert optimum_alt_m(1.0, 1.0, 9_000.0) == pytest.approx(9_000.0, abs=0.01)  # the reference is optimal
+
+
+def test_pressure_altitude_inverts_the_isa_pressure_in_both_layers():
+    from flightmode.sim.flight.atmosphere import pressure_altitude_m, pressure_pa
+
+    h = np.array([-300.0, 0.0, 5_000.0, 10_999.0, 11_000.0, 11_001.0, 15_000.0, 19_000.0])
+    np.testing.assert_allclose(pressure_altitude_m(pressure_pa(h)), h, atol=1e-6)  # float64 rounding
 
 
 def test_a_step_is_due_half_a_step_below_the_optimum_and_never_above_the_ceiling():
