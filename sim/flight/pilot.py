@@ -27,6 +27,10 @@ from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.turbulence import MID_TOP_M, sigma_high_mps
 from flightmode.units import FT_M, KT_MPS
 
+EN_ROUTE = frozenset({"climb", "cruise", "descent"})  # ticked at 5 Hz above 3000 ft (control_every)
+LOW_AIRBORNE = frozenset({"flare"})  # airborne, but ticked at 40 Hz at any height
+
+
 class Pilot:
     """Flies ``plan`` with ``profile`` on ``ac``; call :meth:`tick` every :attr:`control_every` FDM
     steps (``fdm_hz`` steps a second)."""
@@ -130,33 +134,32 @@ class Pilot:
         if not math.isfinite(sum(x)):
             self.fail("NaN in the flight state: JSBSim diverged")
         ix = self.ix
-        loc = self.ap.loc_mode
-        self._en_route = self.phase in ("climb", "cruise", "descent") and x[ix["agl_m"]] > 3000 * FT_M and not loc
-        self._airborne_high = (
-            self.phase in ("initial_climb", "climb", "cruise", "descent", "approach")
-            and x[ix["agl_m"]] > 1000 * FT_M
-        )
+        agl, phi, alpha = x[ix["agl_m"]], x[ix["phi_rad"]], x[ix["alpha_rad"]]
+        airborne_phase = self.phase in AIRBORNE_PHASES
+        on_wheels = x[ix["wow"]] > 0.5
+        self._en_route = self.phase in EN_ROUTE and agl > 3000 * FT_M and not self.ap.loc_mode
+        self._airborne_high = airborne_phase and self.phase not in LOW_AIRBORNE and agl > 1000 * FT_M
         max_bank = self.ap.tune.max_bank_deg
-        if abs(math.degrees(x[ix["phi_rad"]])) > max_bank:
-            self.fail(f"bank angle {math.degrees(x[ix['phi_rad']]):.1f} deg exceeds {max_bank:.0f} deg")
+        if abs(math.degrees(phi)) > max_bank:
+            self.fail(f"bank angle {math.degrees(phi):.1f} deg exceeds {max_bank:.0f} deg")
         # stall: angle of attack above the type's stall angle for a whole second (gusts in
         # turbulence spike alpha for a fraction of a second without stalling the wing)
-        if self.phase in AIRBORNE_PHASES and x[ix["wow"]] < 0.5 and math.degrees(x[ix["alpha_rad"]]) > self.prof.alpha_stall_deg:
+        if airborne_phase and not on_wheels and math.degrees(alpha) > self.prof.alpha_stall_deg:
             if self._t_alpha_high is None:
                 self._t_alpha_high = self.t
             if self.t - self._t_alpha_high >= 1.0:
                 self.fail(
-                    f"stall: angle of attack {math.degrees(x[ix['alpha_rad']]):.1f} deg above "
+                    f"stall: angle of attack {math.degrees(alpha):.1f} deg above "
                     f"{self.prof.alpha_stall_deg:.0f} deg for 1 s at IAS {x[ix['ias_mps']] / KT_MPS:.0f} kt"
                 )
         else:
             self._t_alpha_high = None
-        if x[ix["agl_m"]] < -2.0:
-            self.fail(f"below the ground: height above ground {x[ix['agl_m']]:.1f} m")
+        if agl < -2.0:
+            self.fail(f"below the ground: height above ground {agl:.1f} m")
         if x[ix["alt_m"]] > 16000.0 or x[ix["mach"]] > 0.95:
             self.fail(f"divergence: altitude {x[ix['alt_m']]:.0f} m, Mach {x[ix['mach']]:.2f}")
-        if self.phase in AIRBORNE_PHASES and self.phase != "initial_climb" and x[ix["wow"]] > 0.5:
-            fr = self.ap.dest if loc else self.ap.origin
+        if airborne_phase and on_wheels and self.phase != "initial_climb":
+            fr = self.ap.dest if self.ap.loc_mode else self.ap.origin
             rx, ry = fr.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
             if abs(ry) > fr.rwy.width_m / 2 or not (-50.0 < rx < fr.rwy.length_m):
                 self.fail(f"ground contact off the runway at x = {rx:.0f} m, y = {ry:.0f} m from the threshold")

@@ -116,6 +116,7 @@ def fly(
     get, nodes = ac.raw_getter()
     fast_nodes = nodes[:nf]
     run = ac.fdm.run
+    set_gust, (node_n, node_e, node_d) = gusts.set, gusts.nodes
     mul = operator.mul
     i_alt = ac.index["alt_m"]
     data = array("d")  # every step's fast channels, appended in place (no per-step NumPy work)
@@ -155,12 +156,16 @@ def fly(
         rough_tick(x, pilot.phase, every)  # the roughness forces' knots for these steps
         if pilot.gust_sigma_mps is not None:
             # turbulent air: a gust for every step (turbulence.GustFeed), then record and step
-            chunk = gusts.take(every, x, pilot.gust_sigma_mps)
-            gusts.write(chunk[0])
+            gn, ge, gd = gusts.take(every, x, pilot.gust_sigma_mps)
+            set_gust(node_n, gn[0])
+            set_gust(node_e, ge[0])
+            set_gust(node_d, gd[0])
             run()
-            for g in chunk[1:]:
+            for k in range(1, every):
                 ext(map(get, fast_nodes))
-                gusts.write(g)
+                set_gust(node_n, gn[k])
+                set_gust(node_e, ge[k])
+                set_gust(node_d, gd[k])
                 run()
         else:
             gusts.stop()

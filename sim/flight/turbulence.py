@@ -153,7 +153,9 @@ def sigma_high_mps(edr: float) -> float:
 class GustFeed:
     """Feeds a :class:`GustField` to a JSBSim aircraft: its ``atmosphere/gust-{north,east,down}-fps``
     properties are written before every FDM step while the air is turbulent (the pilot decides when
-    and how strong: :attr:`Pilot.gust_sigma_mps`), and zeroed once when it stops."""
+    and how strong: :attr:`Pilot.gust_sigma_mps`), and zeroed once when it stops. The writes are the
+    flight loop's (``set(node, value)`` on :attr:`nodes`, north, east, down): one per step and axis,
+    with no call in between."""
 
     PROPS = ("atmosphere/gust-north-fps", "atmosphere/gust-east-fps", "atmosphere/gust-down-fps")
 
@@ -161,32 +163,30 @@ class GustFeed:
         self.nodes = [ac._node(p) for p in self.PROPS]
         self.set = type(self.nodes[0]).set_double_value
         self.field, self.w20, self.ix = field, w20_mps, ix
-        self.buffer: list[tuple[float, float, float]] = []
+        self.buffer: tuple[list[float], list[float], list[float]] = ([], [], [])  # ft/s, north, east, down
         self.pos = 0
         self.on = False
 
-    def take(self, n: int, x, sigma_high_mps: float) -> list[tuple[float, float, float]]:
-        """The next ``n`` steps' gusts (ft/s, north, east, down), generating blocks from the state row
-        ``x`` as needed."""
+    def take(self, n: int, x, sigma_high_mps: float) -> tuple[list[float], list[float], list[float]]:
+        """The next ``n`` steps' gusts (ft/s): three lists, north, east and down, generating blocks from
+        the state row ``x`` as needed."""
         ix = self.ix
-        while len(self.buffer) - self.pos < n:
-            g = self.field.block(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps, self.w20)
-            self.buffer = self.buffer[self.pos:] + (g / FT_M).tolist()
-            self.pos = 0
-        out = self.buffer[self.pos : self.pos + n]
-        self.pos += n
+        pos = self.pos
+        if len(self.buffer[0]) - pos < n:
+            rest = [b[pos:] for b in self.buffer]
+            while len(rest[0]) < n:
+                g = self.field.block(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps, self.w20)
+                for r, col in zip(rest, (g.T / FT_M).tolist()):
+                    r.extend(col)
+            self.buffer, pos = tuple(rest), 0
+        self.pos = pos + n
         self.on = True
-        return out
-
-    def write(self, g) -> None:
-        set_, (n, e, d) = self.set, self.nodes
-        set_(n, g[0])
-        set_(e, g[1])
-        set_(d, g[2])
+        return tuple(b[pos : pos + n] for b in self.buffer)
 
     def stop(self) -> None:
         if self.on:
-            self.write((0.0, 0.0, 0.0))
+            for node in self.nodes:
+                self.set(node, 0.0)
             self.on = False
             self.field.reset()
-            self.buffer, self.pos = [], 0
+            self.buffer, self.pos = ([], [], []), 0
