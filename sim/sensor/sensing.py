@@ -138,7 +138,7 @@ def sense(
     )
     mounts = {p: mnt.mount_sos(m, fs) for p, m in mount_draws.items()}
     mount_zi = {p: [np.zeros((sos.shape[0], 2)) for sos in m] for p, m in mounts.items()}
-    mount_running = False
+    mount_running: set[str] = set()  # the placements whose mount ran through the last chunk
     vstate = initial_state(ne, vibration, fs, rng_vib)
     chain = SensorChain(preset, unit, fs)
     meas = []
@@ -150,13 +150,15 @@ def sense(
         ks = range(int(si[0]), int(si[-1]) + 1)
         runs = np.searchsorted(si, np.arange(ks.start, ks.stop + 1), side="left")
         if any(segs[k].on_board for k in ks):
-            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng_vib, mounts, mount_zi,
-                                             mount_running)
-            mount_running = True
+            # the mounts the bag rests on in this chunk; one it leaves restarts in its steady state
+            # when the bag is next set on it
+            resting = {segs[k].placement for k in ks if segs[k].on_board and segs[k].state != "handled"}
+            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng_vib,
+                                             {p: mounts[p] for p in resting}, mount_zi, mount_running)
+            mount_running = resting
         else:
             # the bag is off the aircraft for the whole chunk: no floor, vibration or mount to run
-            # (the mount restarts in its steady state when the bag is next stowed)
-            mount_running = False
+            mount_running = set()
         f_sensor = np.empty((3, n))  # sensor axes as rows
         for k, a, b in zip(ks, runs[:-1], runs[1:]):
             s = segs[k]
@@ -223,7 +225,7 @@ def _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mounts, moun
     """One chunk on board: the floor's specific force at the bag's place (rows x, y, z, body axes,
     m/s^2) from the track plus airframe vibration, and the bag's through the mount of each placement
     (``mounts``: placement -> per-axis SOS). Updates ``mount_zi`` in place (started in their steady
-    state unless ``mount_running``); returns the floor without vibration (what a handled bag's arm
+    state unless in ``mount_running``); returns the floor without vibration (what a handled bag's arm
     adds to), {placement: the bag's}, and the new vibration state."""
     ch = _track_rows_at(chans, track, t)
     fl = ch[0:3]
@@ -238,7 +240,7 @@ def _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mounts, moun
     bags = {}
     for p, mount in mounts.items():
         zi = mount_zi[p]
-        if not mount_running:  # start the mounts in their steady state (DC gain 1)
+        if p not in mount_running:  # start the mount in its steady state (DC gain 1)
             for ax in range(3):
                 zi[ax] = sosfilt_zi(mount[ax]) * floor[ax, 0]
         bag = np.empty_like(floor)
