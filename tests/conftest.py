@@ -1,7 +1,10 @@
 """Shared fixtures. Flights are the expensive part of the suite, so each (scenario, seed, changes) is
 flown once per test session, whatever the number of pytest-xdist workers: the first worker to need
 a flight flies it and stores it (pickle, renamed into place) in the session's shared temporary
-folder, under a lock; the others load it."""
+folder, under a lock; the others load it. Before its first test each worker also flies ahead, longest
+first, the built-ins that the selected tests are parametrised over and that no other worker has
+claimed (then their runs), so that the workers fly side by side instead of one waiting on the
+other's lock."""
 
 from __future__ import annotations
 
@@ -22,6 +25,12 @@ def _flight_cache_dir(tmp_path_factory, worker_id):
     return d
 
 
+def _store(path, value) -> None:
+    tmp = path.with_suffix(f".tmp-{os.getpid()}")
+    tmp.write_bytes(pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+    os.replace(tmp, path)
+
+
 def _shared(path, compute):
     """``compute()`` once per test session whatever the number of workers: the first to need it
     computes and stores it (pickled, renamed into place) under a lock, the others load it."""
@@ -31,10 +40,58 @@ def _shared(path, compute):
         if path.exists():
             return pickle.loads(path.read_bytes())
         value = compute()
-        tmp = path.with_suffix(f".tmp-{os.getpid()}")
-        tmp.write_bytes(pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
-        os.replace(tmp, path)
+        _store(path, value)
         return value
+
+
+def _claim(path, compute) -> None:
+    """Compute and store ``compute()`` at ``path`` if it is not there and no other worker holds its
+    lock; return at once otherwise (the worker flying ahead: :func:`_fly_ahead`)."""
+    from filelock import FileLock, Timeout
+
+    lock = FileLock(str(path) + ".lock")
+    try:
+        lock.acquire(timeout=0)
+    except Timeout:
+        return
+    try:
+        if not path.exists():
+            _store(path, compute())
+    finally:
+        lock.release()
+
+
+def _flight_key(sc, stop_after_s=None) -> str:
+    return sc.digest() + ("" if stop_after_s is None else f"-stop{stop_after_s:g}")
+
+
+def _run_key(sc, stages) -> str:
+    return f"{sc.digest()}-run-{'-'.join(stages)}"
+
+
+RUN_STAGES = ("fly", "sense", "detect")  # run_cached's default
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _fly_ahead(request, _flight_cache_dir):
+    """Fly ahead (module docstring): the built-in scenarios the selected tests are parametrised
+    over (``name``), longest route first, each by the first worker to claim it; then their runs
+    (``run_cached``'s default stages) whose flight is already stored. Nothing is kept in memory."""
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.scenario import Scenario, builtin_names
+    from flightmode.sim.flight.simulate import max_duration_s
+
+    known = set(builtin_names())
+    names = {item.callspec.params.get("name") for item in request.session.items if hasattr(item, "callspec")}
+    scenarios = sorted((Scenario.builtin(n) for n in names & known), key=lambda sc: -max_duration_s(sc.plan))
+    for sc in scenarios:
+        _claim(_flight_cache_dir / f"{_flight_key(sc)}.pkl",
+               lambda: pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight")))
+    for sc in scenarios:
+        flight = _flight_cache_dir / f"{_flight_key(sc)}.pkl"
+        if flight.exists():
+            _claim(_flight_cache_dir / f"{_run_key(sc, RUN_STAGES)}.pkl",
+                   lambda: pipeline.run(sc, track=pickle.loads(flight.read_bytes()), stages=RUN_STAGES))
 
 
 @pytest.fixture(scope="session")
@@ -54,7 +111,7 @@ def fly_cached(_flight_cache_dir):
             changes["seed"] = seed
         if changes:
             sc = sc.replace(**changes)
-        key = sc.digest() + ("" if stop_after_s is None else f"-stop{stop_after_s:g}")
+        key = _flight_key(sc, stop_after_s)
         if key not in memo:
             track = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.fly(
                 sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=stop_after_s))
@@ -74,9 +131,9 @@ def run_cached(fly_cached, _flight_cache_dir):
 
     memo: dict = {}
 
-    def _run(name: str, seed: int | None = None, stages=("fly", "sense", "detect"), **changes):
+    def _run(name: str, seed: int | None = None, stages=RUN_STAGES, **changes):
         sc, track = fly_cached(name, seed, **changes)
-        key = f"{sc.digest()}-run-{'-'.join(stages)}"
+        key = _run_key(sc, stages)
         if key not in memo:
             memo[key] = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.run(sc, track=track, stages=stages))
         return memo[key]
