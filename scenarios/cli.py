@@ -27,7 +27,8 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from flightmode.errors import FlightmodeError
+from flightmode.errors import FlightmodeError, ScenarioError
+from flightmode.units import FT_M
 
 DEFAULT_SCENARIO = "gva-lhr-a320"  # the same as flightmode.scenarios.scenario.DEFAULT_SCENARIO (tested)
 
@@ -112,16 +113,29 @@ def fly_cmd(
     sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset (default: the scenario's).")] = None,
     gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
     rrd: Annotated[bool, typer.Option("--rrd/--no-rrd", help="Write recording.rrd (Rerun) beside the Parquet files.")] = True,
+    origin: Annotated[Optional[str], typer.Option("--from", help="Fly from this airport (ICAO) instead of a scenario; needs --to and --aircraft.")] = None,
+    destination: Annotated[Optional[str], typer.Option("--to", help="Destination airport (ICAO), with --from.")] = None,
+    aircraft: Annotated[Optional[str], typer.Option("--aircraft", help="Aircraft type for --from/--to: 737, A320, fokker100, 787-8.")] = None,
 ) -> None:
     """Fly a scenario gate to gate in JSBSim, sense it, run the detector and the path estimators;
-    write truth.parquet, samples.parquet, run.json and recording.rrd."""
+    write truth.parquet, samples.parquet, run.json and recording.rrd. With --from, --to and
+    --aircraft, fly between any two airports with paved runways (OurAirports data)."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
     from flightmode.scenarios import pipeline
     from flightmode.scenarios.scenario import Scenario
 
     try:
-        sc = Scenario.resolve(scenario)
+        pair = (origin, destination, aircraft)
+        if any(v is not None for v in pair):
+            if None in pair:
+                raise ScenarioError("--from, --to and --aircraft go together: give all three "
+                                    "(e.g. --from LFPG --to LEMD --aircraft A320)")
+            from flightmode.scenarios.routes import scenario_between
+
+            sc = scenario_between(origin, destination, aircraft, seed=1 if seed is None else seed)
+        else:
+            sc = Scenario.resolve(scenario)
         if seed is not None:
             sc = sc.replace(seed=seed)
         console.print(Text.assemble((sc.name, "bold"), f" seed {sc.seed}: {sc.description}"), highlight=False)
@@ -265,6 +279,84 @@ def path_cmd(
             typer.echo(json.dumps(rows, indent=1))
         else:
             print_rows(console, rows, f"{info['run_id']}: path errors against the truth (bag seat position)")
+    except FlightmodeError as e:
+        _die(e)
+
+
+@app.command("family")
+def family_cmd(
+    family: Annotated[str, typer.Argument(help="A built-in family name or the path of a family .toml file.")],
+    show: Annotated[int, typer.Option("--show", help="Print the first SHOW members.")] = 5,
+    start: Annotated[int, typer.Option("--start", help="First member to show.")] = 0,
+) -> None:
+    """Validate a scenario family and print its first members (each a plain scenario)."""
+    from rich.table import Table
+
+    from flightmode.scenarios.family import Family, builtin_families
+
+    try:
+        fam = Family.resolve(family)
+        if show < 0 or start < 0:
+            raise ScenarioError("--show and --start must be >= 0")
+        console.print(Text.assemble((fam.name, "bold"), f" (seed {fam.seed}, SHA-256 {fam.digest()[:12]}): "
+                                    f"{fam.description}"), highlight=False)
+        table = Table("member", "aircraft", "route", "cruise", "turbulence", "landing", "carrier", "sensor", "seed")
+        for i in range(start, start + show):
+            m = fam.member(i)
+            p, c = m.plan, m.carrier
+            turb = ", ".join(f"{t.severity} at {t.start_s / 60:.0f} min" for t in p.turbulence) or "-"
+            where = c.placement if c.kind == "handbag" else f"hold, {c.truck_s / 60:.0f} min by road"
+            handled = f", handled x{c.handled_in_cruise}" if c.kind == "handbag" and c.handled_in_cruise else ""
+            table.add_row(str(i), m.aircraft, f"{p.origin.icao} {p.origin.name} -> {p.destination.icao} {p.destination.name}",
+                          f"FL{p.cruise_alt_m / FT_M / 100:.0f}", turb, p.landing_quality, f"{c.kind}, {where}{handled}",
+                          m.sensor.preset, str(m.seed))
+        console.print(table)
+        console.print(f"built-in families: {', '.join(builtin_families())}", highlight=False)
+    except FlightmodeError as e:
+        _die(e)
+
+
+@app.command("dataset")
+def dataset_cmd(
+    family: Annotated[str, typer.Argument(help="A built-in family name or the path of a family .toml file.")],
+    n: Annotated[int, typer.Option("--n", help="Number of flights (members 0..N-1).")],
+    out: Annotated[Path, typer.Option("--out", help="The dataset folder.")],
+    workers: Annotated[int, typer.Option("--workers", help="Local worker processes (a LocalCluster on 127.0.0.1).")] = 2,
+    scheduler: Annotated[Optional[str], typer.Option("--scheduler", help="Use a running Dask scheduler instead, e.g. tcp://127.0.0.1:8786.")] = None,
+    resume: Annotated[bool, typer.Option("--resume", help="Continue a dataset of the same family in OUT.")] = False,
+    truth: Annotated[str, typer.Option("--truth", help="Aircraft state files: full (every FDM step), 10hz or none.")] = "10hz",
+    flight_timeout_s: Annotated[Optional[float], typer.Option("--flight-timeout-s", help="Fail a flight that runs longer than this (wall s).")] = None,
+) -> None:
+    """Generate a labelled dataset of a family's first N flights on Dask (see flightmode.scenarios.dataset)."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    from flightmode.scenarios.dataset import check_request, make_dataset
+
+    try:
+        check_request(family, n, out, workers=workers, resume=resume, truth=truth, flight_timeout_s=flight_timeout_s)
+        with Progress(TextColumn("[progress.description]{task.description}"), BarColumn(), MofNCompleteColumn(),
+                      TextColumn("{task.fields[hours]:.1f} flight-h, {task.fields[failed]} failed"),
+                      TimeElapsedColumn(), TimeRemainingColumn(), console=console) as progress:
+            task = progress.add_task("flights", total=None, hours=0.0, failed=0)
+            state = {"hours": 0.0, "failed": 0}
+
+            def on_start(dashboard: str | None, todo: int) -> None:
+                progress.update(task, total=todo)
+                if dashboard:
+                    progress.console.print(f"Dask dashboard: {dashboard}", highlight=False)
+
+            def on_flight(row: dict) -> None:
+                state["hours"] += (row.get("gate_to_gate_s") or 0.0) / 3600.0
+                state["failed"] += row["status"] != "ok"
+                progress.update(task, advance=1, hours=state["hours"], failed=state["failed"])
+                if row["status"] != "ok":
+                    progress.console.print(f"flight {row['flight_id']} failed: {row['error']}", highlight=False)
+
+            rows = make_dataset(family, n, out, workers=workers, scheduler=scheduler, resume=resume, truth=truth,
+                                flight_timeout_s=flight_timeout_s, on_start=on_start, on_flight=on_flight)
+        ok = sum(r["status"] == "ok" for r in rows.values() if r["index"] < n)
+        console.print(Text.assemble("wrote ", (str(out), "bold"), f": {ok} flights ok, {n - ok} failed; "
+                                    "manifest flights.parquet, card README.md"), highlight=False)
     except FlightmodeError as e:
         _die(e)
 

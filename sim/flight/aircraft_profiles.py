@@ -147,6 +147,14 @@ class AircraftProfile:
     flare_accel_gain: float = 1.0
     # maximum operating altitude (type certificate data sheet): the highest step climb (sim.flight.step_climb)
     ceiling_ft: float = 37_000.0
+    # flights between any two airports (flightmode.scenarios.routes): the type's usual cruise level
+    # and Mach (OpenAP WRAP ``cruise_alt`` / ``cruise_mach`` defaults where WRAP has the type), its
+    # range (OpenAP ``prop.aircraft`` "cruise.range"), and the shortest paved runway it is sent to
+    # (the manufacturer's airport-planning take-off field length at MTOW, ISA, sea level, rounded)
+    cruise_level_ft: float = 35_000.0
+    cruise_mach: float = 0.78
+    range_km: float = 4600.0
+    min_runway_m: float = 2100.0
     # attitude and speed loop gains (flightmode.sim.flight.autopilot)
     pitch_kp: float = 2.0
     pitch_ki: float = 0.6
@@ -183,6 +191,10 @@ PROFILES: dict[str, AircraftProfile] = {
         model="737",
         description="Boeing 737 (JSBSim 737, CFM56)",
         ceiling_ft=37_000.0,  # FAA TCDS A16WE: 737-300/-400/-500 (the CFM56-3 classics)
+        cruise_level_ft=37_000.0,  # WRAP B737 cruise_alt 11.74 km (FL385), capped at the ceiling
+        cruise_mach=0.76,  # WRAP B737 cruise Mach range; the 737 built-in's
+        range_km=4600.0,  # OpenAP prop B737
+        min_runway_m=2000.0,  # Boeing 737 Airplane Characteristics for Airport Planning (737-300)
         # the two real 737 taxi-outs (N899DN, a 737-900, MSP: speed p50 6.3 and 7.3 m/s, p90 7.8 and
         # 10.2) against 7.9 m/s p50 over 19 seeded ist-osl flights at the default straight speeds
         tuning=PilotTuning(taxi_speed_out_mps=(6.5, 9.0)),
@@ -222,6 +234,10 @@ PROFILES: dict[str, AircraftProfile] = {
         model="A320",
         description="Airbus A320 (JSBSim A320, CFM56-5)",
         ceiling_ft=39_100.0,  # EASA TCDS A.064: A320 maximum operating altitude 39,100 ft (39,800 ft by modification)
+        cruise_level_ft=36_000.0,  # WRAP A320 cruise_alt 10.92 km (FL358)
+        cruise_mach=0.78,  # WRAP A320 climb_const_mach / OpenAP prop A320
+        range_km=5000.0,  # OpenAP prop A320
+        min_runway_m=2100.0,  # Airbus A320 Aircraft Characteristics, Airport and Maintenance Planning
         wrap_type="A320",
         # the JSBSim A320's nose wheel turns the aircraft slowly: whatever the steering angle, the yaw rate
         # builds at 1.7 deg/s^2 at most (measured at 3-7 m/s), more slowly beyond 20 deg (the tyre
@@ -268,6 +284,10 @@ PROFILES: dict[str, AircraftProfile] = {
         model="fokker100",
         description="Fokker 100 (JSBSim fokker100, Rolls-Royce Tay): stand-in for seed 000's Avro RJ85",
         ceiling_ft=35_000.0,  # EASA TCDS (Fokker F28 Mk 0100): maximum operating altitude 35,000 ft
+        cruise_level_ft=35_000.0,  # no WRAP model for the F100: its ceiling, where the built-ins cruise
+        cruise_mach=0.72,  # the F100 built-ins' (Fokker 100 typical cruise Mach 0.72-0.73)
+        range_km=2400.0,  # Fokker 100 standard range, about 1,300 NM (manufacturer's brochure)
+        min_runway_m=1800.0,  # Fokker 100 airport planning take-off field length at MTOW
         wrap_type="E190",
         rotate_elevator=0.1,  # a light, pitch-sensitive model: a gentle pull (nz < 1.3 g)
         n_engines=2,
@@ -308,6 +328,10 @@ PROFILES: dict[str, AircraftProfile] = {
         model="787-8",
         description="Boeing 787-8 (JSBSim 787-8, Trent 1000)",
         ceiling_ft=43_100.0,  # FAA TCDS T00021SE: 787-8 maximum operating altitude 43,100 ft
+        cruise_level_ft=39_000.0,  # WRAP B788 cruise_alt 12.01 km (FL394)
+        cruise_mach=0.85,  # OpenAP prop B788
+        range_km=13_600.0,  # Boeing 787-8 published range 7,305 NM (OpenAP prop B788: 14,800 km)
+        min_runway_m=2600.0,  # Boeing 787 Airplane Characteristics for Airport Planning (787-8)
         wrap_type="B788",
         cabin_half_width_m=2.9,
         n_engines=2,

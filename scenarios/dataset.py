@@ -1,0 +1,374 @@
+"""Labelled datasets of a family's flights on Dask: ``flightmode dataset FAMILY --n N --out DIR``.
+
+One Dask task per flight: the worker regenerates member ``i`` from the family's text, flies, senses and
+evaluates it (:func:`flightmode.run`), and writes its files itself (the flight's data never leaves
+its worker; one flight per worker process at a time bounds its memory). The client keeps the manifest.
+
+Layout (hive-partitioned Parquet, zstd; pyarrow.dataset, polars, DuckDB and Hugging Face ``datasets``
+read it as it is)::
+
+    DIR/family.toml                                  the family, as given (its SHA-256 ties DIR to it)
+    DIR/flights.parquet                              the manifest: one row per flight (MANIFEST_FIELDS)
+    DIR/samples/aircraft=<type>/part-<id>.parquet    the accelerometer stream with every label
+    DIR/truth/aircraft=<type>/part-<id>.parquet      the aircraft's state (--truth full | 10hz | none)
+    DIR/README.md                                    the dataset card
+    DIR/timings.jsonl                                wall time and peak memory per flight (not data)
+
+Atomic and resumable: every file is written to a temporary name in its final folder and renamed; the
+manifest is rewritten whole (temporary name, rename) after each flight. A flight's files depend only
+on (family, i, options), so a run killed at any point and resumed with ``--resume`` redoes only the
+flights missing from the manifest and ends with exactly the files of an uninterrupted run. A flight
+that fails (a typed flightmode error, a worker that died, the ``--flight-timeout-s`` limit) is retried
+once, then recorded in the manifest with its error; it never stops the dataset.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from flightmode.errors import FlightmodeError, InputDataError
+
+TRUTH_RATES = ("full", "10hz", "none")
+ATTEMPTS = 2  # a failed flight is retried once
+MANIFEST = "flights.parquet"
+
+
+class DatasetError(FlightmodeError):
+    """A dataset that cannot be made as asked (its folder, its options, its cluster)."""
+
+
+class FlightTimeoutError(FlightmodeError):
+    """A flight that took longer than the dataset's per-flight wall-time limit."""
+
+
+@dataclass(frozen=True, slots=True)
+class Options:
+    truth: str = "10hz"
+    flight_timeout_s: float | None = None
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"truth": self.truth, "flight_timeout_s": self.flight_timeout_s}
+
+
+# ---------------------------------------------------------------------- files
+def _sha256(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _atomic_parquet(table, path: Path) -> None:
+    import pyarrow.parquet as pq
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    pq.write_table(table, tmp, compression="zstd")
+    os.replace(tmp, path)
+
+
+def _atomic_text(text: str, path: Path) -> None:
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def flight_id(i: int) -> str:
+    return f"{i:06d}"
+
+
+# ---------------------------------------------------------------------- one flight (on a worker)
+def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
+    """Fly member ``i`` of the family and write its files under ``out_dir``; the manifest row (plus
+    ``wall_s`` and ``peak_rss_mb``). Raises what the flight raises (the client records it)."""
+    import resource
+
+    import numpy as np
+    import pyarrow as pa
+
+    from flightmode.labels import PHASES
+    from flightmode.scenarios import pipeline, run_io
+    from flightmode.scenarios.family import Family
+
+    t0 = time.perf_counter()
+    fam = Family.from_toml_text(family_text, "family.toml")
+    sc = fam.member(i)
+    limit = options.get("flight_timeout_s")
+
+    def watchdog(t_s: float, phase: str) -> None:
+        if limit is not None and time.perf_counter() - t0 > limit:
+            raise FlightTimeoutError(f"flight {flight_id(i)} exceeded the {limit:g} s wall-time limit "
+                                     f"(simulated {t_s / 60:.0f} min, phase {phase}); raise --flight-timeout-s")
+
+    r = pipeline.run(sc, stages=("fly", "sense", "detect"), progress=watchdog)
+    fid = flight_id(i)
+    out = Path(out_dir)
+    part = f"aircraft={sc.aircraft}/part-{fid}.parquet"
+    samples = run_io.recording_table(r.recording)
+    samples = samples.append_column("flight_id", pa.array(np.full(samples.num_rows, fid)))
+    files = {"samples": f"samples/{part}"}
+    _atomic_parquet(samples, out / files["samples"])
+    if options["truth"] != "none":
+        truth = run_io.track_table(r.track)
+        if options["truth"] == "10hz":
+            step = max(1, int(round(r.track.fs_hz / 10.0)))
+            truth = truth.take(pa.array(np.arange(0, truth.num_rows, step)))
+        truth = truth.append_column("flight_id", pa.array(np.full(truth.num_rows, fid)))
+        files["truth"] = f"truth/{part}"
+        _atomic_parquet(truth, out / files["truth"])
+    tr, rec, det = r.track, r.recording, r.detection
+    dt = 1.0 / tr.fs_hz
+    phase_s = np.bincount(tr.phase_code, minlength=len(PHASES)) * dt
+    row = {
+        "flight_id": fid, "index": i, "status": "ok", "error": None, "attempts": 1,
+        "name": sc.name, "seed": sc.seed, "aircraft": sc.aircraft,
+        "origin": sc.plan.origin.icao, "destination": sc.plan.destination.icao,
+        "scenario_sha256": sc.digest(), "scenario_toml": sc.to_toml(),
+        "gate_to_gate_s": float(tr.duration_s), "airborne_s": float(tr.airborne.sum() * dt),
+        **{f"phase_{p}_s": float(phase_s[k]) for k, p in enumerate(PHASES)},
+        "samples": int(rec.t_s.shape[0]),
+        "samples_in_flight_window": int(np.count_nonzero(rec.in_flight_window)),
+        "samples_airborne": int(np.count_nonzero(rec.airborne)),
+        "samples_static": int(np.count_nonzero(rec.sensor_static)),
+        "turbulence": ",".join(t.severity for t in sc.plan.turbulence),
+        "landing_quality": sc.plan.landing_quality, "placement": sc.carrier.placement,
+        "carrier_kind": sc.carrier.kind, "sensor_preset": sc.sensor.preset,
+        "touchdown_sink_mps": float(r.metrics.get("touchdown_sink_mps", float("nan"))),
+        "detector_false_static_count": det.false_static_count,
+        "detector_false_static_s": det.false_static_s,
+        "detector_response_s": float("nan") if det.response_s is None else float(det.response_s),
+        "detector_in_flight_checks": det.in_flight_checks,
+        "samples_file": files["samples"], "samples_sha256": _sha256(out / files["samples"]),
+        "truth_file": files.get("truth"), "truth_sha256": _sha256(out / files["truth"]) if "truth" in files else None,
+    }
+    row["wall_s"] = time.perf_counter() - t0
+    row["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    return row
+
+
+def _failed_row(fam, i: int, error: str, attempts: int) -> dict:
+    sc = fam.member(i)
+    return {"flight_id": flight_id(i), "index": i, "status": "failed", "error": error, "attempts": attempts,
+            "name": sc.name, "seed": sc.seed, "aircraft": sc.aircraft, "origin": sc.plan.origin.icao,
+            "destination": sc.plan.destination.icao, "scenario_sha256": sc.digest(), "scenario_toml": sc.to_toml()}
+
+
+# ---------------------------------------------------------------------- the manifest
+TIMING_KEYS = ("wall_s", "peak_rss_mb")
+
+
+def read_manifest(out: Path) -> dict[int, dict]:
+    import pyarrow.parquet as pq
+
+    p = Path(out) / MANIFEST
+    if not p.exists():
+        return {}
+    return {int(r["index"]): r for r in pq.read_table(p).to_pylist()}
+
+
+def _write_manifest(out: Path, rows: dict[int, dict]) -> None:
+    import pyarrow as pa
+
+    from flightmode.labels import PHASES
+
+    ok = [r for r in rows.values() if r["status"] == "ok"]
+    keys = list(ok[0]) if ok else list(next(iter(rows.values())))
+    for p in PHASES:  # a manifest of failures only still has every column
+        if f"phase_{p}_s" not in keys:
+            keys.append(f"phase_{p}_s")
+    ordered = [rows[i] for i in sorted(rows)]
+    cols = {k: [r.get(k) for r in ordered] for k in keys if k not in TIMING_KEYS}
+    _atomic_parquet(pa.table(cols), Path(out) / MANIFEST)
+
+
+# ---------------------------------------------------------------------- the folder
+def _check_folder(out: Path, fam, options: Options, resume: bool) -> None:
+    """Refuse a folder holding another dataset (or any dataset without --resume); reads only."""
+    marker = out / "family.toml"
+    meta = out / "dataset.json"
+    if out.exists() and not out.is_dir():
+        raise DatasetError(f"--out {out} is a file: give a folder")
+    if out.exists() and any(out.iterdir()):
+        if not marker.exists():
+            raise DatasetError(f"{out} is not empty and holds no flightmode dataset: choose an empty or new --out")
+        if not resume:
+            raise DatasetError(f"{out} already holds a dataset: pass --resume to continue it, or choose another --out")
+        have = hashlib.sha256(marker.read_bytes()).hexdigest()
+        if have != fam.digest():
+            raise DatasetError(f"{out} holds a dataset of another family (SHA-256 {have[:12]}, this one "
+                               f"{fam.digest()[:12]}): --resume only continues the same family; choose another --out")
+        info = json.loads(meta.read_text()) if meta.exists() else {}
+        if info.get("options") not in (None, options.as_dict()):
+            raise DatasetError(f"{out} was made with options {info.get('options')}, not {options.as_dict()}: "
+                               "resume with the same --truth and --flight-timeout-s")
+
+
+def _claim_folder(out: Path, fam, options: Options) -> None:
+    """Make the folder this family's: its family.toml and options; a killed run's half-written files go."""
+    out.mkdir(parents=True, exist_ok=True)
+    for tmp in out.rglob(".*.tmp-*"):
+        tmp.unlink()
+    marker = out / "family.toml"
+    if not marker.exists():
+        _atomic_text(fam.text, marker)
+    _atomic_text(json.dumps({"family": fam.name, "family_sha256": fam.digest(), "options": options.as_dict()},
+                            indent=2), out / "dataset.json")
+
+
+# ---------------------------------------------------------------------- the cluster
+def _client(workers: int, scheduler: str | None):
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        try:
+            return Client(scheduler, timeout="5s"), None
+        except (OSError, TimeoutError) as e:
+            raise DatasetError(f"the Dask scheduler at {scheduler} does not answer ({type(e).__name__}): start it "
+                               "with `dask scheduler`, or drop --scheduler to run on this machine") from None
+    import logging
+
+    # a failed flight is recorded in the manifest and reported once by the command: the workers' own
+    # tracebacks are silenced
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                           dashboard_address="127.0.0.1:0", memory_limit=0, silence_logs=logging.CRITICAL)
+    return Client(cluster), cluster
+
+
+def check_request(family, n: int, out: str | Path, *, workers: int = 2, resume: bool = False, truth: str = "10hz",
+                  flight_timeout_s: float | None = None):
+    """(family, options, out folder) of a valid request; a :class:`DatasetError` (or ScenarioError for the
+    family) naming what is wrong otherwise. Writes nothing."""
+    from flightmode.scenarios.family import Family
+
+    fam = family if isinstance(family, Family) else Family.resolve(family)
+    if isinstance(n, bool) or not isinstance(n, int) or n <= 0:
+        raise DatasetError(f"--n {n!r}: the number of flights must be a positive integer")
+    if truth not in TRUTH_RATES:
+        raise DatasetError(f"--truth {truth!r}: choose one of {', '.join(TRUTH_RATES)}")
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers <= 0:
+        raise DatasetError(f"--workers {workers!r}: must be a positive integer")
+    if flight_timeout_s is not None and not flight_timeout_s > 0:
+        raise DatasetError(f"--flight-timeout-s {flight_timeout_s!r}: must be positive")
+    options = Options(truth, flight_timeout_s)
+    out = Path(out)
+    _check_folder(out, fam, options, resume)
+    return fam, options, out
+
+
+def make_dataset(family, n: int, out: str | Path, *, workers: int = 2, scheduler: str | None = None,
+                 resume: bool = False, truth: str = "10hz", flight_timeout_s: float | None = None,
+                 on_start: Callable[[str | None, int], None] | None = None,
+                 on_flight: Callable[[dict], None] | None = None) -> dict[int, dict]:
+    """Make (or, with ``resume``, complete) the dataset of the family's members 0..n-1 in ``out``;
+    returns the manifest rows by index. ``on_start(dashboard_url, flights_to_do)`` and
+    ``on_flight(row)`` report progress (the CLI's progress bar)."""
+    from dask.distributed import as_completed
+
+    fam, options, out = check_request(family, n, out, workers=workers, resume=resume, truth=truth,
+                                      flight_timeout_s=flight_timeout_s)
+    client, cluster = _client(workers, scheduler)  # before writing: a dead scheduler leaves nothing behind
+    try:
+        _claim_folder(out, fam, options)
+        rows = {i: r for i, r in read_manifest(out).items() if i < n and r["status"] == "ok"}
+        # failures are retried on resume too; members beyond n are left in the manifest untouched
+        rows |= {i: r for i, r in read_manifest(out).items() if i >= n}
+        todo = [i for i in range(n) if i not in rows]
+        if on_start is not None:
+            on_start(client.dashboard_link, len(todo))
+        opts = options.as_dict()
+        fut_index = {}
+        attempts = {}
+        futures = []
+        for i in todo:
+            f = client.submit(fly_member, fam.text, i, str(out.resolve()), opts, key=f"flight-{fam.digest()[:8]}-{i}-a1",
+                              pure=False)
+            fut_index[f.key] = i
+            attempts[i] = 1
+            futures.append(f)
+        ac = as_completed(futures, with_results=False)
+        timings = out / "timings.jsonl"
+        for f in ac:
+            i = fut_index[f.key]
+            try:
+                row = f.result()
+            except Exception as e:  # noqa: BLE001  a flight's failure (or its worker's) never stops the dataset
+                err = f"{type(e).__name__}: {e}"
+                if attempts[i] < ATTEMPTS:
+                    attempts[i] += 1
+                    g = client.submit(fly_member, fam.text, i, str(out.resolve()), opts,
+                                      key=f"flight-{fam.digest()[:8]}-{i}-a{attempts[i]}", pure=False)
+                    fut_index[g.key] = i
+                    ac.add(g)
+                    continue
+                row = _failed_row(fam, i, err, attempts[i])
+            else:
+                row["attempts"] = attempts[i]
+            timing = {k: row.pop(k) for k in TIMING_KEYS if k in row}
+            rows[i] = row
+            _write_manifest(out, rows)
+            with open(timings, "a", encoding="utf-8") as t:
+                t.write(json.dumps({"flight_id": row["flight_id"], "status": row["status"],
+                                    "gate_to_gate_s": row.get("gate_to_gate_s"), **timing}) + "\n")
+            if on_flight is not None:
+                on_flight(row | timing)
+        if not rows:
+            raise DatasetError("no flight was made")
+        from flightmode.scenarios.dataset_card import write_card
+
+        write_card(out, fam, rows, options)
+        return rows
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+# ---------------------------------------------------------------------- reading
+def open_dataset(path: str | Path, part: str = "samples"):
+    """The dataset's ``samples`` (or ``truth``) as a ``pyarrow.dataset.Dataset`` (hive partitions:
+    the ``aircraft`` column comes from the folder names)."""
+    import pyarrow.dataset as ds
+
+    root = Path(path) / part
+    if not (Path(path) / MANIFEST).exists() or not root.is_dir():
+        raise InputDataError(f"{path}: not a flightmode dataset with {part} (make one with `flightmode dataset`)")
+    return ds.dataset(root, format="parquet", partitioning="hive")
+
+
+def windows(path: str | Path, length_s: float, step_s: float | None = None, label: str = "in_flight_window"):
+    """Fixed-length windows of every flight's samples for machine learning: yields ``(x, y, flight_id)``
+    with ``x`` (n, 3) accelerations in g, ``y`` the window's ``label`` (True when most of its samples
+    carry it). Windows never straddle two flights; ``step_s`` defaults to ``length_s``."""
+    import numpy as np
+    import pyarrow.parquet as pq
+
+    if not length_s > 0 or (step_s is not None and not step_s > 0):
+        raise InputDataError(f"windows: length_s {length_s!r} and step_s {step_s!r} must be positive")
+    step_s = length_s if step_s is None else step_s
+    rows = read_manifest(Path(path))
+    for i in sorted(rows):
+        r = rows[i]
+        if r["status"] != "ok":
+            continue
+        t = pq.read_table(Path(path) / r["samples_file"], columns=["t_s", "acc_x_g", "acc_y_g", "acc_z_g", label])
+        ts = t["t_s"].to_numpy()
+        if ts.shape[0] < 2:
+            continue
+        fs = 1.0 / float(np.median(np.diff(ts)))
+        n, s = int(round(length_s * fs)), int(round(step_s * fs))
+        x = np.stack([t[f"acc_{a}_g"].to_numpy() for a in "xyz"], axis=1)
+        y = t[label].to_numpy(zero_copy_only=False).astype(bool)
+        for a in range(0, x.shape[0] - n + 1, s):
+            yield x[a : a + n], bool(y[a : a + n].mean() > 0.5), r["flight_id"]
+
+
+__all__ = ["make_dataset", "fly_member", "read_manifest", "open_dataset", "windows", "DatasetError", "FlightTimeoutError",
+           "TRUTH_RATES"]

@@ -1,0 +1,309 @@
+"""Scenario families: a population of flights described by distributions (a TOML file), whose member
+``i`` is a plain :class:`~flightmode.scenarios.scenario.Scenario`.
+
+Member ``i`` is drawn from the streams ``Streams(family seed).child("member/<i>")``
+(:mod:`flightmode.streams`: a ``SeedSequence`` spawn key made of the names), one stream per choice, so
+member 417 is regenerated alone, in any process, and adding a choice to the file format never moves
+another choice's numbers. A family file (``flightmode family FILE --show 5``):
+
+    [family]
+    name = "airline-mix"            # also the dataset's name
+    description = "..."
+    seed = 2026
+
+    [aircraft]                      # type -> weight (any positive numbers)
+    A320 = 4
+    737 = 3
+
+    [routes]                        # pairs flown as given, or random pairs among airports (or both)
+    pairs = [["LSGG", "EGLL"], ["LFPG", "LEMD"]]
+    airports = ["EGLL", "LFPG", "EDDF"]
+    max_km = 2500                   # optional: longest random pair
+
+    [turbulence]
+    patch_probability = 0.3         # one patch in the cruise with this probability
+    severity = { light = 6, moderate = 3, severe = 1 }
+    patch_s = [120, 600]            # its duration, uniform
+
+    [landing]
+    quality = { normal = 85, firm = 12, hard = 3 }
+
+    [carrier]
+    kind = { handbag = 1 }          # handbag or parcel (a parcel travels in the hold)
+    placement = { under_seat = 5, overhead_bin = 3 }   # a handbag's
+    handled_in_cruise = { 0 = 6, 1 = 3, 2 = 1 }
+    truck_s = [0, 0]                # a parcel's road legs, uniform (s)
+
+    [sensor]
+    preset = { lis302dl-logged16 = 1 }
+
+A type is only given routes it can fly (range, runway length); every member is validated as strictly
+as a scenario file. Everything but ``[family]``, ``[aircraft]`` and ``[routes]`` is optional.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from flightmode.errors import ScenarioError, did_you_mean
+
+SECTIONS = {
+    "family": {"name", "description", "seed"},
+    "aircraft": None,  # free keys: types
+    "routes": {"pairs", "airports", "max_km"},
+    "turbulence": {"patch_probability", "severity", "patch_s"},
+    "landing": {"quality"},
+    "carrier": {"kind", "placement", "handled_in_cruise", "truck_s"},
+    "sensor": {"preset"},
+}
+PATCH_START_S = 900.0  # a patch starts at least 15 min after liftoff and ends 20 min before the descent
+PATCH_END_MARGIN_S = 1200.0
+
+
+@dataclass(frozen=True, slots=True)
+class Weighted:
+    """A discrete distribution: choices and their probabilities."""
+
+    choices: tuple[str, ...]
+    p: tuple[float, ...]
+
+    def draw(self, rng) -> str:
+        return self.choices[int(rng.choice(len(self.choices), p=self.p))]
+
+
+def _weighted(source: str, path: str, table: Any, allowed) -> Weighted:
+    if not isinstance(table, Mapping) or not table:
+        raise ScenarioError(f"{source}: {path} must be a table of choice = weight, e.g. {{ A320 = 2, 737 = 1 }}")
+    names, w = [], []
+    for k, v in table.items():
+        k = str(k)
+        if allowed is not None and k not in allowed:
+            raise ScenarioError(f"{source}: {path}: unknown choice '{k}'{did_you_mean(k, allowed)}; "
+                                f"allowed: {', '.join(map(str, allowed))}")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
+            raise ScenarioError(f"{source}: {path}.{k} = {v!r}: a weight must be a number >= 0")
+        names.append(k)
+        w.append(float(v))
+    total = sum(w)
+    if total <= 0:
+        raise ScenarioError(f"{source}: {path}: the weights sum to {total:g}; give at least one positive weight")
+    return Weighted(tuple(names), tuple(x / total for x in w))
+
+
+def _range(source: str, path: str, v: Any, lo: float, hi: float) -> tuple[float, float]:
+    if (not isinstance(v, list) or len(v) != 2 or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v)
+            or not lo <= v[0] <= v[1] <= hi):
+        raise ScenarioError(f"{source}: {path} = {v!r}: give [low, high] with {lo:g} <= low <= high <= {hi:g}")
+    return float(v[0]), float(v[1])
+
+
+@dataclass(frozen=True)
+class Family:
+    """A validated family (:func:`Family.from_toml`)."""
+
+    name: str
+    description: str
+    seed: int
+    aircraft: Weighted
+    pairs: tuple[tuple[str, str], ...]
+    airports: tuple[str, ...]
+    max_km: float
+    patch_probability: float
+    severity: Weighted
+    patch_s: tuple[float, float]
+    landing: Weighted
+    kind: Weighted
+    placement: Weighted
+    handled: Weighted
+    truck_s: tuple[float, float]
+    sensor: Weighted
+    text: str  # the file's text (what the dataset stores)
+    source: str = "<family>"
+
+    # ------------------------------------------------------------------ reading
+    @classmethod
+    def from_toml_text(cls, text: str, source: str = "<family>") -> Family:
+        import tomllib
+
+        from flightmode.labels import SEVERITIES
+        from flightmode.scenarios import airports as ap
+        from flightmode.scenarios.spec import SPEC
+        from flightmode.sim.flight.aircraft_profiles import PROFILES
+
+        try:
+            doc = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as e:
+            raise ScenarioError(f"{source}: not valid TOML: {e}") from None
+        for sec, table in doc.items():
+            if sec not in SECTIONS:
+                raise ScenarioError(f"{source}: unknown section [{sec}]{did_you_mean(sec, SECTIONS)}; "
+                                    f"sections: {', '.join(SECTIONS)}")
+            keys = SECTIONS[sec]
+            if keys is not None:
+                for k in table:
+                    if k not in keys:
+                        raise ScenarioError(f"{source}: unknown key [{sec}].{k}{did_you_mean(k, keys)}; "
+                                            f"keys: {', '.join(sorted(keys))}")
+        for sec in ("family", "aircraft", "routes"):
+            if sec not in doc:
+                raise ScenarioError(f"{source}: missing section [{sec}]")
+        fam = doc["family"]
+        for k in ("name", "seed"):
+            if k not in fam:
+                raise ScenarioError(f"{source}: missing key [family].{k}")
+        seed = fam["seed"]
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            raise ScenarioError(f"{source}: [family].seed = {seed!r}: must be an integer >= 0")
+        routes = doc["routes"]
+        pairs = []
+        for pr in routes.get("pairs", []):
+            if not (isinstance(pr, list) and len(pr) == 2 and all(isinstance(c, str) for c in pr)):
+                raise ScenarioError(f"{source}: [routes].pairs: {pr!r} is not a pair of ICAO codes like [\"LSGG\", \"EGLL\"]")
+            pairs.append((ap.airport(pr[0]).icao, ap.airport(pr[1]).icao))
+        airports_ = tuple(ap.airport(c).icao for c in routes.get("airports", []))
+        if not pairs and len(airports_) < 2:
+            raise ScenarioError(f"{source}: [routes] needs pairs, or at least two airports to pair at random")
+        max_km = routes.get("max_km", math.inf)
+        if isinstance(max_km, bool) or not isinstance(max_km, (int, float)) or max_km <= 0:
+            raise ScenarioError(f"{source}: [routes].max_km = {max_km!r}: must be a positive number of km")
+        turb, land, car, sen = (doc.get(k, {}) for k in ("turbulence", "landing", "carrier", "sensor"))
+        pp = turb.get("patch_probability", 0.0)
+        if isinstance(pp, bool) or not isinstance(pp, (int, float)) or not 0.0 <= pp <= 1.0:
+            raise ScenarioError(f"{source}: [turbulence].patch_probability = {pp!r}: must be within 0..1")
+        carrier_keys = SPEC["carrier"]
+        out = cls(
+            name=str(fam["name"]), description=str(fam.get("description", "")), seed=seed,
+            aircraft=_weighted(source, "[aircraft]", doc["aircraft"], sorted(PROFILES)),
+            pairs=tuple(pairs), airports=airports_, max_km=float(max_km), patch_probability=float(pp),
+            severity=_weighted(source, "[turbulence].severity", turb.get("severity", {"light": 1}), SEVERITIES[1:]),
+            patch_s=_range(source, "[turbulence].patch_s", turb.get("patch_s", [120, 600]), 1, 7200),
+            landing=_weighted(source, "[landing].quality", land.get("quality", {"normal": 1}),
+                              SPEC["landing"]["quality"].choices),
+            kind=_weighted(source, "[carrier].kind", car.get("kind", {"handbag": 1}), carrier_keys["kind"].choices),
+            placement=_weighted(source, "[carrier].placement", car.get("placement", {"under_seat": 1}),
+                                [p for p in carrier_keys["placement"].choices if p != "hold"]),
+            handled=_weighted(source, "[carrier].handled_in_cruise", car.get("handled_in_cruise", {"0": 1}),
+                              [str(n) for n in range(21)]),
+            truck_s=_range(source, "[carrier].truck_s", car.get("truck_s", [0, 0]), 0, 86400),
+            sensor=_weighted(source, "[sensor].preset", sen.get("preset", {"lis302dl-logged16": 1}),
+                             SPEC["sensor"]["preset"].choices),
+            text=text, source=source,
+        )
+        for t in out.aircraft.choices:  # every type with a positive weight needs a route it can fly
+            if out.aircraft.p[out.aircraft.choices.index(t)] > 0 and not out.routes_for(t):
+                raise ScenarioError(f"{source}: no route of [routes] suits the {t} (range "
+                                    f"{PROFILES[t].range_km:,.0f} km, runways of {PROFILES[t].min_runway_m:.0f} m); "
+                                    "add a pair it can fly or drop it from [aircraft]")
+        return out
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> Family:
+        p = Path(path)
+        try:
+            text = p.read_text(encoding="utf-8")
+        except OSError as e:
+            raise ScenarioError(f"cannot read family file {p}: {e.strerror}") from None
+        return cls.from_toml_text(text, str(p))
+
+    @classmethod
+    def builtin(cls, name: str) -> Family:
+        names = builtin_families()
+        if name not in names:
+            raise ScenarioError(f"unknown family '{name}'{did_you_mean(name, names)}; built-in families: "
+                                f"{', '.join(names)} (or give the path of a family .toml file)")
+        text = resources.files("flightmode.scenarios.families").joinpath(f"{name}.toml").read_text(encoding="utf-8")
+        return cls.from_toml_text(text, f"family '{name}'")
+
+    @classmethod
+    def resolve(cls, name_or_path: str | Path) -> Family:
+        p = Path(name_or_path)
+        if p.suffix == ".toml" or p.exists():
+            return cls.from_toml(p)
+        return cls.builtin(str(name_or_path))
+
+    def digest(self) -> str:
+        """SHA-256 of the family file's text: the family hash a dataset is tied to."""
+        return hashlib.sha256(self.text.encode("utf-8")).hexdigest()
+
+    # ------------------------------------------------------------------ routes
+    def routes_for(self, aircraft: str) -> list[tuple[str, str]]:
+        """The pairs (given, then every ordered pair of ``airports`` within ``max_km``) the type can fly."""
+        return _routes_for(self, aircraft)
+
+    # ------------------------------------------------------------------ members
+    def member(self, i: int):
+        """Member ``i`` (>= 0): a validated Scenario, the same in any process."""
+        from flightmode.scenarios.routes import scenario_between
+        from flightmode.scenarios.spec import route_length_m
+        from flightmode.streams import Streams
+
+        if isinstance(i, bool) or not isinstance(i, int) or i < 0:
+            raise ScenarioError(f"family member {i!r}: must be an integer >= 0")
+        s = Streams(self.seed).child(f"member/{i}")
+        aircraft = self.aircraft.draw(s.rng("aircraft"))
+        routes = self.routes_for(aircraft)
+        o, d = routes[int(s.rng("route").integers(len(routes)))]
+        sc = scenario_between(o, d, aircraft, seed=s.integer_seed("seed"))
+        changes: dict[str, Any] = {"name": f"{self.name}-{i:05d}"}
+        r = s.rng("turbulence")
+        if r.random() < self.patch_probability:
+            airborne_s = route_length_m(sc.plan) / (sc.plan.cruise_mach * 295.0)
+            latest = max(PATCH_START_S, airborne_s - PATCH_END_MARGIN_S - self.patch_s[1])
+            changes["turbulence"] = [{"start_s": round(float(r.uniform(PATCH_START_S, latest)), 1),
+                                      "duration_s": round(float(r.uniform(*self.patch_s)), 1),
+                                      "severity": self.severity.draw(r)}]
+        changes["landing"] = {"quality": self.landing.draw(s.rng("landing"))}
+        r = s.rng("carrier")
+        kind = self.kind.draw(r)
+        if kind == "parcel":
+            carrier = {"kind": "parcel", "placement": "hold", "truck_s": round(float(r.uniform(*self.truck_s)), 1)}
+        else:
+            carrier = {"kind": "handbag", "placement": self.placement.draw(r),
+                       "handled_in_cruise": int(self.handled.draw(r))}
+        changes["carrier"] = carrier
+        changes["sensor"] = {"preset": self.sensor.draw(s.rng("sensor"))}
+        return sc.replace(**changes)
+
+    def members(self, n: int, start: int = 0) -> Iterator:
+        for i in range(start, start + n):
+            yield self.member(i)
+
+
+@lru_cache(maxsize=64)
+def _routes_for(fam: Family, aircraft: str) -> list[tuple[str, str]]:
+    from flightmode.scenarios import airports as ap
+    from flightmode.scenarios.routes import MIN_ROUTE_M
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.geodesy import gc_distance_m
+
+    prof = get_profile(aircraft)
+    cands = list(fam.pairs) + [(a, b) for a in fam.airports for b in fam.airports if a != b]
+    out, seen = [], set()
+    for a, b in cands:
+        if (a, b) in seen:
+            continue
+        seen.add((a, b))
+        A, B = ap.airport(a), ap.airport(b)
+        dist = gc_distance_m(A.lat_deg, A.lon_deg, B.lat_deg, B.lon_deg)
+        given = (a, b) in fam.pairs
+        if dist < MIN_ROUTE_M or dist > prof.range_km * 1000.0 or (not given and dist > fam.max_km * 1000.0):
+            continue
+        if not ap.usable_ends(A, prof.min_runway_m) or not ap.usable_ends(B, prof.min_runway_m):
+            continue
+        out.append((a, b))
+    return out
+
+
+def builtin_families() -> list[str]:
+    lib = resources.files("flightmode.scenarios.families")
+    return sorted(p.name[:-5] for p in lib.iterdir() if p.name.endswith(".toml"))
+
+
+__all__ = ["Family", "Weighted", "builtin_families"]
