@@ -149,8 +149,13 @@ def airport(code: str) -> Airport:
     key = code.strip().upper()
     if key in world:
         return world[key]
-    big = [k for k, a in world.items() if a.kind in ("large_airport", "medium_airport")]
-    hint = did_you_mean(key, big) or did_you_mean(key, world)
+    import difflib
+
+    # the nearest codes by spelling, large airports first among them (LSGX: Geneva's LSGG before Grenchen's LSZG)
+    close = difflib.get_close_matches(key, list(world), n=8, cutoff=0.5)
+    rank = {"large_airport": 0, "medium_airport": 1}
+    close.sort(key=lambda k: rank.get(world[k].kind, 2))  # stable: spelling order within a kind
+    hint = f' (did you mean "{close[0]}"?)' if close else did_you_mean(key, world)
     raise ScenarioError(f"unknown airport '{code}'{hint}: give the ICAO code of an airport with a paved runway "
                         "(OurAirports ident, e.g. LSGG, EGLL, KJFK)")
 

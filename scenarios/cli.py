@@ -28,7 +28,6 @@ from rich.table import Table
 from rich.text import Text
 
 from flightmode.errors import FlightmodeError, ScenarioError
-from flightmode.units import FT_M
 
 DEFAULT_SCENARIO = "gva-lhr-a320"  # the same as flightmode.scenarios.scenario.DEFAULT_SCENARIO (tested)
 
@@ -290,9 +289,8 @@ def family_cmd(
     start: Annotated[int, typer.Option("--start", help="First member to show.")] = 0,
 ) -> None:
     """Validate a scenario family and print its first members (each a plain scenario)."""
-    from rich.table import Table
-
     from flightmode.scenarios.family import Family, builtin_families
+    from flightmode.units import FT_M
 
     try:
         fam = Family.resolve(family)
@@ -300,17 +298,16 @@ def family_cmd(
             raise ScenarioError("--show and --start must be >= 0")
         console.print(Text.assemble((fam.name, "bold"), f" (seed {fam.seed}, SHA-256 {fam.digest()[:12]}): "
                                     f"{fam.description}"), highlight=False)
-        table = Table("member", "aircraft", "route", "cruise", "turbulence", "landing", "carrier", "sensor", "seed")
         for i in range(start, start + show):
             m = fam.member(i)
             p, c = m.plan, m.carrier
-            turb = ", ".join(f"{t.severity} at {t.start_s / 60:.0f} min" for t in p.turbulence) or "-"
+            turb = ", ".join(f"{t.severity} {t.duration_s / 60:.0f} min at {t.start_s / 60:.0f} min" for t in p.turbulence)
             where = c.placement if c.kind == "handbag" else f"hold, {c.truck_s / 60:.0f} min by road"
             handled = f", handled x{c.handled_in_cruise}" if c.kind == "handbag" and c.handled_in_cruise else ""
-            table.add_row(str(i), m.aircraft, f"{p.origin.icao} {p.origin.name} -> {p.destination.icao} {p.destination.name}",
-                          f"FL{p.cruise_alt_m / FT_M / 100:.0f}", turb, p.landing_quality, f"{c.kind}, {where}{handled}",
-                          m.sensor.preset, str(m.seed))
-        console.print(table)
+            console.print(f"{i:>5}  {m.aircraft:<9} {p.origin.icao} {p.origin.name:<4} -> {p.destination.icao} "
+                          f"{p.destination.name:<4} FL{p.cruise_alt_m / FT_M / 100:03.0f}  turbulence: {turb or 'none'}; "
+                          f"landing {p.landing_quality}; {c.kind}, {where}{handled}; {m.sensor.preset}; seed {m.seed}",
+                          highlight=False, soft_wrap=True)
         console.print(f"built-in families: {', '.join(builtin_families())}", highlight=False)
     except FlightmodeError as e:
         _die(e)

@@ -1,0 +1,195 @@
+"""flightmode dataset on real Dask clusters: a LocalCluster, a SIGKILL mid-run and --resume, a real
+`dask scheduler` with two `dask worker` processes on 127.0.0.1, a failing flight, the dataset card's
+four loaders, and the one-line refusals."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from flightmode.scenarios.dataset import DatasetError, check_request, make_dataset, read_manifest
+
+# two short hops (about 50 min gate to gate, 12-15 s of wall time each)
+HOPS = """
+[family]
+name = "hops"
+description = "two short hops"
+seed = 5
+
+[aircraft]
+A320 = 1
+
+[routes]
+pairs = [["LSGG", "LSZH"], ["EHAM", "EBBR"]]
+
+[turbulence]
+patch_probability = 0.0
+"""
+N = 2
+
+
+def _files(root: Path) -> dict[str, str]:
+    """Every file under samples/ and truth/ (hidden temporary files included) -> SHA-256."""
+    out = {}
+    for part in ("samples", "truth"):
+        for p in sorted((root / part).rglob("*")):
+            if p.is_file():
+                out[str(p.relative_to(root))] = hashlib.sha256(p.read_bytes()).hexdigest()
+    return out
+
+
+def _manifest(root: Path):
+    import pyarrow.parquet as pq
+
+    return pq.read_table(root / "flights.parquet")
+
+
+@pytest.fixture(scope="module")
+def family_file(tmp_path_factory) -> Path:
+    p = tmp_path_factory.mktemp("family") / "hops.toml"
+    p.write_text(HOPS)
+    return p
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory, family_file) -> Path:
+    """The uninterrupted dataset, made through the API on a LocalCluster of two worker processes."""
+    out = tmp_path_factory.mktemp("ref") / "ds"
+    rows = make_dataset(str(family_file), N, out, workers=2)
+    assert sorted(rows) == list(range(N)) and all(r["status"] == "ok" for r in rows.values())
+    return out
+
+
+@pytest.mark.slow
+def test_sigkill_mid_run_then_resume_gives_the_uninterrupted_dataset(tmp_path, family_file, reference):
+    out = tmp_path / "ds"
+    cmd = ["flightmode", "dataset", str(family_file), "--n", str(N), "--out", str(out), "--workers", "1"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        t0 = time.monotonic()
+        while not read_manifest(out) if (out / "flights.parquet").exists() else True:
+            assert proc.poll() is None, "the command ended before its first flight was recorded"
+            assert time.monotonic() - t0 < 300, "no flight recorded in 300 s"
+            time.sleep(0.2)
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)  # the command and its cluster's processes, mid-run
+        proc.wait()
+    done = read_manifest(out)
+    assert 1 <= len(done) < N  # killed with the second flight on its way (one worker: one at a time)
+    subprocess.run([*cmd, "--resume"], check=True, capture_output=True)
+    assert not list(out.rglob(".*.tmp-*"))  # no half-written file left
+    assert _files(out) == _files(reference)  # exactly N flights, byte-identical files, no duplicate
+    assert _manifest(out).equals(_manifest(reference))
+    assert sorted(read_manifest(out)) == list(range(N))
+
+
+@pytest.mark.slow
+def test_a_scheduler_and_two_workers_on_localhost_give_the_same_dataset(tmp_path, family_file, reference):
+    sched_file = tmp_path / "scheduler.json"
+    procs = [subprocess.Popen(["dask", "scheduler", "--host", "127.0.0.1", "--port", "0", "--dashboard-address",
+                               "127.0.0.1:0", "--scheduler-file", str(sched_file)],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)]
+    try:
+        t0 = time.monotonic()
+        while not sched_file.exists():
+            assert time.monotonic() - t0 < 60, "dask scheduler did not start"
+            time.sleep(0.2)
+        time.sleep(0.2)  # the file is written whole before its address is used
+        address = json.loads(sched_file.read_text())["address"]
+        assert address.startswith("tcp://127.0.0.1:")
+        for _ in range(2):
+            procs.append(subprocess.Popen(["dask", "worker", address, "--nthreads", "1", "--host", "127.0.0.1",
+                                           "--no-dashboard", "--memory-limit", "0"],
+                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True))
+        out = tmp_path / "ds"
+        r = subprocess.run(["flightmode", "dataset", str(family_file), "--n", str(N), "--out", str(out),
+                            "--scheduler", address], capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stdout + r.stderr
+    finally:
+        for p in procs:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+    assert _files(out) == _files(reference)
+    assert _manifest(out).equals(_manifest(reference))
+
+
+@pytest.mark.slow
+def test_failed_flights_are_retried_once_and_recorded_without_stopping(tmp_path, family_file):
+    out = tmp_path / "ds"
+    # a wall-time limit no flight can meet: every flight fails, twice, and the dataset still completes
+    rows = make_dataset(str(family_file), N, out, workers=1, flight_timeout_s=0.3)
+    assert sorted(rows) == list(range(N))
+    for r in rows.values():
+        assert r["status"] == "failed" and r["attempts"] == 2
+        assert r["error"].startswith("FlightTimeoutError: flight") and "0.3 s wall-time limit" in r["error"]
+    m = read_manifest(out)
+    assert [m[i]["status"] for i in range(N)] == ["failed"] * N
+    assert not list((out / "samples").rglob("*.parquet")) if (out / "samples").exists() else True
+    assert "0 ok, 2 failed" in (out / "README.md").read_text()
+
+
+@pytest.mark.slow
+def test_the_card_documents_the_dataset_and_its_four_loaders_read_it(tmp_path, reference, monkeypatch):
+    monkeypatch.setenv("HF_DATASETS_CACHE", str(tmp_path / "hf"))
+    monkeypatch.setenv("HF_HUB_OFFLINE", "1")
+    card = (reference / "README.md").read_text()
+    manifest = read_manifest(reference)
+    total = sum(r["samples"] for r in manifest.values())
+    in_window = sum(r["samples_in_flight_window"] for r in manifest.values())
+    assert f"{N} ok, 0 failed" in card and f"samples: {total:,}" in card
+    for col in ("acc_x_g", "in_flight_window", "phase", "flight_id", "aircraft"):
+        assert f"`{col}`" in card
+    blocks = dict(zip(("pyarrow", "polars", "duckdb", "datasets"), re.findall(r"```python\n(.*?)```", card, re.S)))
+    assert len(blocks) == 4
+    got = {}
+    for name, code in blocks.items():
+        ns: dict = {}
+        exec(code, ns)  # noqa: S102  the card's own example, as a reader would paste it
+        got[name] = ns
+    assert got["pyarrow"]["table"].num_rows == in_window  # filtered on the label
+    assert got["polars"]["df"].shape[0] == total and "aircraft" in got["polars"]["df"].columns
+    assert got["duckdb"]["rows"] == [("A320", total)]
+    assert got["datasets"]["hf"].num_rows == total
+    # windows for learning: 10 s windows never straddle flights, the label follows the window's majority
+    import flightmode.datasets as fd
+
+    w = list(fd.windows(reference, 10.0))
+    assert {fid for _, _, fid in w} == {"000000", "000001"}
+    x, y, _ = w[0]
+    assert x.shape == (1000, 3) and y is False  # 100 Hz; the first 10 s: a walk in the terminal
+
+
+def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_file):
+    out = tmp_path / "ds"
+    with pytest.raises(DatasetError, match=r"--n 0: the number of flights must be a positive integer"):
+        check_request(str(family_file), 0, out)
+    with pytest.raises(DatasetError, match=r"--truth '5hz': choose one of full, 10hz, none"):
+        check_request(str(family_file), 2, out, truth="5hz")
+    with pytest.raises(DatasetError, match=r"does not answer"):
+        make_dataset(str(family_file), 2, out, scheduler="tcp://127.0.0.1:9")  # discard port: nothing listens
+    assert not out.exists()
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "notes.txt").write_text("mine")
+    with pytest.raises(DatasetError, match="holds no flightmode dataset"):
+        check_request(str(family_file), 2, other)
+    # a folder of another family's dataset: refused even with --resume
+    theirs = tmp_path / "theirs"
+    theirs.mkdir()
+    (theirs / "family.toml").write_text(HOPS.replace("seed = 5", "seed = 6"))
+    with pytest.raises(DatasetError, match="already holds a dataset: pass --resume"):
+        check_request(str(family_file), 2, theirs)
+    with pytest.raises(DatasetError, match="another family"):
+        check_request(str(family_file), 2, theirs, resume=True)
+    r = subprocess.run([sys.executable, "-m", "flightmode.scenarios.cli", "dataset", str(family_file), "--n", "0",
+                        "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 2 and r.stderr.strip().splitlines() == ["error: --n 0: the number of flights must be a positive integer"]
