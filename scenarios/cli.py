@@ -323,6 +323,7 @@ def dataset_cmd(
     resume: Annotated[bool, typer.Option("--resume", help="Continue a dataset of the same family in OUT.")] = False,
     truth: Annotated[str, typer.Option("--truth", help="Aircraft state files: full (every FDM step), 10hz or none.")] = "10hz",
     flight_timeout_s: Annotated[Optional[float], typer.Option("--flight-timeout-s", help="Fail a flight that runs longer than this (wall s).")] = None,
+    rrd: Annotated[bool, typer.Option("--rrd", help="Also write each flight's Rerun recording (DIR/rrd/).")] = False,
 ) -> None:
     """Generate a labelled dataset of a family's first N flights on Dask (see flightmode.scenarios.dataset)."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
@@ -330,7 +331,8 @@ def dataset_cmd(
     from flightmode.scenarios.dataset import check_request, make_dataset
 
     try:
-        check_request(family, n, out, workers=workers, resume=resume, truth=truth, flight_timeout_s=flight_timeout_s)
+        check_request(family, n, out, workers=workers, resume=resume, truth=truth, flight_timeout_s=flight_timeout_s,
+                      rrd=rrd)
         with Progress(TextColumn("[progress.description]{task.description}"), BarColumn(), MofNCompleteColumn(),
                       TextColumn("{task.fields[hours]:.1f} flight-h, {task.fields[failed]} failed"),
                       TimeElapsedColumn(), TimeRemainingColumn(), console=console) as progress:
@@ -350,7 +352,7 @@ def dataset_cmd(
                     progress.console.print(f"flight {row['flight_id']} failed: {row['error']}", highlight=False)
 
             rows = make_dataset(family, n, out, workers=workers, scheduler=scheduler, resume=resume, truth=truth,
-                                flight_timeout_s=flight_timeout_s, on_start=on_start, on_flight=on_flight)
+                                flight_timeout_s=flight_timeout_s, rrd=rrd, on_start=on_start, on_flight=on_flight)
         ok = sum(r["status"] == "ok" for r in rows.values() if r["index"] < n)
         console.print(Text.assemble("wrote ", (str(out), "bold"), f": {ok} flights ok, {n - ok} failed; "
                                     "manifest flights.parquet, card README.md"), highlight=False)

@@ -11,6 +11,7 @@ read it as it is)::
     DIR/flights.parquet                              the manifest: one row per flight (MANIFEST_FIELDS)
     DIR/samples/aircraft=<type>/part-<id>.parquet    the accelerometer stream with every label
     DIR/truth/aircraft=<type>/part-<id>.parquet      the aircraft's state (--truth full | 10hz | none)
+    DIR/rrd/aircraft=<type>/part-<id>.rrd            with --rrd: the Rerun recording, for offline replay
     DIR/README.md                                    the dataset card
     DIR/timings.jsonl                                wall time and peak memory per flight (not data)
 
@@ -52,9 +53,10 @@ class FlightTimeoutError(FlightmodeError):
 class Options:
     truth: str = "10hz"
     flight_timeout_s: float | None = None
+    rrd: bool = False  # also a Rerun recording per flight (DIR/rrd/...; not byte-identical across runs)
 
     def as_dict(self) -> dict[str, Any]:
-        return {"truth": self.truth, "flight_timeout_s": self.flight_timeout_s}
+        return {"truth": self.truth, "flight_timeout_s": self.flight_timeout_s, "rrd": self.rrd}
 
 
 # ---------------------------------------------------------------------- files
@@ -124,6 +126,17 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         truth = truth.append_column("flight_id", pa.array(np.full(truth.num_rows, fid)))
         files["truth"] = f"truth/{part}"
         _atomic_parquet(truth, out / files["truth"])
+    if options.get("rrd"):
+        import shutil
+        import tempfile
+
+        # the run folder's recording (pipeline.write), moved into place; its scratch folder removed
+        with tempfile.TemporaryDirectory(prefix=f".rrd-{fid}-", dir=out) as scratch:
+            written = pipeline.write(Path(scratch), r, rrd=True)
+            dest = out / "rrd" / f"aircraft={sc.aircraft}" / f"part-{fid}.rrd"
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            shutil.move(str(written["rrd"]), dest)
+        files["rrd"] = str(dest.relative_to(out))
     tr, rec, det = r.track, r.recording, r.detection
     dt = 1.0 / tr.fs_hz
     phase_s = np.bincount(tr.phase_code, minlength=len(PHASES)) * dt
@@ -148,6 +161,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         "detector_in_flight_checks": det.in_flight_checks,
         "samples_file": files["samples"], "samples_sha256": _sha256(out / files["samples"]),
         "truth_file": files.get("truth"), "truth_sha256": _sha256(out / files["truth"]) if "truth" in files else None,
+        "rrd_file": files.get("rrd"),
     }
     row["wall_s"] = time.perf_counter() - t0
     row["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
@@ -208,7 +222,7 @@ def _check_folder(out: Path, fam, options: Options, resume: bool) -> None:
         info = json.loads(meta.read_text()) if meta.exists() else {}
         if info.get("options") not in (None, options.as_dict()):
             raise DatasetError(f"{out} was made with options {info.get('options')}, not {options.as_dict()}: "
-                               "resume with the same --truth and --flight-timeout-s")
+                               "resume with the same --truth, --flight-timeout-s and --rrd")
 
 
 def _claim_folder(out: Path, fam, options: Options) -> None:
@@ -243,7 +257,7 @@ def _client(workers: int, scheduler: str | None):
 
 
 def check_request(family, n: int, out: str | Path, *, workers: int = 2, resume: bool = False, truth: str = "10hz",
-                  flight_timeout_s: float | None = None):
+                  flight_timeout_s: float | None = None, rrd: bool = False):
     """(family, options, out folder) of a valid request; a :class:`DatasetError` (or ScenarioError for the
     family) naming what is wrong otherwise. Writes nothing."""
     from flightmode.scenarios.family import Family
@@ -257,14 +271,14 @@ def check_request(family, n: int, out: str | Path, *, workers: int = 2, resume: 
         raise DatasetError(f"--workers {workers!r}: must be a positive integer")
     if flight_timeout_s is not None and not flight_timeout_s > 0:
         raise DatasetError(f"--flight-timeout-s {flight_timeout_s!r}: must be positive")
-    options = Options(truth, flight_timeout_s)
+    options = Options(truth, flight_timeout_s, bool(rrd))
     out = Path(out)
     _check_folder(out, fam, options, resume)
     return fam, options, out
 
 
 def make_dataset(family, n: int, out: str | Path, *, workers: int = 2, scheduler: str | None = None,
-                 resume: bool = False, truth: str = "10hz", flight_timeout_s: float | None = None,
+                 resume: bool = False, truth: str = "10hz", flight_timeout_s: float | None = None, rrd: bool = False,
                  on_start: Callable[[str | None, int], None] | None = None,
                  on_flight: Callable[[dict], None] | None = None) -> dict[int, dict]:
     """Make (or, with ``resume``, complete) the dataset of the family's members 0..n-1 in ``out``;
@@ -273,7 +287,7 @@ def make_dataset(family, n: int, out: str | Path, *, workers: int = 2, scheduler
     from dask.distributed import as_completed
 
     fam, options, out = check_request(family, n, out, workers=workers, resume=resume, truth=truth,
-                                      flight_timeout_s=flight_timeout_s)
+                                      flight_timeout_s=flight_timeout_s, rrd=rrd)
     client, cluster = _client(workers, scheduler)  # before writing: a dead scheduler leaves nothing behind
     try:
         _claim_folder(out, fam, options)

@@ -33,6 +33,9 @@ another choice's numbers. A family file (``flightmode family FILE --show 5``):
     placement = { under_seat = 5, overhead_bin = 3 }   # a handbag's
     handled_in_cruise = { 0 = 6, 1 = 3, 2 = 1 }
     truck_s = [0, 0]                # a parcel's road legs, uniform (s)
+    terminal_walk_s = [60, 600]     # a handbag's walks and wait, uniform (s); absent: the defaults
+    gate_walk_s = [30, 300]
+    gate_rest_s = [300, 2400]
 
     [sensor]
     preset = { lis302dl-logged16 = 1 }
@@ -60,7 +63,7 @@ SECTIONS = {
     "routes": {"pairs", "airports", "max_km"},
     "turbulence": {"patch_probability", "severity", "patch_s"},
     "landing": {"quality"},
-    "carrier": {"kind", "placement", "handled_in_cruise", "truck_s"},
+    "carrier": {"kind", "placement", "handled_in_cruise", "truck_s", "terminal_walk_s", "gate_walk_s", "gate_rest_s"},
     "sensor": {"preset"},
 }
 PATCH_START_S = 900.0  # a patch starts at least 15 min after liftoff and ends 20 min before the descent
@@ -123,6 +126,7 @@ class Family:
     placement: Weighted
     handled: Weighted
     truck_s: tuple[float, float]
+    walks: tuple[tuple[str, tuple[float, float]], ...]  # (carrier key, uniform range) for a handbag
     sensor: Weighted
     text: str  # the file's text (what the dataset stores)
     source: str = "<family>"
@@ -192,6 +196,8 @@ class Family:
             handled=_weighted(source, "[carrier].handled_in_cruise", car.get("handled_in_cruise", {"0": 1}),
                               [str(n) for n in range(21)]),
             truck_s=_range(source, "[carrier].truck_s", car.get("truck_s", [0, 0]), 0, 86400),
+            walks=tuple((k, _range(source, f"[carrier].{k}", car[k], 0, 86400))
+                        for k in ("terminal_walk_s", "gate_walk_s", "gate_rest_s") if k in car),
             sensor=_weighted(source, "[sensor].preset", sen.get("preset", {"lis302dl-logged16": 1}),
                              SPEC["sensor"]["preset"].choices),
             text=text, source=source,
@@ -267,6 +273,7 @@ class Family:
         else:
             carrier = {"kind": "handbag", "placement": self.placement.draw(r),
                        "handled_in_cruise": int(self.handled.draw(r))}
+            carrier |= {k: round(float(r.uniform(*lim)), 1) for k, lim in self.walks}
         changes["carrier"] = carrier
         changes["sensor"] = {"preset": self.sensor.draw(s.rng("sensor"))}
         return sc.replace(**changes)

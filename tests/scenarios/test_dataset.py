@@ -193,3 +193,18 @@ def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_fil
     r = subprocess.run([sys.executable, "-m", "flightmode.scenarios.cli", "dataset", str(family_file), "--n", "0",
                         "--out", str(out)], capture_output=True, text=True)
     assert r.returncode == 2 and r.stderr.strip().splitlines() == ["error: --n 0: the number of flights must be a positive integer"]
+
+
+@pytest.mark.slow
+def test_rrd_option_writes_each_flights_recording_for_offline_replay(tmp_path, family_file):
+    from rerun.chunk import RrdReader
+
+    from flightmode.scenarios.dataset import fly_member
+    from flightmode.scenarios.family import Family
+
+    row = fly_member(family_file.read_text(), 1, str(tmp_path), {"truth": "none", "flight_timeout_s": None, "rrd": True})
+    assert row["rrd_file"] == "rrd/aircraft=A320/part-000001.rrd" and row["truth_file"] is None
+    rec = RrdReader(tmp_path / row["rrd_file"]).recordings()[0]
+    # the recording is the member's run (its run id: name and seed), and no scratch folder is left
+    assert rec.recording_id == Family.from_toml(family_file).member(1).run_id
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rrd", "samples"]
