@@ -90,7 +90,11 @@ def evaluate(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, params: DetectorP
              sigma2: np.ndarray) -> Evaluation:
     """Run the detector over a labelled stream and score it (module docstring)."""
     _check_labels(t_s, acc_g, labels)
-    c = detect(t_s, acc_g, params, sigma2)
+    return score(detect(t_s, acc_g, params, sigma2), t_s, labels, params, sigma2)
+
+
+def score(c: Checks, t_s: np.ndarray, labels: dict, params: DetectorParams, sigma2: np.ndarray) -> Evaluation:
+    """Score the detector's checks ``c`` over the stream against its labels (module docstring)."""
     window = np.asarray(labels["in_flight_window"], bool)
     static = np.asarray(labels["sensor_static"], bool)
     phase = np.asarray(labels["phase"], dtype=object)

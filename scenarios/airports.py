@@ -155,20 +155,21 @@ def airport(code: str) -> Airport:
     close = difflib.get_close_matches(key, list(world), n=8, cutoff=0.5)
     rank = {"large_airport": 0, "medium_airport": 1}
     close.sort(key=lambda k: rank.get(world[k].kind, 2))  # stable: spelling order within a kind
-    hint = f' (did you mean "{close[0]}"?)' if close else did_you_mean(key, world)
+    hint = f' (did you mean "{close[0]}"?)' if close else ""
     raise ScenarioError(f"unknown airport '{code}'{hint}: give the ICAO code of an airport with a paved runway "
                         "(OurAirports ident, e.g. LSGG, EGLL, KJFK)")
 
 
-def usable_ends(ap: Airport, min_length_m: float) -> list[RunwayEnd]:
-    """The ends of ``ap`` long enough for a type that needs ``min_length_m`` (to take off and land)."""
-    return [e for e in ap.runways if e.landing_length_m >= min_length_m]
+def usable_ends(ap: Airport, min_length_m: float, landing: bool = True) -> list[RunwayEnd]:
+    """The ends of ``ap`` long enough for a type that needs ``min_length_m``: to land (the length past
+    a displaced threshold), or to take off (``landing`` False: the whole strip)."""
+    return [e for e in ap.runways if (e.landing_length_m if landing else e.length_m) >= min_length_m]
 
 
-def pick_end(ap: Airport, min_length_m: float, wind_from_deg: float, aircraft: str) -> RunwayEnd:
+def pick_end(ap: Airport, min_length_m: float, wind_from_deg: float, aircraft: str, landing: bool = True) -> RunwayEnd:
     """The runway end in use with the surface wind blowing from ``wind_from_deg``: the usable end with
-    the most headwind (into wind, as ICAO Doc 4444 7.2 prefers), the longest among equals."""
-    ok = usable_ends(ap, min_length_m)
+    the most headwind (into wind, as ICAO Doc 4444 7.2 prefers), the longest usable among equals."""
+    ok = usable_ends(ap, min_length_m, landing)
     if not ok:
         raise ScenarioError(
             f"airport {ap.icao} ({ap.name}) has no paved runway of {min_length_m:.0f} m for the {aircraft} "
@@ -176,7 +177,7 @@ def pick_end(ap: Airport, min_length_m: float, wind_from_deg: float, aircraft: s
 
     def score(e: RunwayEnd) -> tuple[float, float]:
         head = math.cos(math.radians(wind_from_deg - e.heading_deg))
-        return round(head, 6), e.length_m
+        return round(head, 6), e.landing_length_m if landing else e.length_m
 
     return max(ok, key=score)
 
@@ -186,9 +187,30 @@ def nearest_usable(lat_deg: float, lon_deg: float, min_length_m: float, n: int =
     from flightmode.sim.flight.geodesy import great_circle_distance_m
 
     cands = [a for a in _world().values() if a.kind in ("large_airport", "medium_airport")
-             and any(e.landing_length_m >= min_length_m for e in a.runways)]
+             and usable_ends(a, min_length_m)]
     cands.sort(key=lambda a: float(great_circle_distance_m(lat_deg, lon_deg, a.lat_deg, a.lon_deg)))
     return [a.icao for a in cands[:n]]
 
 
-__all__ = ["Airport", "RunwayEnd", "airport", "airports", "pick_end", "usable_ends", "nearest_usable"]
+def runway_keys(icao: str, runway: str, landing: bool) -> dict[str, float]:
+    """A scenario's ``[origin]`` (``landing`` False: the take-off end, the whole length) or
+    ``[destination]`` (True: the displaced landing threshold, the landing length) runway keys, from
+    OurAirports; a :class:`ScenarioError` naming the airport's runways if ``runway`` is not one."""
+    from flightmode.sim.flight.geodesy import destination_point
+
+    a = airport(icao)
+    ends = {e.ident: e for e in a.runways}
+    e = ends.get(str(runway).strip().upper())
+    if e is None:
+        raise ScenarioError(f"airport {a.icao} has no paved, open runway '{runway}'{did_you_mean(str(runway), ends)}; "
+                            f"its runways: {', '.join(sorted(ends))} (OurAirports)")
+    lat, lon, length = e.lat_deg, e.lon_deg, e.length_m
+    if landing:
+        lat, lon = destination_point(e.lat_deg, e.lon_deg, e.heading_deg, e.displaced_m)
+        length = e.landing_length_m
+    return {"threshold_lat_deg": round(float(lat), 7), "threshold_lon_deg": round(float(lon), 7),
+            "elevation_m": round(e.elevation_m, 1), "heading_deg": round(e.heading_deg, 2),
+            "length_m": round(length, 1), "width_m": round(min(max(e.width_m, 20.0), 100.0), 1)}
+
+
+__all__ = ["Airport", "RunwayEnd", "airport", "airports", "pick_end", "usable_ends", "nearest_usable", "runway_keys"]

@@ -104,7 +104,7 @@ def _estimate_duration_s(plan) -> float:
 
 @app.command("fly")
 def fly_cmd(
-    scenario: Annotated[str, typer.Argument(help="Built-in scenario name or path to a .toml file.")] = DEFAULT_SCENARIO,
+    scenario: Annotated[Optional[str], typer.Argument(help=f"Built-in scenario name or path to a .toml file (default {DEFAULT_SCENARIO}).")] = None,
     seed: Annotated[Optional[int], typer.Option("--seed", help="Override the scenario's seed.")] = None,
     out: Annotated[Path, typer.Option("--out", help="Output folder; the run goes to OUT/<scenario>-s<seed>/.")] = Path(
         "runs"
@@ -130,13 +130,15 @@ def fly_cmd(
             if None in pair:
                 raise ScenarioError("--from, --to and --aircraft go together: give all three "
                                     "(e.g. --from LFPG --to LEMD --aircraft A320)")
+            if scenario is not None:
+                raise ScenarioError(f"give a scenario ({scenario}) or --from/--to/--aircraft, not both")
             from flightmode.scenarios.routes import scenario_between
 
             sc = scenario_between(origin, destination, aircraft, seed=1 if seed is None else seed)
         else:
-            sc = Scenario.resolve(scenario)
-        if seed is not None:
-            sc = sc.replace(seed=seed)
+            sc = Scenario.resolve(DEFAULT_SCENARIO if scenario is None else scenario)
+            if seed is not None:
+                sc = sc.replace(seed=seed)
         console.print(Text.assemble((sc.name, "bold"), f" seed {sc.seed}: {sc.description}"), highlight=False)
         total = _estimate_duration_s(sc.plan)
         with Progress(
@@ -356,6 +358,82 @@ def dataset_cmd(
         ok = sum(r["status"] == "ok" for r in rows.values() if r["index"] < n)
         console.print(Text.assemble("wrote ", (str(out), "bold"), f": {ok} flights ok, {n - ok} failed; "
                                     "manifest flights.parquet, card README.md"), highlight=False)
+    except FlightmodeError as e:
+        _die(e)
+
+
+def _axis(text: str, name: str) -> tuple[float, ...]:
+    """``2,3,4`` or ``start:stop:step`` (stop included) as floats; a ScenarioError naming the option."""
+    import numpy as np
+
+    try:
+        if ":" in text:
+            a, b, c = (float(x) for x in text.split(":"))
+            if not c > 0 or b < a:
+                raise ValueError
+            return tuple(round(float(v), 10) for v in np.arange(a, b + c / 2, c))
+        return tuple(float(x) for x in text.split(",") if x.strip())
+    except ValueError:
+        raise ScenarioError(f"{name} {text!r}: give values as 2,3,4 or a range start:stop:step") from None
+
+
+@app.command("sweep")
+def sweep_cmd(
+    dataset: Annotated[Path, typer.Argument(help="A dataset folder made by `flightmode dataset`.")],
+    method: Annotated[str, typer.Option("--method", help="nmv, emv or nmv,emv.")] = "nmv",
+    weight: Annotated[str, typer.Option("--weight", help="EMV weighting factors, e.g. 1,5,10.")] = "1",
+    window_s: Annotated[str, typer.Option("--window-s", help="Windows W_s, s (list or start:stop:step).")] = "1",
+    k: Annotated[str, typer.Option("--k", help="Amplitude thresholds T_sigma = k sigma^2.")] = "2:8:0.5",
+    time_threshold_s: Annotated[str, typer.Option("--time-threshold-s", help="Time thresholds T_th, s.")] = "1:8:1",
+    sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (each unit's bench calibration) or rest.")] = "preset",
+    workers: Annotated[int, typer.Option("--workers", help="Dask worker processes (1: in this process).")] = 1,
+    out: Annotated[Optional[Path], typer.Option("--out", help="Where to write the rows (default DATASET/sweep.parquet).")] = None,
+    confidence: Annotated[float, typer.Option("--confidence", help="Confidence of the upper bounds.")] = 0.95,
+    target_fa_per_h: Annotated[float, typer.Option("--target-fa-per-h", help="Target false statics per flight-hour.")] = 1e-4,
+    top: Annotated[int, typer.Option("--top", help="Grid points to print.")] = 10,
+) -> None:
+    """Evaluate a grid of detector parameters over every flight of a dataset (each moving variance
+    computed once); print the best points with exact upper bounds on the false-static rate."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from flightmode.detector.grid import Grid
+    from flightmode.scenarios.sweep import summarise, sweep
+
+    try:
+        methods = [m.strip() for m in method.split(",") if m.strip()]
+        weights = _axis(weight, "--weight")
+        pairs = tuple((m, w) for m in methods for w in (weights if m == "emv" else (1.0,)))
+        grid = Grid(pairs, _axis(window_s, "--window-s"), _axis(k, "--k"), _axis(time_threshold_s, "--time-threshold-s"))
+        if not target_fa_per_h > 0:
+            raise ScenarioError(f"--target-fa-per-h {target_fa_per_h!r}: must be > 0")
+        out = Path(dataset) / "sweep.parquet" if out is None else out
+        from flightmode.scenarios.dataset import read_manifest
+
+        n_ok = sum(r["status"] == "ok" for r in read_manifest(Path(dataset)).values()) if (Path(dataset) / "flights.parquet").exists() else 0
+        with Progress(TextColumn("sweeping"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                      console=console) as progress:
+            task = progress.add_task("sweep", total=n_ok)
+            table, failed = sweep(dataset, grid, sigma2_from=sigma2_from, workers=workers, out=out,
+                                  on_flight=lambda fid: progress.update(task, advance=1))
+        if failed:
+            console.print(f"excluded: {len(failed)} failed flight(s) of the dataset ({', '.join(r['flight_id'] for r in failed[:10])})",
+                          highlight=False)
+        rows = summarise(table, confidence, target_fa_per_h)
+        rows.sort(key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"], -r["availability"]))
+        t = Table("method", "W_s", "k", "T_th s", "false statics", "in-window h", f"{confidence:.0%} bound /h",
+                  "response p50/p95/max s", "availability", "h needed")
+        shown = rows[:top]
+        rec = [r for r in rows if (r["method"], r["window_s"], r["k"], r["time_threshold_s"]) == ("nmv", 1.0, 4.0, 4.0)]
+        for r in shown + [r for r in rec if r not in shown]:
+            name = r["method"] + (f" w{r['weight']:g}" if r["method"] == "emv" else "")
+            t.add_row(name + (" (seed 000)" if r in rec else ""), f"{r['window_s']:g}", f"{r['k']:g}",
+                      f"{r['time_threshold_s']:g}", str(r["false_statics"]), f"{r['in_window_h']:.1f}",
+                      f"{r['rate_upper_per_h']:.3g}",
+                      f"{r['response_p50_s']:.1f}/{r['response_p95_s']:.1f}/{r['response_max_s']:.1f}",
+                      f"{r['availability']:.3f}", f"{r['hours_needed']:,.0f}")
+        console.print(t)
+        console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {table.num_rows // max(1, len(grid))} flights) "
+                      f"written to {out}", highlight=False)
     except FlightmodeError as e:
         _die(e)
 

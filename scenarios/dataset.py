@@ -8,7 +8,7 @@ Layout (hive-partitioned Parquet, zstd; pyarrow.dataset, polars, DuckDB and Hugg
 read it as it is)::
 
     DIR/family.toml                                  the family, as given (its SHA-256 ties DIR to it)
-    DIR/flights.parquet                              the manifest: one row per flight (MANIFEST_FIELDS)
+    DIR/flights.parquet                              the manifest: one row per flight (manifest_schema)
     DIR/samples/aircraft=<type>/part-<id>.parquet    the accelerometer stream with every label
     DIR/truth/aircraft=<type>/part-<id>.parquet      the aircraft's state (--truth full | 10hz | none)
     DIR/rrd/aircraft=<type>/part-<id>.rrd            with --rrd: the Rerun recording, for offline replay
@@ -25,6 +25,7 @@ once, then recorded in the manifest with its error; it never stops the dataset.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -58,6 +59,10 @@ class Options:
     def as_dict(self) -> dict[str, Any]:
         return {"truth": self.truth, "flight_timeout_s": self.flight_timeout_s, "rrd": self.rrd}
 
+    def files_dict(self) -> dict[str, Any]:
+        """The options that change what is written (a resume must keep them; the time limit may change)."""
+        return {"truth": self.truth, "rrd": self.rrd}
+
 
 # ---------------------------------------------------------------------- files
 def _sha256(path: Path) -> str:
@@ -68,17 +73,23 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
+def _tmp_name(path: Path) -> Path:
+    import uuid
+
+    return path.with_name(f".{path.name}.tmp-{os.getpid()}-{uuid.uuid4().hex[:8]}")
+
+
 def _atomic_parquet(table, path: Path) -> None:
     import pyarrow.parquet as pq
 
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    tmp = _tmp_name(path)
     pq.write_table(table, tmp, compression="zstd")
     os.replace(tmp, path)
 
 
 def _atomic_text(text: str, path: Path) -> None:
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    tmp = _tmp_name(path)
     tmp.write_text(text, encoding="utf-8")
     os.replace(tmp, path)
 
@@ -107,8 +118,8 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
 
     def watchdog(t_s: float, phase: str) -> None:
         if limit is not None and time.perf_counter() - t0 > limit:
-            raise FlightTimeoutError(f"flight {flight_id(i)} exceeded the {limit:g} s wall-time limit "
-                                     f"(simulated {t_s / 60:.0f} min, phase {phase}); raise --flight-timeout-s")
+            raise FlightTimeoutError(f"flight {flight_id(i)} exceeded the {limit:g} s wall-time limit while "
+                                     f"flying; raise --flight-timeout-s and --resume")
 
     r = pipeline.run(sc, stages=("fly", "sense", "detect"), progress=watchdog)
     fid = flight_id(i)
@@ -131,7 +142,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         import tempfile
 
         # the run folder's recording (pipeline.write), moved into place; its scratch folder removed
-        with tempfile.TemporaryDirectory(prefix=f".rrd-{fid}-", dir=out) as scratch:
+        with tempfile.TemporaryDirectory(prefix=f".rrd-{fid}.tmp-", dir=out) as scratch:
             written = pipeline.write(Path(scratch), r, rrd=True)
             dest = out / "rrd" / f"aircraft={sc.aircraft}" / f"part-{fid}.rrd"
             dest.parent.mkdir(parents=True, exist_ok=True)
@@ -169,10 +180,28 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
 
 
 def _failed_row(fam, i: int, error: str, attempts: int) -> dict:
-    sc = fam.member(i)
-    return {"flight_id": flight_id(i), "index": i, "status": "failed", "error": error, "attempts": attempts,
-            "name": sc.name, "seed": sc.seed, "aircraft": sc.aircraft, "origin": sc.plan.origin.icao,
-            "destination": sc.plan.destination.icao, "scenario_sha256": sc.digest(), "scenario_toml": sc.to_toml()}
+    row = {"flight_id": flight_id(i), "index": i, "status": "failed", "error": error, "attempts": attempts}
+    try:
+        sc = fam.member(i)
+    except Exception:  # noqa: BLE001  the member itself is what failed: the error says so
+        return row
+    return row | {"name": sc.name, "seed": sc.seed, "aircraft": sc.aircraft, "origin": sc.plan.origin.icao,
+                  "destination": sc.plan.destination.icao, "scenario_sha256": sc.digest(),
+                  "scenario_toml": sc.to_toml()}
+
+
+def _remove_flight_files(out: Path, i: int) -> None:
+    """A failed flight leaves no file: a loader reading the folders would take it for data."""
+    for part in ("samples", "truth", "rrd"):
+        for p in (out / part).glob(f"aircraft=*/part-{flight_id(i)}.*"):
+            p.unlink(missing_ok=True)
+
+
+def _error_text(e: BaseException) -> str:
+    """What the manifest records of a failure: flightmode's own message (it names the flight's problem
+    and depends on nothing but the flight), else only the exception's type (a worker's death names
+    the worker's address and time: those go to timings.jsonl, not into the data)."""
+    return f"{type(e).__name__}: {e}" if isinstance(e, FlightmodeError) else type(e).__name__
 
 
 # ---------------------------------------------------------------------- the manifest
@@ -188,23 +217,37 @@ def read_manifest(out: Path) -> dict[int, dict]:
     return {int(r["index"]): r for r in pq.read_table(p).to_pylist()}
 
 
-def _write_manifest(out: Path, rows: dict[int, dict]) -> None:
+def manifest_schema():
+    """The manifest's columns and types, whatever the flights' outcomes (a manifest of failures only
+    has every column, null where a failed flight has no value)."""
     import pyarrow as pa
 
     from flightmode.labels import PHASES
 
-    ok = [r for r in rows.values() if r["status"] == "ok"]
-    keys = list(ok[0]) if ok else list(next(iter(rows.values())))
-    for p in PHASES:  # a manifest of failures only still has every column
-        if f"phase_{p}_s" not in keys:
-            keys.append(f"phase_{p}_s")
+    f64, i64, s = pa.float64(), pa.int64(), pa.string()
+    fields = [("flight_id", s), ("index", i64), ("status", s), ("error", s), ("attempts", i64), ("name", s),
+              ("seed", i64), ("aircraft", s), ("origin", s), ("destination", s), ("scenario_sha256", s),
+              ("scenario_toml", s), ("gate_to_gate_s", f64), ("airborne_s", f64),
+              *((f"phase_{p}_s", f64) for p in PHASES),
+              ("samples", i64), ("samples_in_flight_window", i64), ("samples_airborne", i64), ("samples_static", i64),
+              ("turbulence", s), ("landing_quality", s), ("placement", s), ("carrier_kind", s), ("sensor_preset", s),
+              ("touchdown_sink_mps", f64), ("detector_false_static_count", i64), ("detector_false_static_s", f64),
+              ("detector_response_s", f64), ("detector_in_flight_checks", i64), ("samples_file", s),
+              ("samples_sha256", s), ("truth_file", s), ("truth_sha256", s), ("rrd_file", s)]
+    return pa.schema(fields)
+
+
+def _write_manifest(out: Path, rows: dict[int, dict]) -> None:
+    import pyarrow as pa
+
+    schema = manifest_schema()
     ordered = [rows[i] for i in sorted(rows)]
-    cols = {k: [r.get(k) for r in ordered] for k in keys if k not in TIMING_KEYS}
-    _atomic_parquet(pa.table(cols), Path(out) / MANIFEST)
+    table = pa.Table.from_pylist([{k: r.get(k) for k in schema.names} for r in ordered], schema=schema)
+    _atomic_parquet(table, Path(out) / MANIFEST)
 
 
 # ---------------------------------------------------------------------- the folder
-def _check_folder(out: Path, fam, options: Options, resume: bool) -> None:
+def _check_folder(out: Path, fam, options: Options, resume: bool, n: int) -> None:
     """Refuse a folder holding another dataset (or any dataset without --resume); reads only."""
     marker = out / "family.toml"
     meta = out / "dataset.json"
@@ -213,23 +256,33 @@ def _check_folder(out: Path, fam, options: Options, resume: bool) -> None:
     if out.exists() and any(out.iterdir()):
         if not marker.exists():
             raise DatasetError(f"{out} is not empty and holds no flightmode dataset: choose an empty or new --out")
-        if not resume:
-            raise DatasetError(f"{out} already holds a dataset: pass --resume to continue it, or choose another --out")
         have = hashlib.sha256(marker.read_bytes()).hexdigest()
         if have != fam.digest():
             raise DatasetError(f"{out} holds a dataset of another family (SHA-256 {have[:12]}, this one "
-                               f"{fam.digest()[:12]}): --resume only continues the same family; choose another --out")
+                               f"{fam.digest()[:12]}): choose another --out")
+        if not resume:
+            raise DatasetError(f"{out} already holds a dataset of this family: pass --resume to continue it, "
+                               "or choose another --out")
         info = json.loads(meta.read_text()) if meta.exists() else {}
-        if info.get("options") not in (None, options.as_dict()):
-            raise DatasetError(f"{out} was made with options {info.get('options')}, not {options.as_dict()}: "
-                               "resume with the same --truth, --flight-timeout-s and --rrd")
+        made = {k: v for k, v in info.get("options", {}).items() if k in options.files_dict()}
+        if made and made != {k: options.files_dict()[k] for k in made}:
+            raise DatasetError(f"{out} was made with {made}, not {options.files_dict()}: resume with the same "
+                               "--truth and --rrd")
+        held = read_manifest(out)
+        if held and max(held) >= n:
+            raise DatasetError(f"{out} holds flights up to member {max(held)}: resume with --n {max(held) + 1} or more")
 
 
 def _claim_folder(out: Path, fam, options: Options) -> None:
     """Make the folder this family's: its family.toml and options; a killed run's half-written files go."""
     out.mkdir(parents=True, exist_ok=True)
-    for tmp in out.rglob(".*.tmp-*"):
-        tmp.unlink()
+    import shutil
+
+    for tmp in out.rglob(".*.tmp-*"):  # a killed run's half-written files and scratch folders
+        if tmp.is_dir():
+            shutil.rmtree(tmp, ignore_errors=True)
+        else:
+            tmp.unlink(missing_ok=True)
     marker = out / "family.toml"
     if not marker.exists():
         _atomic_text(fam.text, marker)
@@ -239,20 +292,30 @@ def _claim_folder(out: Path, fam, options: Options) -> None:
 
 # ---------------------------------------------------------------------- the cluster
 def _client(workers: int, scheduler: str | None):
+    import logging
+
+    import dask
     from dask.distributed import Client, LocalCluster
 
     if scheduler is not None:
         try:
-            return Client(scheduler, timeout="5s"), None
-        except (OSError, TimeoutError) as e:
+            client = Client(scheduler, timeout="5s")
+        except Exception as e:  # noqa: BLE001  OSError, TimeoutError, ValueError (a malformed address)...
             raise DatasetError(f"the Dask scheduler at {scheduler} does not answer ({type(e).__name__}): start it "
-                               "with `dask scheduler`, or drop --scheduler to run on this machine") from None
-    import logging
-
-    # a failed flight is recorded in the manifest and reported once by the command: the workers' own
-    # tracebacks are silenced
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                           dashboard_address="127.0.0.1:0", memory_limit=0, silence_logs=logging.CRITICAL)
+                               "with `dask scheduler` (address tcp://HOST:PORT), or drop --scheduler to run on "
+                               "this machine") from None
+        try:
+            client.wait_for_workers(1, timeout=30)
+        except Exception:  # noqa: BLE001
+            client.close()
+            raise DatasetError(f"the Dask scheduler at {scheduler} has no worker: start some with "
+                               f"`dask worker {scheduler}`") from None
+        return client, None
+    # a failed flight is retried once by make_dataset itself: Dask must not re-run a task whose worker
+    # died (its default allows 3); the workers' own tracebacks are silenced (the manifest records them)
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                               dashboard_address="127.0.0.1:0", memory_limit=0, silence_logs=logging.CRITICAL)
     return Client(cluster), cluster
 
 
@@ -273,7 +336,7 @@ def check_request(family, n: int, out: str | Path, *, workers: int = 2, resume: 
         raise DatasetError(f"--flight-timeout-s {flight_timeout_s!r}: must be positive")
     options = Options(truth, flight_timeout_s, bool(rrd))
     out = Path(out)
-    _check_folder(out, fam, options, resume)
+    _check_folder(out, fam, options, resume, n)
     return fam, options, out
 
 
@@ -290,59 +353,80 @@ def make_dataset(family, n: int, out: str | Path, *, workers: int = 2, scheduler
                                       flight_timeout_s=flight_timeout_s, rrd=rrd)
     client, cluster = _client(workers, scheduler)  # before writing: a dead scheduler leaves nothing behind
     try:
-        _claim_folder(out, fam, options)
-        rows = {i: r for i, r in read_manifest(out).items() if i < n and r["status"] == "ok"}
-        # failures are retried on resume too; members beyond n are left in the manifest untouched
-        rows |= {i: r for i, r in read_manifest(out).items() if i >= n}
-        todo = [i for i in range(n) if i not in rows]
-        if on_start is not None:
-            on_start(client.dashboard_link, len(todo))
-        opts = options.as_dict()
-        fut_index = {}
-        attempts = {}
-        futures = []
-        for i in todo:
-            f = client.submit(fly_member, fam.text, i, str(out.resolve()), opts, key=f"flight-{fam.digest()[:8]}-{i}-a1",
-                              pure=False)
-            fut_index[f.key] = i
-            attempts[i] = 1
-            futures.append(f)
-        ac = as_completed(futures, with_results=False)
-        timings = out / "timings.jsonl"
-        for f in ac:
-            i = fut_index[f.key]
-            try:
-                row = f.result()
-            except Exception as e:  # noqa: BLE001  a flight's failure (or its worker's) never stops the dataset
-                err = f"{type(e).__name__}: {e}"
-                if attempts[i] < ATTEMPTS:
-                    attempts[i] += 1
-                    g = client.submit(fly_member, fam.text, i, str(out.resolve()), opts,
-                                      key=f"flight-{fam.digest()[:8]}-{i}-a{attempts[i]}", pure=False)
-                    fut_index[g.key] = i
-                    ac.add(g)
-                    continue
-                row = _failed_row(fam, i, err, attempts[i])
-            else:
-                row["attempts"] = attempts[i]
-            timing = {k: row.pop(k) for k in TIMING_KEYS if k in row}
-            rows[i] = row
-            _write_manifest(out, rows)
-            with open(timings, "a", encoding="utf-8") as t:
-                t.write(json.dumps({"flight_id": row["flight_id"], "status": row["status"],
-                                    "gate_to_gate_s": row.get("gate_to_gate_s"), **timing}) + "\n")
-            if on_flight is not None:
-                on_flight(row | timing)
-        if not rows:
-            raise DatasetError("no flight was made")
-        from flightmode.scenarios.dataset_card import write_card
-
-        write_card(out, fam, rows, options)
-        return rows
+        with _folder_lock(out):
+            _claim_folder(out, fam, options)
+            return _run(client, fam, n, out, options, on_start, on_flight)
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+@contextlib.contextmanager
+def _folder_lock(out: Path):
+    """One run at a time per dataset folder (a second one would overwrite the first's manifest)."""
+    import fcntl
+
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".lock", "w") as f:
+        try:
+            fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise DatasetError(f"{out} is being written by another `flightmode dataset` run: wait for it") from None
+        yield
+
+
+def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) -> dict[int, dict]:
+    from dask.distributed import as_completed
+
+    held = read_manifest(out)
+    rows = {i: r for i, r in held.items() if r["status"] == "ok"}  # failures are tried again
+    todo = [i for i in range(n) if i not in rows]
+    if on_start is not None:
+        on_start(client.dashboard_link, len(todo))
+    opts = options.as_dict()
+    # task keys unique to this folder and these options: two datasets on one scheduler never share a task
+    token = hashlib.sha256(f"{fam.digest()}|{out.resolve()}|{json.dumps(opts, sort_keys=True)}".encode()).hexdigest()[:12]
+    fut_index, attempts, futures = {}, {}, []
+
+    def submit(i: int):
+        f = client.submit(fly_member, fam.text, i, str(out.resolve()), opts, key=f"flight-{token}-{i}-a{attempts[i]}",
+                          pure=False)
+        fut_index[f.key] = i
+        return f
+
+    for i in todo:
+        attempts[i] = 1
+        futures.append(submit(i))
+    ac = as_completed(futures, with_results=False)
+    timings = out / "timings.jsonl"
+    for f in ac:
+        i = fut_index[f.key]
+        detail = None
+        try:
+            row = f.result()
+        except Exception as e:  # noqa: BLE001  a flight's failure (or its worker's) never stops the dataset
+            detail = f"{type(e).__name__}: {e}"
+            if attempts[i] < ATTEMPTS:
+                attempts[i] += 1
+                ac.add(submit(i))
+                continue
+            _remove_flight_files(out, i)
+            row = _failed_row(fam, i, _error_text(e), attempts[i])
+        else:
+            row["attempts"] = attempts[i]
+        timing = {k: row.pop(k) for k in TIMING_KEYS if k in row}
+        rows[i] = row
+        _write_manifest(out, rows)
+        with open(timings, "a", encoding="utf-8") as t:
+            t.write(json.dumps({"flight_id": row["flight_id"], "status": row["status"],
+                                "gate_to_gate_s": row.get("gate_to_gate_s"), "error_detail": detail, **timing}) + "\n")
+        if on_flight is not None:
+            on_flight(row | timing)
+    from flightmode.scenarios.dataset_card import write_card
+
+    write_card(out, fam, rows, options)
+    return rows
 
 
 # ---------------------------------------------------------------------- reading
@@ -358,26 +442,35 @@ def open_dataset(path: str | Path, part: str = "samples"):
 
 
 def windows(path: str | Path, length_s: float, step_s: float | None = None, label: str = "in_flight_window"):
-    """Fixed-length windows of every flight's samples for machine learning: yields ``(x, y, flight_id)``
-    with ``x`` (n, 3) accelerations in g, ``y`` the window's ``label`` (True when most of its samples
-    carry it). Windows never straddle two flights; ``step_s`` defaults to ``length_s``."""
+    """Fixed-length windows of every flight's samples for machine learning: an iterator of ``(x, y,
+    flight_id)`` with ``x`` (n, 3) accelerations in g and ``y`` the window's ``label`` (True when most
+    of its samples carry it). Windows never straddle two flights; ``step_s`` defaults to ``length_s``.
+    Checked at once (not at the first ``next``)."""
+    step_s = length_s if step_s is None else step_s
+    if not (isinstance(length_s, (int, float)) and length_s > 0 and isinstance(step_s, (int, float)) and step_s > 0):
+        raise InputDataError(f"windows: length_s {length_s!r} and step_s {step_s!r} must be positive seconds")
+    rows = read_manifest(Path(path))
+    if not rows:
+        raise InputDataError(f"{path}: not a flightmode dataset (no flights.parquet)")
+    return _windows(Path(path), rows, float(length_s), float(step_s), label)
+
+
+def _windows(path: Path, rows: dict, length_s: float, step_s: float, label: str):
     import numpy as np
     import pyarrow.parquet as pq
 
-    if not length_s > 0 or (step_s is not None and not step_s > 0):
-        raise InputDataError(f"windows: length_s {length_s!r} and step_s {step_s!r} must be positive")
-    step_s = length_s if step_s is None else step_s
-    rows = read_manifest(Path(path))
     for i in sorted(rows):
         r = rows[i]
         if r["status"] != "ok":
             continue
-        t = pq.read_table(Path(path) / r["samples_file"], columns=["t_s", "acc_x_g", "acc_y_g", "acc_z_g", label])
+        t = pq.read_table(path / r["samples_file"], columns=["t_s", "acc_x_g", "acc_y_g", "acc_z_g", label])
         ts = t["t_s"].to_numpy()
         if ts.shape[0] < 2:
             continue
         fs = 1.0 / float(np.median(np.diff(ts)))
         n, s = int(round(length_s * fs)), int(round(step_s * fs))
+        if n < 1 or s < 1:
+            raise InputDataError(f"windows: {length_s} s or {step_s} s is less than one sample at {fs:g} Hz")
         x = np.stack([t[f"acc_{a}_g"].to_numpy() for a in "xyz"], axis=1)
         y = t[label].to_numpy(zero_copy_only=False).astype(bool)
         for a in range(0, x.shape[0] - n + 1, s):

@@ -21,7 +21,7 @@ another choice's numbers. A family file (``flightmode family FILE --show 5``):
     max_km = 2500                   # optional: longest random pair
 
     [turbulence]
-    patch_probability = 0.3         # one patch in the cruise with this probability
+    patch_probability = 0.3         # one patch en route (between top of climb and descent) with this probability
     severity = { light = 6, moderate = 3, severe = 1 }
     patch_s = [120, 600]            # its duration, uniform
 
@@ -66,8 +66,8 @@ SECTIONS = {
     "carrier": {"kind", "placement", "handled_in_cruise", "truck_s", "terminal_walk_s", "gate_walk_s", "gate_rest_s"},
     "sensor": {"preset"},
 }
-PATCH_START_S = 900.0  # a patch starts at least 15 min after liftoff and ends 20 min before the descent
-PATCH_END_MARGIN_S = 1200.0
+EN_ROUTE_CLIMB_MPS = 10.0  # the estimate of the top of climb and descent for placing a patch (WRAP: 5-13 m/s)
+EN_ROUTE_SPEED_MPS = 200.0  # mean ground speed airborne (390 kt)
 
 
 @dataclass(frozen=True, slots=True)
@@ -146,6 +146,8 @@ class Family:
         except tomllib.TOMLDecodeError as e:
             raise ScenarioError(f"{source}: not valid TOML: {e}") from None
         for sec, table in doc.items():
+            if not isinstance(table, dict):
+                raise ScenarioError(f"{source}: [{sec}] must be a table (a [{sec}] header), not {type(table).__name__}")
             if sec not in SECTIONS:
                 raise ScenarioError(f"{source}: unknown section [{sec}]{did_you_mean(sec, SECTIONS)}; "
                                     f"sections: {', '.join(SECTIONS)}")
@@ -167,13 +169,26 @@ class Family:
             raise ScenarioError(f"{source}: [family].seed = {seed!r}: must be an integer >= 0")
         routes = doc["routes"]
         pairs = []
-        for pr in routes.get("pairs", []):
+        given = routes.get("pairs", [])
+        codes = routes.get("airports", [])
+        for key, v in (("pairs", given), ("airports", codes)):
+            if not isinstance(v, list):
+                raise ScenarioError(f"{source}: [routes].{key} must be a list")
+        from flightmode.scenarios.routes import MIN_ROUTE_M
+        from flightmode.sim.flight.geodesy import gc_distance_m
+
+        for pr in given:
             if not (isinstance(pr, list) and len(pr) == 2 and all(isinstance(c, str) for c in pr)):
                 raise ScenarioError(f"{source}: [routes].pairs: {pr!r} is not a pair of ICAO codes like [\"LSGG\", \"EGLL\"]")
-            pairs.append((ap.airport(pr[0]).icao, ap.airport(pr[1]).icao))
-        airports_ = tuple(ap.airport(c).icao for c in routes.get("airports", []))
-        if not pairs and len(airports_) < 2:
-            raise ScenarioError(f"{source}: [routes] needs pairs, or at least two airports to pair at random")
+            a, b = ap.airport(pr[0]), ap.airport(pr[1])
+            if gc_distance_m(a.lat_deg, a.lon_deg, b.lat_deg, b.lon_deg) < MIN_ROUTE_M:
+                raise ScenarioError(f"{source}: [routes].pairs: {a.icao} to {b.icao} is shorter than "
+                                    f"{MIN_ROUTE_M / 1000:.0f} km; drop it")
+            pairs.append((a.icao, b.icao))
+        for c in codes:
+            if not isinstance(c, str):
+                raise ScenarioError(f"{source}: [routes].airports: {c!r} is not an ICAO code like \"LSGG\"")
+        airports_ = tuple(ap.airport(c).icao for c in codes)
         max_km = routes.get("max_km", math.inf)
         if isinstance(max_km, bool) or not isinstance(max_km, (int, float)) or max_km <= 0:
             raise ScenarioError(f"{source}: [routes].max_km = {max_km!r}: must be a positive number of km")
@@ -247,7 +262,6 @@ class Family:
     def member(self, i: int):
         """Member ``i`` (>= 0): a validated Scenario, the same in any process."""
         from flightmode.scenarios.routes import scenario_between
-        from flightmode.scenarios.spec import route_length_m
         from flightmode.streams import Streams
 
         if isinstance(i, bool) or not isinstance(i, int) or i < 0:
@@ -260,11 +274,7 @@ class Family:
         changes: dict[str, Any] = {"name": f"{self.name}-{i:05d}"}
         r = s.rng("turbulence")
         if r.random() < self.patch_probability:
-            airborne_s = route_length_m(sc.plan) / (sc.plan.cruise_mach * 295.0)
-            latest = max(PATCH_START_S, airborne_s - PATCH_END_MARGIN_S - self.patch_s[1])
-            changes["turbulence"] = [{"start_s": round(float(r.uniform(PATCH_START_S, latest)), 1),
-                                      "duration_s": round(float(r.uniform(*self.patch_s)), 1),
-                                      "severity": self.severity.draw(r)}]
+            changes["turbulence"] = [_patch(sc, r, self.patch_s, self.severity)]
         changes["landing"] = {"quality": self.landing.draw(s.rng("landing"))}
         r = s.rng("carrier")
         kind = self.kind.draw(r)
@@ -281,6 +291,25 @@ class Family:
     def members(self, n: int, start: int = 0) -> Iterator:
         for i in range(start, start + n):
             yield self.member(i)
+
+
+def _patch(sc, r, patch_s: tuple[float, float], severity: Weighted) -> dict:
+    """One turbulence patch en route: it starts after the estimated top of climb and ends before the
+    estimated top of descent (climb at :data:`EN_ROUTE_CLIMB_MPS`, descent at the plan's angle and
+    :data:`EN_ROUTE_SPEED_MPS`); on a hop too short for a cruise, in the middle third of the flight."""
+    from flightmode.scenarios.spec import route_length_m
+
+    p = sc.plan
+    airborne = route_length_m(p) / EN_ROUTE_SPEED_MPS
+    toc = (p.cruise_alt_m - p.origin.elevation_m) / EN_ROUTE_CLIMB_MPS
+    tod = airborne - (p.cruise_alt_m - p.destination.elevation_m) / math.tan(math.radians(p.descent_angle_deg)) / EN_ROUTE_SPEED_MPS
+    duration = float(r.uniform(*patch_s))
+    lo, hi = toc, tod - duration
+    if hi <= lo:  # no cruise long enough: the middle third, the patch shortened to fit
+        lo, hi = airborne / 3.0, airborne / 3.0
+        duration = min(duration, airborne / 3.0)
+    return {"start_s": round(float(r.uniform(lo, hi)) if hi > lo else lo, 1), "duration_s": round(duration, 1),
+            "severity": severity.draw(r)}
 
 
 @lru_cache(maxsize=64)

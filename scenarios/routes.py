@@ -67,7 +67,7 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
     from flightmode.scenarios import airports as ap
     from flightmode.scenarios.scenario import Scenario
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.geodesy import destination_point, gc_distance_m, initial_course_deg
+    from flightmode.sim.flight.geodesy import gc_distance_m, initial_course_deg
     from flightmode.streams import Streams
 
     prof = get_profile(aircraft)
@@ -79,21 +79,22 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
         raise ScenarioError(f"{o.icao} to {d.icao} is {dist / 1000:.0f} km, shorter than the {MIN_ROUTE_M / 1000:.0f} km "
                             "an airliner route needs here; choose airports farther apart")
     if dist > prof.range_km * 1000.0:
+        from flightmode.sim.flight.aircraft_profiles import PROFILES
+
+        longer = [f"{m}: {p.range_km:,.0f} km" for m, p in sorted(PROFILES.items()) if p.range_km * 1000.0 >= dist]
         raise ScenarioError(f"{o.icao} to {d.icao} is {dist / 1000:,.0f} km, beyond the {aircraft}'s range of "
-                            f"{prof.range_km:,.0f} km; choose a nearer destination or a longer-range type "
-                            "(787-8: 13,600 km)")
+                            f"{prof.range_km:,.0f} km; choose a nearer destination"
+                            + (f" or a type that reaches it ({', '.join(longer)})" if longer else ""))
     rng = Streams(seed).child("route")
     wind = rng.rng("wind").uniform(0.0, 360.0, 2)  # from, at the origin and at the destination
     try:
-        dep = ap.pick_end(o, prof.min_runway_m, float(wind[0]), aircraft)
+        dep = ap.pick_end(o, prof.min_runway_m, float(wind[0]), aircraft, landing=False)
     except ScenarioError as e:
         raise ScenarioError(f"{e} (nearest that suit: {', '.join(ap.nearest_usable(o.lat_deg, o.lon_deg, prof.min_runway_m))})") from None
     try:
-        arr = ap.pick_end(d, prof.min_runway_m, float(wind[1]), aircraft)
+        arr = ap.pick_end(d, prof.min_runway_m, float(wind[1]), aircraft, landing=True)
     except ScenarioError as e:
         raise ScenarioError(f"{e} (nearest that suit: {', '.join(ap.nearest_usable(d.lat_deg, d.lon_deg, prof.min_runway_m))})") from None
-    # the arrival threshold: displaced along the runway where OurAirports says so
-    lat_t, lon_t = destination_point(arr.lat_deg, arr.lon_deg, arr.heading_deg, arr.displaced_m)
     course = float(initial_course_deg(o.lat_deg, o.lon_deg, d.lat_deg, d.lon_deg)) % 360.0
     descent_deg = 2.8
     cruise_m = cruise_altitude_m(dist, course, prof, dep.elevation_m, arr.elevation_m, descent_deg)
@@ -108,14 +109,8 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
         "scenario": {"name": name, "aircraft": prof.model, "seed": int(seed), "gate_wait_s": GATE_WAIT_S,
                      "description": f"{o.name} ({o.icao} {dep.ident}) to {d.name} ({d.icao} {arr.ident}) on the "
                                     f"{prof.model}, {dist / 1000:,.0f} km, FL{cruise_m / FT_M / 100:.0f}"},
-        "origin": {"icao": o.icao, "runway": dep.ident, "threshold_lat_deg": round(dep.lat_deg, 7),
-                   "threshold_lon_deg": round(dep.lon_deg, 7), "elevation_m": round(dep.elevation_m, 1),
-                   "heading_deg": round(dep.heading_deg, 2), "length_m": round(dep.length_m, 1),
-                   "width_m": round(min(max(dep.width_m, 20.0), 100.0), 1)},
-        "destination": {"icao": d.icao, "runway": arr.ident, "threshold_lat_deg": round(float(lat_t), 7),
-                        "threshold_lon_deg": round(float(lon_t), 7), "elevation_m": round(arr.elevation_m, 1),
-                        "heading_deg": round(arr.heading_deg, 2), "length_m": round(arr.landing_length_m, 1),
-                        "width_m": round(min(max(arr.width_m, 20.0), 100.0), 1)},
+        "origin": {"icao": o.icao, "runway": dep.ident, **ap.runway_keys(o.icao, dep.ident, landing=False)},
+        "destination": {"icao": d.icao, "runway": arr.ident, **ap.runway_keys(d.icao, arr.ident, landing=True)},
         "taxi_out": {"length_m": round(taxi_out, 1), "holds_s": [round(hold, 1)], "lineup_hold_s": round(lineup, 1)},
         "taxi_in": {"length_m": round(taxi_in, 1)},
         "cruise": {"altitude_m": round(cruise_m, 1), "mach": prof.cruise_mach},

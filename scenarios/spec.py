@@ -225,6 +225,16 @@ def validate_doc(doc: dict[str, Any], source: str = "<scenario>") -> dict[str, A
     for sec in SPEC:
         if sec not in doc and sec not in OPTIONAL_SECTIONS:
             raise ScenarioError(f"{source}: section [{sec}] is missing: required")
+    doc = dict(doc)
+    for side in ("origin", "destination"):  # a runway named by its airport and ident alone: OurAirports' figures
+        t = doc.get(side)
+        if isinstance(t, dict) and "icao" in t and "runway" in t and "threshold_lat_deg" not in t:
+            from flightmode.scenarios.airports import runway_keys
+
+            try:
+                doc[side] = runway_keys(str(t["icao"]), str(t["runway"]), landing=side == "destination") | t
+            except ScenarioError as e:
+                raise ScenarioError(f"{source}: [{side}]: {e}") from None
     v = {sec: _section(source, sec, doc.get(sec, {})) for sec in SPEC if sec not in ARRAY_SECTIONS}
 
     turb_tables = doc.get("turbulence", [])

@@ -36,9 +36,19 @@ def test_runway_in_use_has_the_most_headwind():
     west = ap.pick_end(a, 2100.0, 270.0, "A320")  # wind from the west: land and take off westwards
     east = ap.pick_end(a, 2100.0, 90.0, "A320")
     assert west.ident.startswith("27") and east.ident.startswith("09")
-    # a crosswind from the north: both directions have zero headwind; the longer strip wins
-    north = ap.pick_end(a, 2100.0, 0.0, "A320")
-    assert north.length_m == max(e.length_m for e in a.runways)
+    # two parallel strips with exactly opposite ends: a wind straight across gives every end zero
+    # headwind (cos 90 deg, rounded), and the longer strip wins, landing or taking off by its own length
+    import dataclasses
+
+    e = a.runways[0]
+    ends = (dataclasses.replace(e, ident="36L", heading_deg=0.0, length_m=3000.0, displaced_m=0.0),
+            dataclasses.replace(e, ident="18R", heading_deg=180.0, length_m=3000.0, displaced_m=0.0),
+            dataclasses.replace(e, ident="36R", heading_deg=0.0, length_m=3500.0, displaced_m=1000.0),
+            dataclasses.replace(e, ident="18L", heading_deg=180.0, length_m=3500.0, displaced_m=0.0))
+    twin = dataclasses.replace(a, runways=ends)
+    assert ap.pick_end(twin, 2100.0, 90.0, "A320", landing=False).length_m == 3500.0
+    assert ap.pick_end(twin, 2100.0, 90.0, "A320", landing=True).ident == "18L"  # 36R lands on 2,500 m only
+    assert ap.pick_end(twin, 2100.0, 10.0, "A320", landing=True).ident == "36L"  # into wind beats length
 
 
 def test_unknown_airport_and_too_short_runways_are_one_line_errors():

@@ -85,10 +85,15 @@ def test_sigkill_mid_run_then_resume_gives_the_uninterrupted_dataset(tmp_path, f
         proc.wait()
     done = read_manifest(out)
     assert 1 <= len(done) < N  # killed with the second flight on its way (one worker: one at a time)
+    # what a kill inside a write leaves: a half-written file beside the data (planted: the kill above
+    # may fall between writes)
+    part = out / "samples" / "aircraft=A320" / ".part-000001.parquet.tmp-1234-deadbeef"
+    part.parent.mkdir(parents=True, exist_ok=True)
+    part.write_bytes(b"PAR1 half")
     subprocess.run([*cmd, "--resume"], check=True, capture_output=True)
     assert not list(out.rglob(".*.tmp-*"))  # no half-written file left
     assert _files(out) == _files(reference)  # exactly N flights, byte-identical files, no duplicate
-    assert _manifest(out).equals(_manifest(reference))
+    assert (out / "flights.parquet").read_bytes() == (reference / "flights.parquet").read_bytes()
     assert sorted(read_manifest(out)) == list(range(N))
 
 
@@ -119,7 +124,7 @@ def test_a_scheduler_and_two_workers_on_localhost_give_the_same_dataset(tmp_path
             os.killpg(p.pid, signal.SIGKILL)
             p.wait()
     assert _files(out) == _files(reference)
-    assert _manifest(out).equals(_manifest(reference))
+    assert (out / "flights.parquet").read_bytes() == (reference / "flights.parquet").read_bytes()
 
 
 @pytest.mark.slow
@@ -133,8 +138,18 @@ def test_failed_flights_are_retried_once_and_recorded_without_stopping(tmp_path,
         assert r["error"].startswith("FlightTimeoutError: flight") and "0.3 s wall-time limit" in r["error"]
     m = read_manifest(out)
     assert [m[i]["status"] for i in range(N)] == ["failed"] * N
-    assert not list((out / "samples").rglob("*.parquet")) if (out / "samples").exists() else True
+    assert [p.name for p in out.rglob("*.parquet")] == ["flights.parquet"]  # no data file of a failed flight
+    from flightmode.scenarios.dataset import manifest_schema
+
+    assert _manifest(out).schema.equals(manifest_schema())  # every column, typed, even with no success
     assert "0 ok, 2 failed" in (out / "README.md").read_text()
+    # the time limit may change on --resume (it changes no file): the failures are tried again
+    rows = make_dataset(str(family_file), N, out, workers=1, flight_timeout_s=0.4, resume=True)
+    assert [r["attempts"] for r in rows.values()] == [2, 2]
+    with pytest.raises(DatasetError, match=r"holds flights up to member 1: resume with --n 2 or more"):
+        check_request(str(family_file), 1, out, resume=True)
+    with pytest.raises(DatasetError, match=r"resume with the same --truth and --rrd"):
+        check_request(str(family_file), N, out, resume=True, truth="full")
 
 
 @pytest.mark.slow
@@ -182,14 +197,20 @@ def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_fil
     (other / "notes.txt").write_text("mine")
     with pytest.raises(DatasetError, match="holds no flightmode dataset"):
         check_request(str(family_file), 2, other)
-    # a folder of another family's dataset: refused even with --resume
+    # a folder of another family's dataset: refused, with or without --resume
     theirs = tmp_path / "theirs"
     theirs.mkdir()
     (theirs / "family.toml").write_text(HOPS.replace("seed = 5", "seed = 6"))
-    with pytest.raises(DatasetError, match="already holds a dataset: pass --resume"):
-        check_request(str(family_file), 2, theirs)
-    with pytest.raises(DatasetError, match="another family"):
-        check_request(str(family_file), 2, theirs, resume=True)
+    for resume in (False, True):
+        with pytest.raises(DatasetError, match="holds a dataset of another family .*: choose another --out"):
+            check_request(str(family_file), 2, theirs, resume=resume)
+    # this family's: --resume continues it
+    ours = tmp_path / "ours"
+    ours.mkdir()
+    (ours / "family.toml").write_text(HOPS)
+    with pytest.raises(DatasetError, match="already holds a dataset of this family: pass --resume"):
+        check_request(str(family_file), 2, ours)
+    check_request(str(family_file), 2, ours, resume=True)
     r = subprocess.run([sys.executable, "-m", "flightmode.scenarios.cli", "dataset", str(family_file), "--n", "0",
                         "--out", str(out)], capture_output=True, text=True)
     assert r.returncode == 2 and r.stderr.strip().splitlines() == ["error: --n 0: the number of flights must be a positive integer"]
@@ -208,3 +229,51 @@ def test_rrd_option_writes_each_flights_recording_for_offline_replay(tmp_path, f
     # the recording is the member's run (its run id: name and seed), and no scratch folder is left
     assert rec.recording_id == Family.from_toml(family_file).member(1).run_id
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rrd", "samples"]
+
+
+@pytest.mark.slow
+def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_path, reference):
+    import pyarrow.parquet as pq
+
+    from flightmode.detector.grid import Grid
+    from flightmode.scenarios.sweep import summarise, sweep
+
+    grid = Grid(methods=(("nmv", 1.0), ("emv", 5.0)), windows_s=(1.0, 2.0), ks=(3.0, 4.0, 5.0),
+                time_thresholds_s=(2.0, 4.0))
+    table, failed = sweep(reference, grid, out=tmp_path / "sweep.parquet")
+    assert not failed and table.num_rows == len(grid) * N
+    assert pq.read_table(tmp_path / "sweep.parquet").equals(table)
+    # seed 000's point with sigma^2 from each unit's bench calibration (regenerated from the flight's
+    # scenario and seed) is the dataset's own detector run: the same false statics and response, exactly
+    manifest = read_manifest(reference)
+    rec = [r for r in table.to_pylist() if (r["method"], r["window_s"], r["k"], r["time_threshold_s"]) == ("nmv", 1.0, 4.0, 4.0)]
+    assert len(rec) == N
+    for r in rec:
+        m = next(x for x in manifest.values() if x["flight_id"] == r["flight_id"])
+        assert r["false_static_count"] == m["detector_false_static_count"]
+        assert r["response_s"] == m["detector_response_s"]
+    # two worker processes give the same rows as this process
+    table2, _ = sweep(reference, grid, workers=2)
+    assert table2.equals(table)
+    # summary: the rate bound of each point is the exact Poisson bound of its events and hours
+    from flightmode.detector.confidence import rate_upper_bound
+
+    for s in summarise(table, target_rate_per_h=1e-4):
+        assert s["flights"] == N
+        assert s["rate_upper_per_h"] == rate_upper_bound(s["false_statics"], s["in_window_h"])
+        assert s["hours_short"] == pytest.approx(max(0.0, s["hours_needed"] - s["in_window_h"]))
+
+
+def test_sweep_refuses_what_is_not_a_dataset(tmp_path):
+    from flightmode.detector.grid import Grid
+    from flightmode.errors import InputDataError
+    from flightmode.scenarios.sweep import sweep
+
+    with pytest.raises(InputDataError, match="no flights.parquet: not a dataset"):
+        sweep(tmp_path, Grid())
+    from typer.testing import CliRunner
+
+    from flightmode.scenarios.cli import app
+
+    r = CliRunner().invoke(app, ["sweep", str(tmp_path), "--k", "2:x"])
+    assert r.exit_code == 2 and "--k '2:x': give values as 2,3,4 or a range start:stop:step" in r.output

@@ -41,11 +41,18 @@ def test_builtin_families_load_and_their_first_members_are_valid_scenarios():
     from flightmode.scenarios.scenario import Scenario
 
     assert {"airline-mix", "calm-short-haul", "rough-air", "parcel-express"} <= set(builtin_families())
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.geodesy import gc_distance_m
+
     for name in builtin_families():
         fam = Family.builtin(name)
         for m in fam.members(5):
             assert Scenario.from_toml_text(m.to_toml()) == m  # validated as strictly as a file: it reads back
-            assert (m.plan.origin.icao, m.plan.destination.icao) in fam.routes_for(m.aircraft)
+            # a route the type can fly: within its range, on runways at least as long as it needs
+            o, d = m.plan.origin, m.plan.destination
+            prof = get_profile(m.aircraft)
+            assert 100e3 <= gc_distance_m(o.lat_deg, o.lon_deg, d.lat_deg, d.lon_deg) <= prof.range_km * 1e3
+            assert o.length_m >= prof.min_runway_m and d.length_m >= prof.min_runway_m
     calm = [Family.builtin("calm-short-haul").member(i) for i in range(20)]
     assert all(not m.plan.turbulence and m.aircraft == "fokker100" for m in calm)
     parcels = [Family.builtin("parcel-express").member(i) for i in range(20)]
@@ -94,6 +101,9 @@ def test_draws_follow_the_weights():
     (('pairs = [["LSGG", "LSZH"]]', 'pairs = [["LSGG", "LSZX"]]'), r"unknown airport 'LSZX'"),
     (("[carrier]", "[carier]"), r"unknown section \[carier\] \(did you mean \"carrier\"\?\)"),
     (("seed = 9", "seed = -9"), r"\[family\].seed = -9"),
+    (('pairs = [["LSGG", "LSZH"]]', 'pairs = [["LFPG", "LFPO"]]'), r"LFPG to LFPO is shorter than 100 km"),
+    (('airports = ["EHAM", "EBBR", "EDDF"]', 'airports = ["EHAM", 3]'), r"\[routes\].airports: 3 is not an ICAO code"),
+    (('pairs = [["LSGG", "LSZH"]]', 'pairs = 3'), r"\[routes\].pairs must be a list"),
 ])
 def test_bad_families_are_one_line_errors(change, message):
     old, new = change
@@ -108,6 +118,21 @@ def test_a_type_with_no_route_it_can_fly_is_refused():
         'pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'pairs = [["EDDF", "KORD"]]')
     with pytest.raises(ScenarioError, match=r"no route of \[routes\] suits the fokker100"):
         Family.from_toml_text(text, "mini")
+
+
+def test_a_patch_lies_en_route():
+    # every patch starts after the top of climb and ends before the top of descent (the family's own
+    # estimates) or, on a hop too short for a cruise, in the middle third
+    from flightmode.scenarios.family import EN_ROUTE_CLIMB_MPS, EN_ROUTE_SPEED_MPS
+    from flightmode.scenarios.spec import route_length_m
+
+    fam = Family.builtin("rough-air")
+    for m in fam.members(30):
+        p, (t,) = m.plan, m.plan.turbulence
+        airborne = route_length_m(p) / EN_ROUTE_SPEED_MPS
+        toc = (p.cruise_alt_m - p.origin.elevation_m) / EN_ROUTE_CLIMB_MPS
+        assert 0.0 < t.start_s and t.start_s + t.duration_s < airborne
+        assert t.start_s >= min(toc, airborne / 3.0) - 0.1
 
 
 def test_unknown_family_name():

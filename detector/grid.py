@@ -1,0 +1,84 @@
+"""A grid of detector parameters over one labelled stream, each moving variance computed once.
+
+The moving variance depends on the method, its weight and the window, not on the amplitude threshold
+``k`` (eq. 7 compares it with ``k sigma^2``) nor on the time threshold (eq. 8 counts checks in a row).
+So :func:`evaluate_grid` runs the detector once per (method, weight, window), then for every ``k``
+one comparison and for every time threshold one run-length pass (:func:`final_static`), and scores
+each point with :func:`~flightmode.detector.evaluation.score`. Its decisions are exactly
+:func:`~flightmode.detector.flight_mode.detect`'s for the same parameters (the EMV's start value,
+``emv_initial_k sigma^2``, does not depend on ``k`` either).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from flightmode.detector.evaluation import Evaluation, score
+from flightmode.detector.flight_mode import DetectorParams, detect, final_static
+from flightmode.detector.moving_variance import DetectorError
+
+METHODS = ("nmv", "emv")
+
+
+@dataclass(frozen=True, slots=True)
+class Grid:
+    """The axes of a sweep: (method, weight) pairs, windows (s), k, time thresholds (s)."""
+
+    methods: tuple[tuple[str, float], ...] = (("nmv", 1.0),)
+    windows_s: tuple[float, ...] = (1.0,)
+    ks: tuple[float, ...] = (4.0,)
+    time_thresholds_s: tuple[float, ...] = (4.0,)
+
+    def __len__(self) -> int:
+        return len(self.methods) * len(self.windows_s) * len(self.ks) * len(self.time_thresholds_s)
+
+    def validate(self, fs_hz: float) -> None:
+        """Every axis non-empty and every value usable at ``fs_hz``; a DetectorError naming the axis."""
+        for name, axis in (("--method", self.methods), ("--window-s", self.windows_s), ("--k", self.ks),
+                           ("--time-threshold-s", self.time_thresholds_s)):
+            if not axis:
+                raise DetectorError(f"{name}: the grid axis is empty; give at least one value")
+        for method, weight in self.methods:
+            if method not in METHODS:
+                raise DetectorError(f"--method {method!r}: use nmv or emv")
+            if not weight > 0:
+                raise DetectorError(f"--weight {weight!r}: an EMV weighting factor must be > 0")
+        for w in self.windows_s:
+            DetectorParams(fs_hz=fs_hz, window_s=w).validate()  # a window of >= 2 samples
+        for k in self.ks:
+            if not k > 0:
+                raise DetectorError(f"--k {k!r}: the threshold k sigma^2 needs k > 0")
+        for t in self.time_thresholds_s:
+            if not t > 0:
+                raise DetectorError(f"--time-threshold-s {t!r}: must be > 0")
+
+    def points(self, fs_hz: float) -> Iterator[DetectorParams]:
+        for (m, wt), w, k, t in itertools.product(self.methods, self.windows_s, self.ks, self.time_thresholds_s):
+            yield DetectorParams(fs_hz=fs_hz, window_s=w, k_sigma=k, time_threshold_s=t, method=m, weight=wt)
+
+
+def evaluate_grid(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, grid: Grid, fs_hz: float,
+                  sigma2_of: Callable[[int], np.ndarray]) -> Iterator[tuple[DetectorParams, Evaluation]]:
+    """(parameters, evaluation) for every point of ``grid`` over one stream. ``sigma2_of(window)``:
+    sigma^2 per axis for a window of that many samples (a calibration depends on the window)."""
+    grid.validate(fs_hz)
+    for (method, weight), w in itertools.product(grid.methods, grid.windows_s):
+        base = DetectorParams(fs_hz=fs_hz, window_s=w, k_sigma=grid.ks[0], time_threshold_s=grid.time_thresholds_s[0],
+                              method=method, weight=weight)
+        sigma2 = np.asarray(sigma2_of(base.window), float)
+        checks = detect(t_s, acc_g, base, sigma2)  # the moving variance, once
+        for k in grid.ks:
+            temp = np.all(checks.mv < k * sigma2, axis=1)  # eq. 7 (as FlightModeDetector: k_sigma * sigma2)
+            for tth in grid.time_thresholds_s:
+                p = dataclasses.replace(base, k_sigma=k, time_threshold_s=tth)
+                fin = final_static(temp, checks.after_reset, p.checks_needed)  # eq. 8
+                c = dataclasses.replace(checks, temporary_static=temp, final_static=fin)
+                yield p, score(c, t_s, labels, p, sigma2)
+
+
+__all__ = ["Grid", "evaluate_grid", "METHODS"]
