@@ -123,9 +123,23 @@ def test_unknown_aircraft_suggests_the_nearest():
 
 
 def test_missing_required_key():
-    doc = _doc()
+    doc = Scenario.builtin("pattern").to_doc()  # every key written, the runways' figures included
     del doc["origin"]["heading_deg"]
     with pytest.raises(ScenarioError, match=r"\[origin\]\.heading_deg is missing"):
+        Scenario.from_doc(doc, "x.toml")
+
+
+def test_a_runway_named_by_airport_and_ident_takes_ourairports_figures():
+    doc = _doc()
+    assert set(doc["origin"]) == {"icao", "runway"}  # the built-ins name their runways only
+    sc = Scenario.from_doc(doc, "x.toml")
+    # LSGG 22 in OurAirports: 3,900 m (12,795 ft), heading 225.5 deg true; written back in full
+    assert sc.plan.origin.length_m == pytest.approx(3900.0, abs=1.0)
+    assert sc.plan.origin.heading_deg == 225.5
+    assert Scenario.from_toml_text(sc.to_toml()) == sc
+    doc["origin"]["runway"] = "23"  # renamed 22 in 2020 (magnetic variation): OurAirports has 04/22
+    with pytest.raises(ScenarioError, match=r"x.toml: \[origin\]: airport LSGG has no paved, open runway '23' "
+                                            r"\(did you mean \"22\"\?\); its runways: 04, 22"):
         Scenario.from_doc(doc, "x.toml")
 
 
