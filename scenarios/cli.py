@@ -397,7 +397,7 @@ def sweep_cmd(
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from flightmode.detector.grid import Grid
-    from flightmode.scenarios.sweep import summarise, sweep
+    from flightmode.scenarios.sweep import breakdown, summarise, sweep
 
     try:
         methods = [m.strip() for m in method.split(",") if m.strip()]
@@ -432,6 +432,15 @@ def sweep_cmd(
                       f"{r['response_p50_s']:.1f}/{r['response_p95_s']:.1f}/{r['response_max_s']:.1f}",
                       f"{r['availability']:.3f}", f"{r['hours_needed']:,.0f}")
         console.print(t)
+        # where the best point's false statics and slow responses come from
+        best_point = rows[0]
+        b = Table("condition", "value", "flights", "in-window h", "false statics", "response p95 s",
+                  title=f"by condition at {best_point['method']} W_s {best_point['window_s']:g} k {best_point['k']:g} "
+                        f"T_th {best_point['time_threshold_s']:g}")
+        for r in breakdown(table, best_point):
+            b.add_row(r["condition"], r["value"], str(r["flights"]), f"{r['in_window_h']:.1f}", str(r["false_statics"]),
+                      f"{r['response_p95_s']:.1f}")
+        console.print(b)
         console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {table.num_rows // max(1, len(grid))} flights) "
                       f"written to {out}", highlight=False)
     except FlightmodeError as e:

@@ -183,4 +183,23 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
     return out
 
 
-__all__ = ["sweep", "sweep_flight", "summarise", "CONDITIONS"]
+def breakdown(table, point: dict) -> list[dict]:
+    """At one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``): per
+    condition (:data:`CONDITIONS`) and value, the flights, in-window hours, false statics, and the
+    response p95, so that the conditions that produce false statics or slow responses stand out."""
+    keys = ("method", "weight", "window_s", "k", "time_threshold_s")
+    rows = [r for r in table.to_pylist() if all(r[k] == point[k] for k in keys)]
+    out = []
+    for cond in CONDITIONS:
+        for value in sorted({str(r[cond]) for r in rows}):
+            sel = [r for r in rows if str(r[cond]) == value]
+            resp = np.array([r["response_s"] for r in sel], float)
+            resp = resp[np.isfinite(resp)]
+            out.append({"condition": cond, "value": value or "none", "flights": len(sel),
+                        "in_window_h": float(sum(r["in_window_h"] for r in sel)),
+                        "false_statics": int(sum(r["false_static_count"] for r in sel)),
+                        "response_p95_s": float(np.percentile(resp, 95)) if resp.size else math.nan})
+    return out
+
+
+__all__ = ["sweep", "sweep_flight", "summarise", "breakdown", "CONDITIONS"]

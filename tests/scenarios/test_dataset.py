@@ -254,6 +254,14 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
         m = next(x for x in manifest.values() if x["flight_id"] == r["flight_id"])
         assert r["false_static_count"] == m["detector_false_static_count"]
         assert r["response_s"] == m["detector_response_s"]
+    # the breakdown at that point: each condition's values partition the flights and their events
+    from flightmode.scenarios.sweep import CONDITIONS, breakdown
+
+    b = breakdown(table, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0})
+    for cond in CONDITIONS:
+        part = [r for r in b if r["condition"] == cond]
+        assert sum(r["flights"] for r in part) == N
+        assert sum(r["false_statics"] for r in part) == sum(r["false_static_count"] for r in rec)
     # two worker processes give the same rows as this process
     table2, _ = sweep(reference, grid, workers=2)
     assert table2.equals(table)
