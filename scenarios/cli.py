@@ -308,7 +308,9 @@ def family_cmd(
             handled = f", handled x{c.handled_in_cruise}" if c.kind == "handbag" and c.handled_in_cruise else ""
             console.print(f"{i:>5}  {m.aircraft:<9} {p.origin.icao} {p.origin.name:<4} -> {p.destination.icao} "
                           f"{p.destination.name:<4} FL{p.cruise_alt_m / FT_M / 100:03.0f}  turbulence: {turb or 'none'}; "
-                          f"landing {p.landing_quality}; {c.kind}, {where}{handled}; {m.sensor.preset}; seed {m.seed}",
+                          f"landing {p.landing_quality}; {c.kind}, {where}{handled}; {m.sensor.preset}"
+                          + (f", vibration x{m.sensor.vibration_level:g}" if m.sensor.vibration_level else "")
+                          + f"; seed {m.seed}",
                           highlight=False, soft_wrap=True)
         console.print(f"built-in families: {', '.join(builtin_families())}", highlight=False)
     except FlightmodeError as e:

@@ -40,6 +40,7 @@ another choice's numbers. A family file (``flightmode family FILE --show 5``):
 
     [sensor]
     preset = { lis302dl-logged16 = 1 }
+    vibration_level = [0.7, 1.4]    # optional: the floor vibration's multiplier, log-uniform
 
 A type is only given routes it can fly (range, runway length); every member is validated as strictly
 as a scenario file. Everything but ``[family]``, ``[aircraft]`` and ``[routes]`` is optional.
@@ -65,7 +66,7 @@ SECTIONS = {
     "turbulence": {"patch_probability", "severity", "patch_s"},
     "landing": {"quality"},
     "carrier": {"kind", "placement", "handled_in_cruise", "truck_s", "terminal_walk_s", "gate_walk_s", "gate_rest_s"},
-    "sensor": {"preset"},
+    "sensor": {"preset", "vibration_level"},
 }
 EN_ROUTE_CLIMB_MPS = 10.0  # the estimate of the top of climb and descent for placing a patch (WRAP: 5-13 m/s)
 EN_ROUTE_SPEED_MPS = 200.0  # mean ground speed airborne (390 kt)
@@ -129,6 +130,7 @@ class Family:
     truck_s: tuple[float, float]
     walks: tuple[tuple[str, tuple[float, float]], ...]  # (carrier key, uniform range) for a handbag
     sensor: Weighted
+    vibration_level: tuple[float, float] | None
     text: str  # the file's text (what the dataset stores)
     source: str = "<family>"
 
@@ -229,6 +231,8 @@ class Family:
                         for k in ("terminal_walk_s", "gate_walk_s", "gate_rest_s") if k in car),
             sensor=_weighted(source, "[sensor].preset", sen.get("preset", {"lis302dl-logged16": 1}),
                              SPEC["sensor"]["preset"].choices),
+            vibration_level=(_range(source, "[sensor].vibration_level", sen["vibration_level"], 0.05, 20)
+                             if "vibration_level" in sen else None),
             text=text, source=source,
         )
         for t in out.aircraft.choices:  # every type with a positive weight needs a route it can fly
@@ -299,7 +303,11 @@ class Family:
                        "handled_in_cruise": int(self.handled.draw(r))}
             carrier |= {k: round(float(r.uniform(*lim)), 1) for k, lim in self.walks}
         changes["carrier"] = carrier
-        changes["sensor"] = {"preset": self.sensor.draw(s.rng("sensor"))}
+        r = s.rng("sensor")
+        changes["sensor"] = {"preset": self.sensor.draw(r)}
+        if self.vibration_level is not None:  # drawn after the preset: adding it moves no preset
+            lo, hi = self.vibration_level
+            changes["sensor"]["vibration_level"] = round(float(math.exp(r.uniform(math.log(lo), math.log(hi)))), 4)
         return sc.replace(**changes)
 
     def members(self, n: int, start: int = 0) -> Iterator:

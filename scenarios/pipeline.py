@@ -112,7 +112,9 @@ def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str |
     """What the bag's sensor records of ``track`` (``streams``: the run's sensor streams)."""
     from flightmode.sim.sensor.sensing import sense as _sense
 
-    return _sense(track, carrier, sensor_preset(sensor), streams, gyro=gyro)
+    level = getattr(sensor, "vibration_level", None)
+    return _sense(track, carrier, sensor_preset(sensor), streams, gyro=gyro,
+                  vibration_level=1.0 if level is None else float(level))
 
 
 def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng: np.random.Generator) -> np.ndarray:

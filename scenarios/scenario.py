@@ -31,10 +31,12 @@ DEFAULT_SCENARIO = "gva-lhr-a320"
 
 @dataclass(frozen=True, slots=True)
 class SensorChoice:
-    """The ``[sensor]`` section: an accelerometer preset and its output data rate (None: the preset's)."""
+    """The ``[sensor]`` section: an accelerometer preset, its output data rate (None: the preset's), and
+    the floor vibration's multiplier (None: 1)."""
 
     preset: str = "lis302dl-logged16"
     odr_hz: float | None = None
+    vibration_level: float | None = None  # the floor vibration's multiplier (None: 1, as drawn)
 
 
 @dataclass(frozen=True, slots=True)
@@ -88,7 +90,7 @@ class Scenario:
             surface_wind_mps=v["atmosphere"]["surface_wind_mps"],
             background_edr=v["atmosphere"]["background_edr"],
         )
-        sensor = SensorChoice(v["sensor"]["preset"], v["sensor"]["odr_hz"])
+        sensor = SensorChoice(v["sensor"]["preset"], v["sensor"]["odr_hz"], v["sensor"]["vibration_level"])
         check_scenario(source, plan, sensor.preset, sensor.odr_hz)
         return cls(s["description"], s["seed"], plan, CarrierSpec(**v["carrier"]), sensor, source)
 
@@ -155,7 +157,8 @@ class Scenario:
             "atmosphere": _drop_none({"surface_wind_mps": p.surface_wind_mps, "background_edr": p.background_edr}),
             "shutdown": {"post_shutdown_s": p.post_shutdown_s},
             "carrier": _drop_none(dataclasses.asdict(c)),
-            "sensor": _drop_none({"preset": self.sensor.preset, "odr_hz": self.sensor.odr_hz}),
+            "sensor": _drop_none({"preset": self.sensor.preset, "odr_hz": self.sensor.odr_hz,
+                                  "vibration_level": self.sensor.vibration_level}),
         }
         if p.turbulence:
             doc["turbulence"] = [_drop_none({"start_s": t.start_s, "duration_s": t.duration_s, "severity": t.severity,

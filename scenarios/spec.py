@@ -157,6 +157,8 @@ SPEC: dict[str, dict[str, Key]] = {
     "sensor": {
         "preset": Key(str, "accelerometer preset", "lis302dl-logged16", choices=tuple(SENSOR_PRESETS)),
         "odr_hz": Key(float, "output data rate; absent: the preset's", optional=True, lo=0.5, hi=1000),
+        "vibration_level": Key(float, "multiplier of the floor vibration drawn for the flight (a population's "
+                                      "spread of levels); absent: 1", optional=True, lo=0.05, hi=20),
     },
 }
 ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables

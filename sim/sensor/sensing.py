@@ -37,7 +37,7 @@ from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.labels import PHASE_CODE
 from flightmode.sim.sensor.recording import Recording
 from flightmode.sim.flight.track import FlightTrack
-from flightmode.sim.sensor.vibration import FloorDraw, VibrationModel, draw_floor, initial_state, vibration_g
+from flightmode.sim.sensor.vibration import FloorDraw, VibrationModel, draw_floor, initial_state, scaled, vibration_g
 from flightmode.streams import Streams, as_streams
 from flightmode.units import G0_MPS2 as G0
 
@@ -81,6 +81,7 @@ def sense(
     unit: UnitDraw | None = None,
     gyro: GyroSpec | None = None,
     mount: mnt.MountDraw | None = None,
+    vibration_level: float = 1.0,
 ) -> Recording:
     """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``.
 
@@ -93,7 +94,8 @@ def sense(
 
     The path from the floor to the sensor is drawn per flight (:func:`draw_path`: streams ``mount``
     and ``floor``): ``mount`` imposes the mount (on every placement), ``vibration`` the floor's
-    vibration model as it is (no type, location or flight factor applied).
+    vibration model as it is (no type, location or flight factor applied); ``vibration_level``
+    multiplies the floor's amplitudes (1: as drawn).
     """
     _check_track(track)
     preset.validate()
@@ -107,6 +109,8 @@ def sense(
     rng_motion, rng_vib, rng_noise = streams.rng("motion"), streams.rng("vibration"), streams.rng("noise")
     floor_draw, mount_draws = draw_path(track.aircraft, spec, streams)
     vibration = floor_draw.model if vibration is None else vibration
+    if vibration_level != 1.0:  # a population's spread of levels (a scenario's [sensor].vibration_level)
+        vibration = scaled(vibration, float(vibration_level))
     if mount is not None:
         mount_draws = {p: mount for p in mount_draws}
     seg_t0 = np.array([s.t0_s for s in segs])

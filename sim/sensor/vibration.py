@@ -131,14 +131,19 @@ def draw_floor(aircraft: str, location: str, rng: np.random.Generator,
     loc = LOCATION_LEVEL[ENGINE_POSITION[aircraft]][location]
     fl = float(np.exp(FLIGHT_LN_SIGMA * rng.standard_normal()))
     ms = float(rng.uniform(1.0 - MODE_JITTER, 1.0 + MODE_JITTER))
-    k = t * loc * fl
-    model = dataclasses.replace(
-        base, n1_line_g=base.n1_line_g * k, n1_h2_g=base.n1_h2_g * k, n2_line_g=base.n2_line_g * k,
-        mode_engine_g=base.mode_engine_g * k, mode_airflow_g=base.mode_airflow_g * k,
-        roughness_g_per_mps=base.roughness_g_per_mps * k, joint_impulse_g=base.joint_impulse_g * k,
-        mode_hz=tuple(round(f * ms, 6) for f in base.mode_hz),
-    )
+    model = dataclasses.replace(scaled(base, t * loc * fl), mode_hz=tuple(round(f * ms, 6) for f in base.mode_hz))
     return FloorDraw(t, loc, fl, ms, model)
+
+
+def scaled(model: VibrationModel, k: float) -> VibrationModel:
+    """``model`` with every amplitude (engine lines, mode excitations, runway roughness and joints)
+    multiplied by ``k``; its frequencies and shares unchanged."""
+    m = model
+    return dataclasses.replace(
+        m, n1_line_g=m.n1_line_g * k, n1_h2_g=m.n1_h2_g * k, n2_line_g=m.n2_line_g * k,
+        mode_engine_g=m.mode_engine_g * k, mode_airflow_g=m.mode_airflow_g * k,
+        roughness_g_per_mps=m.roughness_g_per_mps * k, joint_impulse_g=m.joint_impulse_g * k,
+    )
 
 
 @dataclass(frozen=True, slots=True)

@@ -7,6 +7,7 @@ import subprocess
 import sys
 from collections import Counter
 
+import numpy as np
 import pytest
 from scipy.stats import chisquare
 
@@ -127,6 +128,19 @@ def test_a_region_pairs_its_countries_large_airports():
     assert routes == {("LSGG", "LSZH"), ("LSZH", "LSGG")}
     wide = Family.from_toml_text(text.replace("max_km = 500", "max_km = 1000"), "mini")
     assert len(wide.routes_for("A320")) == 6  # every ordered pair of the three
+
+
+def test_vibration_levels_are_drawn_log_uniform_in_the_range_given():
+    fam = Family.from_toml_text(MINI + "\n[sensor]\nvibration_level = [0.5, 2.0]\n", "mini")
+    levels = np.array([m.sensor.vibration_level for m in fam.members(300)])
+    assert levels.min() >= 0.5 and levels.max() <= 2.0
+    # log-uniform on [0.5, 2]: ln(level) uniform on [-ln 2, ln 2] (Kolmogorov-Smirnov at the 0.1 % level)
+    from scipy.stats import kstest
+
+    assert kstest(np.log(levels), "uniform", args=(-np.log(2.0), 2 * np.log(2.0))).pvalue > 1e-3
+    # the preset draws are those of the family without the key (the level is drawn after them)
+    plain = Family.from_toml_text(MINI, "mini")
+    assert [m.sensor.preset for m in fam.members(20)] == [m.sensor.preset for m in plain.members(20)]
 
 
 def test_a_type_with_no_route_it_can_fly_is_refused():

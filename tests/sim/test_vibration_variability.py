@@ -111,6 +111,20 @@ def test_floor_rms_matches_the_documented_cruise_level():
     np.testing.assert_allclose(rms, 20e-3 * np.array(model.axis_share), rtol=0.1)
 
 
+def test_a_vibration_level_scales_the_floor_exactly():
+    """A scenario's [sensor].vibration_level multiplies every amplitude (vibration.scaled): the floor's
+    vibration is linear in them, so with the same draws twice the level gives exactly twice the output
+    (a factor of 2 is exact in binary floating point), rolling on a runway included."""
+    fs, n = 800.0, 8_000
+    model = vib.VibrationModel()
+    gs = np.linspace(0.0, 60.0, n)
+    args = (np.full((2, n), 80.0), np.full((2, n), 90.0), np.full(n, 9600.0), gs, np.ones(n, bool), fs, "A320")
+    st = vib.initial_state(2, model, fs, _rng(2))
+    y1, _ = vib.vibration_g(*args, model, st, _rng(3))
+    y2, _ = vib.vibration_g(*args, vib.scaled(model, 2.0), st, _rng(3))
+    assert np.array_equal(y2, 2.0 * y1) and np.abs(y1).max() > 0
+
+
 # ---------------------------------------------------------------------- the mounts (sim.sensor.mount)
 def _many_mounts(spec: CarrierSpec, seed: int = 11) -> list[dict]:
     rng = _rng(seed)
