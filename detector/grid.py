@@ -67,10 +67,13 @@ def evaluate_grid(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, grid: Grid, 
     """(parameters, evaluation) for every point of ``grid`` over one stream. ``sigma2_of(window)``:
     sigma^2 per axis for a window of that many samples (a calibration depends on the window)."""
     grid.validate(fs_hz)
+    sigma2_by_window: dict[int, np.ndarray] = {}  # a calibration depends on the window, not the method
     for (method, weight), w in itertools.product(grid.methods, grid.windows_s):
         base = DetectorParams(fs_hz=fs_hz, window_s=w, k_sigma=grid.ks[0], time_threshold_s=grid.time_thresholds_s[0],
                               method=method, weight=weight)
-        sigma2 = np.asarray(sigma2_of(base.window), float)
+        if base.window not in sigma2_by_window:
+            sigma2_by_window[base.window] = np.asarray(sigma2_of(base.window), float)
+        sigma2 = sigma2_by_window[base.window]
         checks = detect(t_s, acc_g, base, sigma2)  # the moving variance, once
         for k in grid.ks:
             temp = np.all(checks.mv < k * sigma2, axis=1)  # eq. 7 (as FlightModeDetector: k_sigma * sigma2)

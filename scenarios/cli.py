@@ -335,8 +335,9 @@ def dataset_cmd(
     from flightmode.scenarios.dataset import check_request, make_dataset
 
     try:
-        check_request(family, n, out, workers=workers, resume=resume, truth=truth, flight_timeout_s=flight_timeout_s,
-                      rrd=rrd)
+        # checked before the progress bar (an error prints alone); make_dataset takes the resolved family
+        fam, _, _ = check_request(family, n, out, workers=workers, resume=resume, truth=truth,
+                                  flight_timeout_s=flight_timeout_s, rrd=rrd)
         with Progress(TextColumn("[progress.description]{task.description}"), BarColumn(), MofNCompleteColumn(),
                       TextColumn("{task.fields[hours]:.1f} flight-h, {task.fields[failed]} failed"),
                       TimeElapsedColumn(), TimeRemainingColumn(), console=console) as progress:
@@ -355,7 +356,7 @@ def dataset_cmd(
                 if row["status"] != "ok":
                     progress.console.print(f"flight {row['flight_id']} failed: {row['error']}", highlight=False)
 
-            rows = make_dataset(family, n, out, workers=workers, scheduler=scheduler, resume=resume, truth=truth,
+            rows = make_dataset(fam, n, out, workers=workers, scheduler=scheduler, resume=resume, truth=truth,
                                 flight_timeout_s=flight_timeout_s, rrd=rrd, on_start=on_start, on_flight=on_flight)
         ok = sum(r["status"] == "ok" for r in rows.values() if r["index"] < n)
         console.print(Text.assemble("wrote ", (str(out), "bold"), f": {ok} flights ok, {n - ok} failed; "
@@ -409,13 +410,11 @@ def sweep_cmd(
         if not target_fa_per_h > 0:
             raise ScenarioError(f"--target-fa-per-h {target_fa_per_h!r}: must be > 0")
         out = Path(dataset) / "sweep.parquet" if out is None else out
-        from flightmode.scenarios.dataset import read_manifest
-
-        n_ok = sum(r["status"] == "ok" for r in read_manifest(Path(dataset)).values()) if (Path(dataset) / "flights.parquet").exists() else 0
         with Progress(TextColumn("sweeping"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=console) as progress:
-            task = progress.add_task("sweep", total=n_ok)
+            task = progress.add_task("sweep", total=None)
             table, failed = sweep(dataset, grid, sigma2_from=sigma2_from, workers=workers, out=out,
+                                  on_start=lambda n: progress.update(task, total=n),
                                   on_flight=lambda fid: progress.update(task, advance=1))
         if failed:
             console.print(f"excluded: {len(failed)} failed flight(s) of the dataset ({', '.join(r['flight_id'] for r in failed[:10])})",

@@ -103,9 +103,11 @@ def _ok_rows(dataset: Path) -> tuple[list[dict], list[dict]]:
 
 
 def sweep(dataset: str | Path, grid, *, sigma2_from: str = "preset", workers: int = 1,
-          out: str | Path | None = None, on_flight: Callable[[str], None] | None = None):
+          out: str | Path | None = None, on_start: Callable[[int], None] | None = None,
+          on_flight: Callable[[str], None] | None = None):
     """Evaluate ``grid`` on every successful flight of ``dataset``; (pyarrow Table of the rows,
-    flights excluded as failed). Writes the table to ``out`` (Parquet, atomically) if given."""
+    flights excluded as failed). Writes the table to ``out`` (Parquet, atomically) if given.
+    ``on_start(flights)`` and ``on_flight(flight_id)`` report progress."""
     import pyarrow as pa
 
     dataset = Path(dataset)
@@ -116,6 +118,8 @@ def sweep(dataset: str | Path, grid, *, sigma2_from: str = "preset", workers: in
 
     t0 = pq.read_table(dataset / ok[0]["samples_file"], columns=["t_s"])["t_s"].to_numpy()[:1000]
     grid.validate(round(1.0 / float(np.median(np.diff(t0))), 6))  # a bad axis fails before any work
+    if on_start:
+        on_start(len(ok))
     rows: list[dict] = []
     if workers <= 1:
         for r in ok:
