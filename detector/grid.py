@@ -39,6 +39,13 @@ class Grid:
 
     def validate(self, fs_hz: float) -> None:
         """Every axis non-empty and every value usable at ``fs_hz``; a DetectorError naming the axis."""
+        self.check_axes()
+        for w in self.windows_s:
+            DetectorParams(fs_hz=fs_hz, window_s=w).validate()  # a window of >= 2 samples
+
+    def check_axes(self) -> None:
+        """What can be checked before the stream's rate is known (every check of :meth:`validate` but
+        the window's length in samples)."""
         for name, axis in (("--method", self.methods), ("--window-s", self.windows_s), ("--k", self.ks),
                            ("--time-threshold-s", self.time_thresholds_s)):
             if not axis:
@@ -49,7 +56,8 @@ class Grid:
             if not weight > 0:
                 raise DetectorError(f"--weight {weight!r}: an EMV weighting factor must be > 0")
         for w in self.windows_s:
-            DetectorParams(fs_hz=fs_hz, window_s=w).validate()  # a window of >= 2 samples
+            if not w > 0:
+                raise DetectorError(f"--window-s {w!r}: a window must be > 0 s")
         for k in self.ks:
             if not k > 0:
                 raise DetectorError(f"--k {k!r}: the threshold k sigma^2 needs k > 0")

@@ -380,45 +380,72 @@ def _axis(text: str, name: str) -> tuple[float, ...]:
         raise ScenarioError(f"{name} {text!r}: give values as 2,3,4 or a range start:stop:step") from None
 
 
+def _grid(method: str, weight: str, window_s: str, k: str, time_threshold_s: str):
+    from flightmode.detector.grid import Grid
+
+    methods = [m.strip() for m in method.split(",") if m.strip()]
+    weights = _axis(weight, "--weight")
+    pairs = tuple((m, w) for m in methods for w in (weights if m == "emv" else (1.0,)))
+    return Grid(pairs, _axis(window_s, "--window-s"), _axis(k, "--k"), _axis(time_threshold_s, "--time-threshold-s"))
+
+
+def _sweep_progress():
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    return Progress(TextColumn("sweeping"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(), console=console)
+
+
+def _excluded(failed: list[dict]) -> None:
+    if failed:
+        console.print(f"excluded: {len(failed)} failed flight(s) ("
+                      + ", ".join(f"{Path(r['dataset']).name}/{r['flight_id']}" for r in failed[:10])
+                      + (", ..." if len(failed) > 10 else "") + ")", highlight=False)
+
+
+# the default grid of sweep and certify: NMV and EMV (weight 5), three windows, 13 k, 8 time thresholds
+# (624 points); each moving variance is computed once, so the grid costs little more than one point
+GRID_HELP = {
+    "method": "nmv, emv or nmv,emv.", "weight": "EMV weighting factors, e.g. 1,5,10.",
+    "window_s": "Windows W_s, s (list or start:stop:step).", "k": "Amplitude thresholds T_sigma = k sigma^2.",
+    "time_threshold_s": "Time thresholds T_th, s.",
+}
+
+
 @app.command("sweep")
 def sweep_cmd(
-    dataset: Annotated[Path, typer.Argument(help="A dataset folder made by `flightmode dataset`.")],
-    method: Annotated[str, typer.Option("--method", help="nmv, emv or nmv,emv.")] = "nmv",
-    weight: Annotated[str, typer.Option("--weight", help="EMV weighting factors, e.g. 1,5,10.")] = "1",
-    window_s: Annotated[str, typer.Option("--window-s", help="Windows W_s, s (list or start:stop:step).")] = "1",
-    k: Annotated[str, typer.Option("--k", help="Amplitude thresholds T_sigma = k sigma^2.")] = "2:8:0.5",
-    time_threshold_s: Annotated[str, typer.Option("--time-threshold-s", help="Time thresholds T_th, s.")] = "1:8:1",
+    datasets: Annotated[list[Path], typer.Argument(help="Dataset folders made by `flightmode dataset`.")],
+    method: Annotated[str, typer.Option("--method", help=GRID_HELP["method"])] = "nmv,emv",
+    weight: Annotated[str, typer.Option("--weight", help=GRID_HELP["weight"])] = "5",
+    window_s: Annotated[str, typer.Option("--window-s", help=GRID_HELP["window_s"])] = "0.5,1,2",
+    k: Annotated[str, typer.Option("--k", help=GRID_HELP["k"])] = "2:8:0.5",
+    time_threshold_s: Annotated[str, typer.Option("--time-threshold-s", help=GRID_HELP["time_threshold_s"])] = "1:8:1",
     sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (each unit's bench calibration) or rest.")] = "preset",
     workers: Annotated[int, typer.Option("--workers", help="Dask worker processes (1: in this process).")] = 1,
-    out: Annotated[Optional[Path], typer.Option("--out", help="Where to write the rows (default DATASET/sweep.parquet).")] = None,
+    out: Annotated[Optional[Path], typer.Option("--out", help="The sweep folder (default DATASET/sweep; needed for several datasets).")] = None,
     confidence: Annotated[float, typer.Option("--confidence", help="Confidence of the upper bounds.")] = 0.95,
     target_fa_per_h: Annotated[float, typer.Option("--target-fa-per-h", help="Target false statics per flight-hour.")] = 1e-4,
     top: Annotated[int, typer.Option("--top", help="Grid points to print.")] = 10,
 ) -> None:
-    """Evaluate a grid of detector parameters over every flight of a dataset (each moving variance
-    computed once); print the best points with exact upper bounds on the false-static rate."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-    from flightmode.detector.grid import Grid
-    from flightmode.scenarios.sweep import breakdown, summarise, sweep
+    """Evaluate a grid of detector parameters over every flight of one or more datasets (each moving
+    variance computed once); print the best points with exact upper bounds on the false-static rate."""
+    from flightmode.scenarios.sweep import breakdown, check_request, summarise, sweep
 
     try:
-        methods = [m.strip() for m in method.split(",") if m.strip()]
-        weights = _axis(weight, "--weight")
-        pairs = tuple((m, w) for m in methods for w in (weights if m == "emv" else (1.0,)))
-        grid = Grid(pairs, _axis(window_s, "--window-s"), _axis(k, "--k"), _axis(time_threshold_s, "--time-threshold-s"))
+        grid = _grid(method, weight, window_s, k, time_threshold_s)
         if not target_fa_per_h > 0:
             raise ScenarioError(f"--target-fa-per-h {target_fa_per_h!r}: must be > 0")
-        out = Path(dataset) / "sweep.parquet" if out is None else out
-        with Progress(TextColumn("sweeping"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=console) as progress:
+        if out is None:
+            if len(datasets) > 1:
+                raise ScenarioError("several datasets: give --out, the folder for their common sweep")
+            out = Path(datasets[0]) / "sweep"
+        check_request(datasets, grid, sigma2_from)
+        with _sweep_progress() as progress:
             task = progress.add_task("sweep", total=None)
-            table, failed = sweep(dataset, grid, sigma2_from=sigma2_from, workers=workers, out=out,
-                                  on_start=lambda n: progress.update(task, total=n),
-                                  on_flight=lambda fid: progress.update(task, advance=1))
-        if failed:
-            console.print(f"excluded: {len(failed)} failed flight(s) of the dataset ({', '.join(r['flight_id'] for r in failed[:10])})",
-                          highlight=False)
+            result = sweep(datasets, grid, sigma2_from=sigma2_from, workers=workers, out=out,
+                           on_start=lambda n: progress.update(task, total=n),
+                           on_flight=lambda fid: progress.update(task, advance=1))
+        _excluded(result.failed)
+        table = result.points
         rows = summarise(table, confidence, target_fa_per_h)
         rows.sort(key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"], -r["availability"]))
         t = Table("method", "W_s", "k", "T_th s", "false statics", "in-window h", f"{confidence:.0%} bound /h",
@@ -442,8 +469,82 @@ def sweep_cmd(
             b.add_row(r["condition"], r["value"], str(r["flights"]), f"{r['in_window_h']:.1f}", str(r["false_statics"]),
                       f"{r['response_p95_s']:.1f}")
         console.print(b)
-        console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {table.num_rows // max(1, len(grid))} flights) "
-                      f"written to {out}", highlight=False)
+        flights = table.num_rows // max(1, len(grid))
+        console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {flights} flights) written to {out}",
+                      highlight=False)
+    except FlightmodeError as e:
+        _die(e)
+
+
+@app.command("certify")
+def certify_cmd(
+    datasets: Annotated[list[Path], typer.Argument(help="Dataset folders made by `flightmode dataset`.")],
+    target_fa_per_h: Annotated[float, typer.Option("--target-fa-per-h", help="Target: false statics per in-window flight-hour.")] = 1e-4,
+    confidence: Annotated[float, typer.Option("--confidence", help="Confidence of the claim.")] = 0.95,
+    max_response_s: Annotated[Optional[float], typer.Option("--max-response-s", help="Response p95 limit at the gate, s.")] = None,
+    pm: Annotated[float, typer.Option("--pm", help="Seed 000 section 5.1.1: the probability of misdetection to set the threshold from.")] = 1e-3,
+    method: Annotated[str, typer.Option("--method", help=GRID_HELP["method"])] = "nmv,emv",
+    weight: Annotated[str, typer.Option("--weight", help=GRID_HELP["weight"])] = "5",
+    window_s: Annotated[str, typer.Option("--window-s", help=GRID_HELP["window_s"])] = "0.5,1,2",
+    k: Annotated[str, typer.Option("--k", help=GRID_HELP["k"])] = "2:8:0.5",
+    time_threshold_s: Annotated[str, typer.Option("--time-threshold-s", help=GRID_HELP["time_threshold_s"])] = "1:8:1",
+    sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (each unit's bench calibration) or rest.")] = "preset",
+    workers: Annotated[int, typer.Option("--workers", help="Dask worker processes for the sweep (1: in this process).")] = 1,
+    out: Annotated[Optional[Path], typer.Option("--out", help="The report folder (default DATASET/certify; needed for several datasets).")] = None,
+) -> None:
+    """Find the Pareto front of (false-static bound, response, availability), recommend the parameters
+    that meet the target with the best response (or say how many flight-hours the dataset lacks), set
+    seed 000 section 5.1.1's threshold from the static data, and write report.html with its figures."""
+    from flightmode.scenarios.certify import Target, certify
+    from flightmode.scenarios.sweep import check_request
+
+    try:
+        grid = _grid(method, weight, window_s, k, time_threshold_s)
+        target = Target(target_fa_per_h, confidence, max_response_s, pm)
+        target.validate()
+        if out is None:
+            if len(datasets) > 1:
+                raise ScenarioError("several datasets: give --out, the folder for the report")
+            out = Path(datasets[0]) / "certify"
+        check_request(datasets, grid, sigma2_from)
+        with _sweep_progress() as progress:
+            task = progress.add_task("sweep", total=None)
+            cert = certify(datasets, grid, target, sigma2_from=sigma2_from, workers=workers, out=out,
+                           on_start=lambda n: progress.update(task, total=n),
+                           on_flight=lambda fid: progress.update(task, advance=1),
+                           log=lambda m: console.print(m, highlight=False))
+        ex = cert.meta["excluded"]
+        if ex:
+            console.print(f"excluded: {len(ex)} failed flight(s) ("
+                          + ", ".join(f"{Path(r['dataset']).name}/{r['flight_id']}" for r in ex[:10]) + ")",
+                          highlight=False)
+        style = {"meets": "green", "too_small": "yellow", "unreachable": "red"}[cert.recommendation["status"]]
+        console.print(Text(f"{cert.recommendation['status']}: {cert.recommendation['text']}", style=style))
+        t = Table("method", "W_s", "k", "T_th s", "false statics", "in-window h", f"{confidence:.0%} bound /h",
+                  "response p50/p95/max s", "availability",
+                  title=f"Pareto front: {len(cert.pareto)} of {len(cert.summary)} points (first 10 by bound)")
+        front = sorted((cert.summary[i] for i in cert.pareto), key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"]))
+        for r in front[:10] + ([cert.seed000] if cert.seed000 else []):
+            name = r["method"] + (f" w{r['weight']:g}" if r["method"] == "emv" else "")
+            t.add_row(name + (" (seed 000)" if r is cert.seed000 else ""), f"{r['window_s']:g}", f"{r['k']:g}",
+                      f"{r['time_threshold_s']:g}", str(r["false_statics"]), f"{r['in_window_h']:,.1f}",
+                      f"{r['rate_upper_per_h']:.3g}",
+                      f"{r['response_p50_s']:.1f}/{r['response_p95_s']:.1f}/{r['response_max_s']:.1f}",
+                      f"{r['availability']:.3f}")
+        console.print(t)
+        if cert.seed000:
+            s = cert.seed000
+            console.print(f"seed 000's point {'meets' if s['meets'] else 'does not meet'} the target: "
+                          f"{s['false_statics']} false statics in {s['in_window_h']:,.1f} h, bound "
+                          f"{s['rate_upper_per_h']:.3g} /h, response p95 {s['response_p95_s']:.1f} s, "
+                          f"availability {s['availability']:.3f}", highlight=False)
+        th = cert.threshold
+        console.print(f"section 5.1.1 at P_M {th['pm']:g} ({th['static_checks']:,} static checks, W_s {th['window_s']:g} s): "
+                      f"k = {th['empirical_k']:.2f} measured{'' if th['empirical_resolved'] else ' (not resolved)'}, "
+                      f"{th['gaussian_measured_k']:.2f} eq. 13 with the measured spread, "
+                      f"{th['gaussian_white_k']:.2f} eq. 13 white, {th['chi2_white_k']:.2f} chi-square white",
+                      highlight=False)
+        console.print(f"report: {Path(out) / 'report.html'}", highlight=False)
     except FlightmodeError as e:
         _die(e)
 

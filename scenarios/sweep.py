@@ -1,34 +1,76 @@
-"""Detector thresholds over a whole dataset: ``flightmode sweep DATASET --k ... --time-threshold-s ...``.
+"""Detector thresholds over whole datasets: ``flightmode sweep DATASET... --k ... --time-threshold-s ...``.
 
-Every flight of a dataset made by ``flightmode dataset`` is read once and the grid evaluated on it
-with each moving variance computed once (:func:`flightmode.detector.grid.evaluate_grid`); flights run
-in this process, or one Dask task per flight (``workers`` > 1: a LocalCluster on 127.0.0.1).
+Every flight of one or more datasets made by ``flightmode dataset`` is read once and the grid
+evaluated on it with each moving variance computed once (:func:`flightmode.detector.grid.
+evaluate_grid`); flights run in this process, or one Dask task per flight (``workers`` > 1: a
+LocalCluster on 127.0.0.1). Failed flights are excluded and counted, never silently.
 
 sigma^2: ``preset`` (default) is the bench calibration of the flight's own sensor unit, exactly as the
 dataset's own detector run did it (the unit and the bench stream regenerated from the flight's
 scenario and seed: :func:`flightmode.scenarios.pipeline.unit_sigma2`); ``rest`` the truly static
 samples the tracker saw before the flight.
 
-Per grid point and flight (``sweep.parquet``): false statics inside the in-flight window (count,
-seconds, the longest, their phases), the suspension latency (from pushback to the first check that
-forbids transmission), the response at the destination (truly at rest to the first final static), the
-availability (the share of truly-static check time outside the window reported static) and the
-flight's conditions (type, placement, turbulence, landing, sensor) for breakdowns. Per grid point
-(:func:`summarise`): the false-static rate per in-window flight-hour and its exact upper bound
-(:mod:`flightmode.detector.confidence`), response p50/p95/max, mean availability.
+The sweep folder (written file by file, atomically; ``sweep.json`` last):
+
+- ``points.parquet``: per grid point and flight, false statics inside the in-flight window (count,
+  seconds, the longest, their phases), the suspension latency (from pushback to the first check that
+  forbids transmission), the response at the destination (truly at rest to the first final static),
+  the availability (the share of truly-static check time outside the window reported static) and the
+  flight's conditions (type, placement, turbulence, landing, sensor) for breakdowns;
+- ``phases.parquet``: per (method, weight, window, k), flight and phase, the in-window checks and
+  those under ``k sigma^2`` on each axis and on all three at once (eq. 7's temporary static): the
+  per-phase form of seed 000's Tables 4-5;
+- ``static.parquet``: per (method, weight, window) and flight, the moving variance of every check
+  whose whole window is truly static, in units of sigma^2, as moments and log-binned histograms
+  (:data:`STATIC_EDGES`) per axis and of the largest axis: the data of seed 000 section 5.1.1;
+- ``sweep.json``: the datasets (family, manifest digest, flights used and excluded), the grid, the
+  sigma^2 source and the versions.
+
+Per grid point (:func:`summarise`): the false-static rate per in-window flight-hour and its exact
+upper bound (:mod:`flightmode.detector.confidence`), response p50/p95/max, mean availability.
 """
 
 from __future__ import annotations
 
+import hashlib
+import json
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from flightmode.errors import InputDataError
 
-CONDITIONS = ("aircraft", "placement", "carrier_kind", "turbulence", "landing_quality", "sensor_preset")
+CONDITIONS = ("aircraft", "placement", "carrier_kind", "turbulence", "landing_quality", "sensor_preset", "family")
+POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s")
+# log-spaced bins of MV / sigma^2 for truly static checks: 1e-2 to 1e3, 2.3 % wide (underflow and
+# overflow folded into the first and last bins, which a threshold search never reaches)
+STATIC_EDGES = np.geomspace(1e-2, 1e3, 501)
+AXES = ("x", "y", "z")
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    points: object  # pyarrow Table
+    phases: object
+    static: object
+    failed: list[dict]  # excluded flights' manifest rows (with "dataset")
+    meta: dict
+
+
+def manifest_digest(dataset: str | Path) -> str:
+    """SHA-256 over each flight's id, status and samples digest, in flight order: equal digests mean
+    the same flights with bit-identical samples."""
+    from flightmode.scenarios.dataset import read_manifest
+
+    rows = read_manifest(Path(dataset))
+    h = hashlib.sha256()
+    for i in sorted(rows):
+        r = rows[i]
+        h.update(f"{r['flight_id']}|{r['status']}|{r.get('samples_sha256') or ''}\n".encode())
+    return h.hexdigest()
 
 
 def _sigma2_of(source: str, row: dict, columns: dict) -> Callable[[int], np.ndarray]:
@@ -50,31 +92,67 @@ def _sigma2_of(source: str, row: dict, columns: dict) -> Callable[[int], np.ndar
     raise InputDataError(f"--sigma2-from {source!r}: use preset or rest")
 
 
-def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset") -> list[dict]:
-    """Every grid point on one flight of the dataset: a list of rows (module docstring)."""
+def _static_stats(mv: np.ndarray, sigma2: np.ndarray, whole_static: np.ndarray) -> dict:
+    """Moments and histograms of MV / sigma^2 over the checks whose whole window is truly static."""
+    r = mv[whole_static] / sigma2[None, :]
+    out: dict = {"static_checks": int(r.shape[0])}
+    folded = np.clip(r, STATIC_EDGES[0], STATIC_EDGES[-1] * (1 - 1e-9))  # the tails into the end bins
+    for j, a in enumerate(AXES):
+        out[f"sum_{a}"] = float(r[:, j].sum())
+        out[f"sumsq_{a}"] = float(np.square(r[:, j]).sum())
+        out[f"hist_{a}"] = np.histogram(folded[:, j], STATIC_EDGES)[0].tolist()
+    out["hist_max"] = np.histogram(folded.max(axis=1), STATIC_EDGES)[0].tolist()
+    return out
+
+
+def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", family: str = "") -> dict:
+    """Every grid point on one flight of a dataset: {"points", "phases", "static"} lists of rows
+    (module docstring)."""
     from flightmode.detector.grid import evaluate_grid
     from flightmode.scenarios.run_io import read_samples
 
     cols, _ = read_samples(Path(dataset) / row["samples_file"])
     t, acc = cols["t_s"], cols["acc_g"]
-    fs = 1.0 / float(np.median(np.diff(t)))
-    fs = round(fs, 6)
+    fs = round(1.0 / float(np.median(np.diff(t))), 6)
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
-    window = labels["in_flight_window"]
-    static = labels["sensor_static"]
+    window = np.asarray(labels["in_flight_window"], bool)
+    static = np.asarray(labels["sensor_static"], bool)
+    phase_names, phase_code = np.unique(np.asarray(labels["phase"], dtype=object).astype(str), return_inverse=True)
+    static_cs = np.concatenate([[0], np.cumsum(static)])
     dt = 1.0 / fs
     in_window_h = float(window.sum()) * dt / 3600.0
     w_start = float(t[np.flatnonzero(window)[0]]) if window.any() else math.nan
-    cond = {k: row.get(k) for k in CONDITIONS}
-    out = []
+    key = {"dataset": dataset, "family": family, "flight_id": row["flight_id"]}
+    cond = {k: row.get(k) for k in CONDITIONS if k != "family"}
+    points, phases, statics = [], [], []
+    seen: set[tuple] = set()
     for p, e in evaluate_grid(t, acc, labels, grid, fs, _sigma2_of(sigma2_from, row, cols)):
         c = e.checks
+        base = (p.method, p.weight, p.window_s)
+        if base not in seen:  # once per moving variance: per-phase checks under each k, and the static MV
+            seen.add(base)
+            bk = {**key, "method": p.method, "weight": p.weight, "window_s": p.window_s}
+            in_w = window[c.index]
+            codes = phase_code[c.index][in_w]
+            n_ph = np.bincount(codes, minlength=len(phase_names))
+            for k in grid.ks:
+                below = (c.mv < k * e.sigma2[None, :])[in_w]  # eq. 7, per axis
+                under = [np.bincount(codes[below[:, j]], minlength=len(phase_names)) for j in range(3)]
+                under_all = np.bincount(codes[below.all(axis=1)], minlength=len(phase_names))
+                for i, name in enumerate(phase_names):
+                    if n_ph[i]:
+                        phases.append({**bk, "k": k, "phase": str(name), "checks": int(n_ph[i]),
+                                       "under_x": int(under[0][i]), "under_y": int(under[1][i]),
+                                       "under_z": int(under[2][i]), "under_all": int(under_all[i])})
+            whole = (c.index + 1 >= p.window) & (
+                static_cs[c.index + 1] - static_cs[np.maximum(c.index + 1 - p.window, 0)] == p.window)
+            statics.append({**bk, **_static_stats(c.mv, e.sigma2, whole)})
         truth_out = static[c.index] & ~window[c.index]
         static_s = float(truth_out.sum()) * p.window_s
         after = np.flatnonzero((c.t_s >= w_start) & ~c.final_static) if window.any() else np.zeros(0, int)
         events = e.false_static_events
-        out.append({
-            "flight_id": row["flight_id"], **cond,
+        points.append({
+            **key, **cond,
             "method": p.method, "weight": p.weight, "window_s": p.window_s, "k": p.k_sigma,
             "time_threshold_s": p.time_threshold_s,
             "in_window_h": in_window_h, "in_flight_checks": e.in_flight_checks,
@@ -86,44 +164,82 @@ def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset") -> 
             "static_s": static_s, "missed_static_s": e.missed_static_s,
             "availability": (static_s - e.missed_static_s) / static_s if static_s > 0 else math.nan,
         })
-    return out
+    return {"points": points, "phases": phases, "static": statics}
 
 
-def _ok_rows(dataset: Path) -> tuple[list[dict], list[dict]]:
+def _ok_rows(dataset: Path) -> tuple[list[dict], list[dict], dict]:
     from flightmode.scenarios.dataset import read_manifest
 
     if not (dataset / "flights.parquet").exists():
         raise InputDataError(f"{dataset}: no flights.parquet: not a dataset made by `flightmode dataset`")
     rows = read_manifest(dataset)
     ok = [rows[i] for i in sorted(rows) if rows[i]["status"] == "ok"]
-    failed = [rows[i] for i in sorted(rows) if rows[i]["status"] != "ok"]
+    failed = [rows[i] | {"dataset": str(dataset)} for i in sorted(rows) if rows[i]["status"] != "ok"]
     if not ok:
         raise InputDataError(f"{dataset}: no flight succeeded ({len(failed)} failed): nothing to sweep")
-    return ok, failed
+    meta_p = dataset / "dataset.json"
+    meta = json.loads(meta_p.read_text()) if meta_p.exists() else {}
+    return ok, failed, meta
 
 
-def sweep(dataset: str | Path, grid, *, sigma2_from: str = "preset", workers: int = 1,
-          out: str | Path | None = None, on_start: Callable[[int], None] | None = None,
-          on_flight: Callable[[str], None] | None = None):
-    """Evaluate ``grid`` on every successful flight of ``dataset``; (pyarrow Table of the rows,
-    flights excluded as failed). Writes the table to ``out`` (Parquet, atomically) if given.
-    ``on_start(flights)`` and ``on_flight(flight_id)`` report progress."""
-    import pyarrow as pa
+def _versions() -> dict:
+    import platform
+    from importlib.metadata import PackageNotFoundError, version
 
-    dataset = Path(dataset)
-    ok, failed = _ok_rows(dataset)
+    out = {"python": platform.python_version()}
+    for pkg in ("flightmode", "numpy", "scipy", "pyarrow", "jsbsim"):
+        try:
+            out[pkg] = version(pkg)
+        except PackageNotFoundError:
+            out[pkg] = "not installed"
+    return out
+
+
+def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from: str = "preset") -> list[Path]:
+    """The dataset folders, once each, every one a dataset with a successful flight; the grid's axes;
+    the sigma^2 source. An InputDataError or DetectorError naming what is wrong; reads only."""
+    paths = [Path(datasets)] if isinstance(datasets, (str, Path)) else [Path(d) for d in datasets]
+    if not paths:
+        raise InputDataError("no dataset given: name at least one folder made by `flightmode dataset`")
+    if len({p.resolve() for p in paths}) != len(paths):
+        raise InputDataError("the same dataset is named twice: its flights would count double")
     if sigma2_from not in ("preset", "rest"):
         raise InputDataError(f"--sigma2-from {sigma2_from!r}: use preset or rest")
+    grid.check_axes()
+    for d in paths:
+        _ok_rows(d)
+    return paths
+
+
+def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str = "preset", workers: int = 1,
+          out: str | Path | None = None, on_start: Callable[[int], None] | None = None,
+          on_flight: Callable[[str], None] | None = None) -> SweepResult:
+    """Evaluate ``grid`` on every successful flight of ``datasets`` (module docstring); the failed
+    flights are excluded and returned. Writes the sweep folder ``out`` if given. ``on_start(flights)``
+    and ``on_flight(flight_id)`` report progress."""
+    import pyarrow as pa
     import pyarrow.parquet as pq
 
-    t0 = pq.read_table(dataset / ok[0]["samples_file"], columns=["t_s"])["t_s"].to_numpy()[:1000]
-    grid.validate(round(1.0 / float(np.median(np.diff(t0))), 6))  # a bad axis fails before any work
+    paths = check_request(datasets, grid, sigma2_from)
+    jobs, failed, described = [], [], []
+    for d in paths:
+        ok, bad, meta = _ok_rows(d)
+        family = meta.get("family", "")
+        jobs += [(str(d), r, family) for r in ok]
+        failed += bad
+        described.append({"path": str(d), "family": family, "family_sha256": meta.get("family_sha256"),
+                          "options": meta.get("options"), "manifest_sha256": manifest_digest(d),
+                          "flights": len(ok) + len(bad), "flights_ok": len(ok),
+                          "failed": [r["flight_id"] for r in bad]})
+    d0, r0, _ = jobs[0]
+    t0 = pq.read_table(Path(d0) / r0["samples_file"], columns=["t_s"])["t_s"].to_numpy()[:1000]
+    grid.validate(round(1.0 / float(np.median(np.diff(t0))), 6))  # a window under 2 samples, before any work
     if on_start:
-        on_start(len(ok))
-    rows: list[dict] = []
+        on_start(len(jobs))
+    results: list[dict] = []
     if workers <= 1:
-        for r in ok:
-            rows += sweep_flight(str(dataset), r, grid, sigma2_from)
+        for d, r, fam in jobs:
+            results.append(sweep_flight(d, r, grid, sigma2_from, fam))
             if on_flight:
                 on_flight(r["flight_id"])
     else:
@@ -134,21 +250,53 @@ def sweep(dataset: str | Path, grid, *, sigma2_from: str = "preset", workers: in
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
                           dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL) as cluster, \
                 Client(cluster) as client:
-            futs = [client.submit(sweep_flight, str(dataset), r, grid, sigma2_from, pure=False) for r in ok]
-            done: dict[str, list[dict]] = {}
+            futs = {client.submit(sweep_flight, d, r, grid, sigma2_from, fam, pure=False): n
+                    for n, (d, r, fam) in enumerate(jobs)}
+            done: dict[int, dict] = {}
             for f in as_completed(futs):
-                res = f.result()
-                done[res[0]["flight_id"]] = res
+                done[futs[f]] = f.result()
                 if on_flight:
-                    on_flight(res[0]["flight_id"])
-            for r in ok:  # flight order, whatever the completion order
-                rows += done[r["flight_id"]]
-    table = pa.Table.from_pylist(rows)
+                    on_flight(jobs[futs[f]][1]["flight_id"])
+            results = [done[n] for n in range(len(jobs))]  # dataset and flight order, whatever the completion order
+    tables = {part: pa.Table.from_pylist([row for res in results for row in res[part]])
+              for part in ("points", "phases", "static")}
+    meta = {"datasets": described, "sigma2_from": sigma2_from,
+            "grid": {"methods": [list(m) for m in grid.methods], "windows_s": list(grid.windows_s),
+                     "ks": list(grid.ks), "time_thresholds_s": list(grid.time_thresholds_s), "points": len(grid)},
+            "static_edges": "geomspace(1e-2, 1e3, 501)", "versions": _versions()}
+    result = SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
     if out is not None:
-        from flightmode.scenarios.dataset import _atomic_parquet
+        write_sweep(result, out)
+    return result
 
-        _atomic_parquet(table, Path(out))
-    return table, failed
+
+def write_sweep(result: SweepResult, out: str | Path) -> None:
+    """The sweep folder (module docstring); ``sweep.json`` last, so a folder without it is incomplete."""
+    from flightmode.scenarios.dataset import _atomic_parquet, _atomic_text
+
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise InputDataError(f"--out {out} is a file: give a folder for the sweep")
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "sweep.json").unlink(missing_ok=True)
+    for part in ("points", "phases", "static"):
+        _atomic_parquet(getattr(result, part), out / f"{part}.parquet")
+    _atomic_text(json.dumps(result.meta | {"failed_flights": [
+        {"dataset": r["dataset"], "flight_id": r["flight_id"], "error": r.get("error")} for r in result.failed]},
+        indent=2), out / "sweep.json")
+
+
+def read_sweep(path: str | Path) -> SweepResult:
+    """A sweep folder written by :func:`sweep` (InputDataError if it is missing or incomplete)."""
+    import pyarrow.parquet as pq
+
+    path = Path(path)
+    if not (path / "sweep.json").exists():
+        raise InputDataError(f"{path}: no sweep.json: not a finished sweep (run `flightmode sweep DATASET --out {path}`)")
+    meta = json.loads((path / "sweep.json").read_text())
+    tables = {part: pq.read_table(path / f"{part}.parquet") for part in ("points", "phases", "static")}
+    failed = [dict(r) for r in meta.pop("failed_flights", [])]
+    return SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
 
 
 def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None = None) -> list[dict]:
@@ -156,9 +304,9 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
     response p50/p95/max, availability, and the hours still needed for ``target_rate_per_h``."""
     from flightmode.detector.confidence import hours_needed, rate_upper_bound
 
-    keys = ["method", "weight", "window_s", "k", "time_threshold_s"]
+    keys = list(POINT_KEYS)
     df = table.select(keys + ["in_window_h", "false_static_count", "false_static_s", "response_s", "availability",
-                              "flight_id"]).to_pydict()
+                              "suspend_s"]).to_pydict()
     groups: dict[tuple, list[int]] = {}
     for i in range(len(df["k"])):
         groups.setdefault(tuple(df[k][i] for k in keys), []).append(i)
@@ -168,6 +316,8 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
         events = int(sum(df["false_static_count"][i] for i in idx))
         resp = np.array([df["response_s"][i] for i in idx], float)
         resp = resp[np.isfinite(resp)]
+        susp = np.array([df["suspend_s"][i] for i in idx], float)
+        susp = susp[np.isfinite(susp)]
         avail = np.array([df["availability"][i] for i in idx], float)
         row = dict(zip(keys, key)) | {
             "flights": len(idx), "in_window_h": hours, "false_statics": events,
@@ -178,6 +328,7 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
             "response_p95_s": float(np.percentile(resp, 95)) if resp.size else math.nan,
             "response_max_s": float(resp.max()) if resp.size else math.nan,
             "no_response": int(len(idx) - resp.size),
+            "suspend_max_s": float(susp.max()) if susp.size else math.nan,
             "availability": float(np.nanmean(avail)) if np.isfinite(avail).any() else math.nan,
         }
         if target_rate_per_h is not None:  # in-window flight-hours the claim needs, with this many events
@@ -187,23 +338,35 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
     return out
 
 
+def at_point(table, point: dict) -> list[dict]:
+    """The rows of one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``)."""
+    import pyarrow.compute as pc
+
+    mask = None
+    for k in POINT_KEYS:
+        m = pc.equal(table[k], point[k])
+        mask = m if mask is None else pc.and_(mask, m)
+    return table.filter(mask).to_pylist()
+
+
 def breakdown(table, point: dict) -> list[dict]:
-    """At one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``): per
-    condition (:data:`CONDITIONS`) and value, the flights, in-window hours, false statics, and the
-    response p95, so that the conditions that produce false statics or slow responses stand out."""
-    keys = ("method", "weight", "window_s", "k", "time_threshold_s")
-    rows = [r for r in table.to_pylist() if all(r[k] == point[k] for k in keys)]
+    """At one grid point: per condition (:data:`CONDITIONS`) and value, the flights, in-window hours,
+    false statics, and the response p95, so that the conditions that produce false statics or slow
+    responses stand out."""
+    rows = at_point(table, point)
     out = []
     for cond in CONDITIONS:
-        for value in sorted({str(r[cond]) for r in rows}):
-            sel = [r for r in rows if str(r[cond]) == value]
+        for value in sorted({str(r.get(cond)) for r in rows}):
+            sel = [r for r in rows if str(r.get(cond)) == value]
             resp = np.array([r["response_s"] for r in sel], float)
             resp = resp[np.isfinite(resp)]
             out.append({"condition": cond, "value": value or "none", "flights": len(sel),
                         "in_window_h": float(sum(r["in_window_h"] for r in sel)),
                         "false_statics": int(sum(r["false_static_count"] for r in sel)),
+                        "false_static_s": float(sum(r["false_static_s"] for r in sel)),
                         "response_p95_s": float(np.percentile(resp, 95)) if resp.size else math.nan})
     return out
 
 
-__all__ = ["sweep", "sweep_flight", "summarise", "breakdown", "CONDITIONS"]
+__all__ = ["sweep", "check_request", "sweep_flight", "write_sweep", "read_sweep", "summarise", "breakdown", "at_point",
+           "manifest_digest", "SweepResult", "CONDITIONS", "POINT_KEYS", "STATIC_EDGES"]

@@ -237,23 +237,52 @@ def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_fil
 def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_path, reference):
     import pyarrow.parquet as pq
 
+    from flightmode.detector.evaluation import evaluate
+    from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.grid import Grid
-    from flightmode.scenarios.sweep import summarise, sweep
+    from flightmode.scenarios.run_io import read_samples
+    from flightmode.scenarios.sweep import _sigma2_of, at_point, read_sweep, summarise, sweep
 
     grid = Grid(methods=(("nmv", 1.0), ("emv", 5.0)), windows_s=(1.0, 2.0), ks=(3.0, 4.0, 5.0),
                 time_thresholds_s=(2.0, 4.0))
-    table, failed = sweep(reference, grid, out=tmp_path / "sweep.parquet")
-    assert not failed and table.num_rows == len(grid) * N
-    assert pq.read_table(tmp_path / "sweep.parquet").equals(table)
+    result = sweep(reference, grid, out=tmp_path / "sweep")
+    table = result.points
+    assert not result.failed and table.num_rows == len(grid) * N
+    back = read_sweep(tmp_path / "sweep")
+    assert back.points.equals(table) and back.phases.equals(result.phases) and back.static.equals(result.static)
+    assert pq.read_table(tmp_path / "sweep" / "points.parquet").equals(table)
     # seed 000's point with sigma^2 from each unit's bench calibration (regenerated from the flight's
     # scenario and seed) is the dataset's own detector run: the same false statics and response, exactly
     manifest = read_manifest(reference)
-    rec = [r for r in table.to_pylist() if (r["method"], r["window_s"], r["k"], r["time_threshold_s"]) == ("nmv", 1.0, 4.0, 4.0)]
+    rec = at_point(table, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0})
     assert len(rec) == N
     for r in rec:
         m = next(x for x in manifest.values() if x["flight_id"] == r["flight_id"])
         assert r["false_static_count"] == m["detector_false_static_count"]
         assert r["response_s"] == m["detector_response_s"]
+    # any point, EMV included, is the detector run alone on that flight with those parameters
+    row = manifest[0]
+    cols, _ = read_samples(reference / row["samples_file"])
+    labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
+    for method, weight, w, k, tth in (("emv", 5.0, 2.0, 5.0, 2.0), ("emv", 5.0, 1.0, 3.0, 4.0), ("nmv", 1.0, 2.0, 5.0, 2.0)):
+        p = DetectorParams(fs_hz=100.0, window_s=w, k_sigma=k, time_threshold_s=tth, method=method, weight=weight)
+        e = evaluate(cols["t_s"], cols["acc_g"], labels, p, _sigma2_of("preset", row, cols)(p.window))
+        got = [r for r in at_point(table, {"method": method, "weight": weight, "window_s": w, "k": k,
+                                           "time_threshold_s": tth}) if r["flight_id"] == row["flight_id"]]
+        assert len(got) == 1
+        assert got[0]["false_static_count"] == e.false_static_count and got[0]["false_static_s"] == e.false_static_s
+        assert got[0]["response_s"] == (e.response_s if e.response_s is not None else got[0]["response_s"])
+        assert got[0]["missed_static_s"] == e.missed_static_s
+        # the per-phase counts: every in-window check once, the joint count never above an axis's
+        ph = [x for x in result.phases.to_pylist() if (x["flight_id"], x["method"], x["window_s"], x["k"])
+              == (row["flight_id"], method, w, k)]
+        assert sum(x["checks"] for x in ph) == e.in_flight_checks
+        assert all(x["under_all"] <= min(x["under_x"], x["under_y"], x["under_z"]) for x in ph)
+    # the static statistics: one row per moving variance and flight, each histogram holding every check
+    st = result.static.to_pylist()
+    assert len(st) == 4 * N
+    for r in st:
+        assert sum(r["hist_x"]) == sum(r["hist_max"]) == r["static_checks"] > 1000  # > 15 min at rest, W_s <= 2 s
     # the breakdown at that point: each condition's values partition the flights and their events
     from flightmode.scenarios.sweep import CONDITIONS, breakdown
 
@@ -263,8 +292,8 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
         assert sum(r["flights"] for r in part) == N
         assert sum(r["false_statics"] for r in part) == sum(r["false_static_count"] for r in rec)
     # two worker processes give the same rows as this process
-    table2, _ = sweep(reference, grid, workers=2)
-    assert table2.equals(table)
+    result2 = sweep(reference, grid, workers=2)
+    assert result2.points.equals(table) and result2.phases.equals(result.phases)
     # summary: the rate bound of each point is the exact Poisson bound of its events and hours
     from flightmode.detector.confidence import rate_upper_bound
 
@@ -272,6 +301,128 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
         assert s["flights"] == N
         assert s["rate_upper_per_h"] == rate_upper_bound(s["false_statics"], s["in_window_h"])
         assert s["hours_short"] == pytest.approx(max(0.0, s["hours_needed"] - s["in_window_h"]))
+
+
+GRID_SMALL = (("nmv", 1.0), ("emv", 5.0)), (1.0, 2.0), (3.0, 4.0, 5.0), (2.0, 4.0, 6.0)
+
+
+@pytest.fixture(scope="module")
+def certified(tmp_path_factory, reference):
+    """certify over the reference dataset and a copy of it in which the manifest records member 1 as
+    failed (as `flightmode dataset` does for a flight that diverged twice)."""
+    import shutil
+
+    from flightmode.detector.grid import Grid
+    from flightmode.scenarios.certify import Target, certify
+    from flightmode.scenarios.dataset import _write_manifest
+
+    root = tmp_path_factory.mktemp("certify")
+    broken = root / "broken"
+    shutil.copytree(reference, broken)
+    rows = read_manifest(broken)
+    rows[1] = {k: None for k in rows[1]} | {"flight_id": "000001", "index": 1, "status": "failed", "attempts": 2,
+                                             "error": "FlightDivergedError: stall in the flare"}
+    _write_manifest(broken, rows)
+    out = root / "out"
+    msgs: list[str] = []
+    cert = certify([reference, broken], Grid(*GRID_SMALL), Target(1e-4, 0.95, 60.0, 1e-3), out=out, log=msgs.append)
+    return cert, out, msgs
+
+
+@pytest.mark.slow
+def test_certify_recommends_from_the_sweep_and_excludes_failed_flights(certified, reference):
+    from flightmode.detector.confidence import hours_needed
+    from flightmode.detector.grid import Grid
+    from flightmode.scenarios.certify import SEED000_POINT, Target, certify
+    from flightmode.scenarios.sweep import POINT_KEYS
+
+    cert, out, msgs = certified
+    assert [x["flight_id"] for x in cert.meta["excluded"]] == ["000001"]  # excluded with a count, not silently
+    assert "Excluded as failed: <b>1</b>" in (out / "report.html").read_text()
+    assert all(s["flights"] == N + 1 for s in cert.summary)
+    # three flights (1.8 in-window h) cannot show 1e-4 /h: too small, with the hours the claim lacks
+    rec = cert.recommendation
+    assert rec["status"] == "too_small"
+    p = rec["point"]
+    assert rec["hours_needed"] == pytest.approx(hours_needed(1e-4, 0.95, p["false_statics"]))
+    assert rec["hours_short"] == pytest.approx(rec["hours_needed"] - p["in_window_h"])
+    # at 95 % and no event, 3.0 / 1e-4 = 29,957 h (the rule of three); one flight is ~0.6 h in the window
+    assert 25_000 < rec["flights_short"]["hops"] < 120_000
+    # the provisional point has the fewest false statics of the points answering within 60 s, then the best response
+    fast = [s for s in cert.summary if s["response_p95_s"] <= 60.0]
+    assert p["false_statics"] == min(s["false_statics"] for s in fast)
+    assert p["response_p95_s"] == min(s["response_p95_s"] for s in fast if s["false_statics"] == p["false_statics"])
+    # the Pareto front: no point beats a front point everywhere, and every other point is beaten by one
+    def beats(a, b):
+        ge = (a["rate_upper_per_h"] <= b["rate_upper_per_h"] and a["response_p95_s"] <= b["response_p95_s"]
+              and a["availability"] >= b["availability"])
+        return ge and (a["rate_upper_per_h"], a["response_p95_s"], -a["availability"]) != (
+            b["rate_upper_per_h"], b["response_p95_s"], -b["availability"])
+    front = set(cert.pareto)
+    for i, s in enumerate(cert.summary):
+        assert any(beats(t, s) for t in cert.summary) == (i not in front)
+    assert cert.seed000 is not None and {k: cert.seed000[k] for k in POINT_KEYS} == SEED000_POINT
+    # a larger target (1 false static per hour, 95 %: 3 h with none) is met by the same flights' sweep,
+    # reused: the point with the best response among those whose bound is under it
+    cert2 = certify([reference, out.parent / "broken"], Grid(*GRID_SMALL), Target(2.0, 0.95, None, 1e-3), out=out,
+                    log=msgs.append, figures=False)
+    assert any("reusing the sweep" in m for m in msgs)
+    ok = [s for s in cert2.summary if s["rate_upper_per_h"] <= 2.0]
+    assert cert2.recommendation["status"] == "meets"
+    assert cert2.recommendation["point"]["response_p95_s"] == min(s["response_p95_s"] for s in ok)
+
+
+@pytest.mark.slow
+def test_certify_sets_section_5_1_1_threshold_from_the_static_data(certified):
+    from scipy.stats import chi2
+
+    cert, _, _ = certified
+    th = cert.threshold
+    # 2 flights, each > 40 min at rest: thousands of 1 s checks, enough for P_M 1e-3 (>= 3 exceedances)
+    assert th["static_checks"] > 3000 and th["empirical_resolved"]
+    # the measured threshold leaves at most P_M of the static checks at or above it, the next bin more
+    assert th["empirical_pm_at_k"] <= 1e-3
+    # white noise over N = 100 samples: P(any of 3 axes >= k) = P_M at the chi-square quantile
+    n = th["samples_per_window"]
+    assert n == 100
+    assert 1 - (1 - chi2.sf(n * th["chi2_white_k"], n - 1)) ** 3 == pytest.approx(1e-3, rel=1e-6)
+    # the sensor's coloured static noise (fitted to seed 000 Table 2's spread) spreads the 1 s MV more
+    # than white noise does, so the measured threshold sits above the white one
+    assert th["empirical_k"] > th["chi2_white_k"]
+    for a in "xyz":
+        assert 0.25 < th["axes"][a]["sd"] < 0.5  # Table 2's rows imply sigma_MV of 0.30-0.40 sigma^2
+
+
+@pytest.mark.slow
+def test_certify_report_renders_every_figure_in_headless_chromium(certified, tmp_path):
+    """The report opens offline in the real browser (the gate of tests/viz's viewer test): every
+    figure decodes to an image of its own size, and the page asks for nothing over the network."""
+    from tests.browser import chromium_or_skip
+
+    chromium = chromium_or_skip()
+    from playwright.sync_api import sync_playwright
+
+    from flightmode.viz.certify_report import FIGURES
+
+    _, out, _ = certified
+    requests: list[str] = []
+    with sync_playwright() as pw:
+        b = pw.chromium.launch(executable_path=chromium, headless=True, args=["--no-sandbox", "--no-first-run"])
+        page = b.new_page(viewport={"width": 1280, "height": 1600})
+        page.on("request", lambda r: requests.append(r.url))
+        page.goto((out / "report.html").resolve().as_uri())
+        page.wait_for_load_state("load")
+        imgs = page.eval_on_selector_all("img", "els => els.map(e => [e.alt, e.complete, e.naturalWidth, e.naturalHeight])")
+        text = page.inner_text("body")
+        page.screenshot(path=str(tmp_path / "report.png"), full_page=False)
+        b.close()
+    assert sorted(i[0] for i in imgs) == sorted(FIGURES)
+    from PIL import Image
+
+    for alt, complete, w, h in imgs:  # each decoded at the size of the PNG file written beside the report
+        assert complete and (w, h) == Image.open(out / "figures" / f"{alt}.png").size, alt
+    assert [u for u in requests if not u.startswith(("file:", "data:"))] == []
+    assert "too_small" in text and "section 5.1.1" in text
 
 
 def test_sweep_refuses_what_is_not_a_dataset(tmp_path):

@@ -4,8 +4,6 @@ a real viewer (headless Chromium) rendering it."""
 from __future__ import annotations
 
 import json
-import os
-import shutil
 import subprocess
 import sys
 import time
@@ -149,11 +147,9 @@ def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_
     """A real viewer: Rerun's web viewer in headless Chromium (software WebGL), driven over CDP by
     Playwright. The page must log no error from the viewer (the map's tile requests fail on a
     closed network: those, and only those, are tolerated), and the screenshot must not be blank."""
-    chromium = shutil.which("chromium")
-    if not chromium:
-        if os.environ.get("FLIGHTMODE_REQUIRE_BROWSER") == "1":
-            pytest.fail("FLIGHTMODE_REQUIRE_BROWSER=1 but no chromium on PATH (.ci/run installs it: apt-get install chromium)")
-        pytest.skip("needs a browser: install Debian's chromium (apt-get install chromium)")
+    from tests.browser import chromium_or_skip
+
+    chromium = chromium_or_skip()
     from playwright.sync_api import sync_playwright
 
     run, _ = pattern_run

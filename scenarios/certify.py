@@ -1,0 +1,384 @@
+"""Certify detector parameters on datasets: ``flightmode certify DATASET... --target-fa-per-h 1e-4``.
+
+From a sweep (:mod:`flightmode.scenarios.sweep`; run here, or reused from ``OUT/sweep`` when it
+covers the same datasets, grid and sigma^2 source):
+
+- every grid point's false-static rate per in-window flight-hour with its exact upper bound
+  (Garwood; the rule of three at zero events: :mod:`flightmode.detector.confidence`), the response at
+  the destination gate (p50/p95/max) and the availability (the share of truly static time reported
+  static);
+- the **Pareto front** of (rate bound: lower is better, response p95: lower, availability: higher);
+- the **recommendation**: among the points whose bound meets the target (and whose response p95 is
+  within ``max_response_s``, if given), the best response, then availability. If none meets it, the
+  dataset is too small to show it (or the point's observed rate already exceeds the target): the
+  provisional point (fewest false statics, then best response) and the in-window flight-hours still
+  needed, as flights of each family;
+- seed 000's recommended point (NMV, W_s 1 s, 4 sigma^2, T_th 4 s) measured the same way;
+- seed 000 section 5.1.1: the amplitude threshold from a target probability of misdetection P_M,
+  computed from the truly static checks of the flights (the empirical survival of MV / sigma^2, over
+  all three axes at once: a check is misdetected when any axis reaches the threshold) beside the
+  paper's Gaussian formula (eq. 13) with the measured mean and spread, and with white-noise moments
+  and the exact chi-square of white noise;
+- the breakdown by condition at the recommended and at seed 000's point.
+
+Written to ``OUT``: ``certify.json`` (all of the above), ``report.html`` (self-contained: figures
+embedded) and ``figures/*.png`` (:mod:`flightmode.viz.certify_report`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from flightmode.errors import InputDataError
+
+SEED000_POINT = {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0}  # seed 000, Table 9
+
+
+@dataclass(frozen=True)
+class Target:
+    """What is to be shown: false statics per in-window flight-hour at most ``rate_per_h`` at
+    ``confidence``; optionally a response p95 within ``max_response_s``; section 5.1.1's P_M."""
+
+    rate_per_h: float = 1e-4
+    confidence: float = 0.95
+    max_response_s: float | None = None
+    pm: float = 1e-3
+
+    def validate(self) -> None:
+        if not (self.rate_per_h > 0 and math.isfinite(self.rate_per_h)):
+            raise InputDataError(f"--target-fa-per-h {self.rate_per_h!r}: must be a rate > 0 (e.g. 1e-4)")
+        if not 0.0 < self.confidence < 1.0:
+            raise InputDataError(f"--confidence {self.confidence!r}: must be strictly between 0 and 1 (e.g. 0.95)")
+        if self.max_response_s is not None and not self.max_response_s > 0:
+            raise InputDataError(f"--max-response-s {self.max_response_s!r}: must be > 0 s")
+        if not 0.0 < self.pm < 1.0:
+            raise InputDataError(f"--pm {self.pm!r}: a probability of misdetection strictly between 0 and 1 (e.g. 1e-3)")
+
+
+@dataclass(frozen=True)
+class Certification:
+    target: Target
+    summary: list[dict]  # one row per grid point (sweep.summarise)
+    pareto: list[int]  # indices into summary
+    recommendation: dict
+    seed000: dict | None  # seed 000's point's summary row, if the grid holds it
+    threshold: dict  # section 5.1.1
+    breakdowns: dict  # {"recommended": [...], "seed000": [...]}
+    worst_flight: dict | None
+    meta: dict = field(default_factory=dict)
+
+
+def _point(row: dict) -> dict:
+    from flightmode.scenarios.sweep import POINT_KEYS
+
+    return {k: row[k] for k in POINT_KEYS}
+
+
+def point_name(row: dict) -> str:
+    m = row["method"].upper() + (f" w{row['weight']:g}" if row["method"] == "emv" else "")
+    return f"{m}, W_s {row['window_s']:g} s, {row['k']:g} sigma^2, T_th {row['time_threshold_s']:g} s"
+
+
+# ---------------------------------------------------------------------- the Pareto front
+def pareto_front(rows: Sequence[dict]) -> list[int]:
+    """Indices of the rows no other row dominates on (rate bound: min, response p95: min,
+    availability: max). A missing response counts as the worst (never resumed), a missing
+    availability as the worst."""
+    if not rows:
+        return []
+    cost = np.array([[r["rate_upper_per_h"], r["response_p95_s"], -r["availability"]] for r in rows], float)
+    cost = np.where(np.isfinite(cost), cost, np.inf)
+    le = np.all(cost[:, None, :] <= cost[None, :, :], axis=2)  # le[j, i]: j at least as good as i everywhere
+    lt = np.any(cost[:, None, :] < cost[None, :, :], axis=2)  # ... and better somewhere
+    dominated = np.any(le & lt, axis=0)
+    return np.flatnonzero(~dominated).tolist()
+
+
+# ---------------------------------------------------------------------- the recommendation
+def _hours_per_flight(points, point: dict) -> dict[str, float]:
+    """Mean in-window flight-hours of one flight, per family, at a point's rows."""
+    from flightmode.scenarios.sweep import at_point
+
+    by: dict[str, list[float]] = {}
+    for r in at_point(points, point):
+        by.setdefault(r.get("family") or "dataset", []).append(r["in_window_h"])
+    return {f: float(np.mean(v)) for f, v in sorted(by.items())}
+
+
+def recommend(summary: Sequence[dict], target: Target, hours_per_flight: Callable[[dict], dict[str, float]]) -> dict:
+    """The point to ship, or why the dataset cannot show one (module docstring)."""
+    from flightmode.detector.confidence import hours_needed
+
+    def fast(r):
+        return target.max_response_s is None or (math.isfinite(r["response_p95_s"])
+                                                 and r["response_p95_s"] <= target.max_response_s)
+
+    def by_response(r):
+        resp = r["response_p95_s"] if math.isfinite(r["response_p95_s"]) else math.inf
+        avail = r["availability"] if math.isfinite(r["availability"]) else -math.inf
+        return resp, -avail, r["rate_upper_per_h"]
+
+    meets = [r for r in summary if r["rate_upper_per_h"] <= target.rate_per_h and fast(r)]
+    if meets:
+        best = min(meets, key=by_response)
+        return {"status": "meets", "point": best, "candidates": len(meets),
+                "text": f"{point_name(best)} meets the target: at most {best['rate_upper_per_h']:.3g} false statics "
+                        f"per flight-hour ({target.confidence:.0%} bound, {best['false_statics']} in "
+                        f"{best['in_window_h']:,.0f} h), response p95 {best['response_p95_s']:.1f} s, "
+                        f"availability {best['availability']:.3f}"}
+    pool = [r for r in summary if fast(r)] or list(summary)
+    fewest = min(r["false_statics"] for r in pool)
+    best = min((r for r in pool if r["false_statics"] == fewest), key=by_response)
+    out = {"status": "too_small", "point": best, "candidates": 0}
+    limit = "" if target.max_response_s is None or fast(best) else (
+        f"; no point answers within {target.max_response_s:g} s (p95), so the response limit is not met either")
+    if best["false_statics"] > 0 and best["rate_per_h"] >= target.rate_per_h:
+        out["status"] = "unreachable"
+        out["text"] = (f"no grid point can meet {target.rate_per_h:g} per flight-hour on these flights: the one with the "
+                       f"fewest false statics, {point_name(best)}, has {best['false_statics']} in "
+                       f"{best['in_window_h']:,.0f} h, an observed rate of {best['rate_per_h']:.3g} /h already above "
+                       f"the target; widen the grid (lower k, longer T_th){limit}")
+        return out
+    need = hours_needed(target.rate_per_h, target.confidence, best["false_statics"])
+    short = max(0.0, need - best["in_window_h"])
+    per = hours_per_flight(_point(best))
+    out |= {"hours_needed": need, "hours_short": short,
+            "flights_short": {f: int(math.ceil(short / h)) for f, h in per.items() if h > 0}}
+    more = " or ".join(f"{n:,} more flights of {f} ({per[f]:.2f} in-window h each)" for f, n in out["flights_short"].items())
+    out["text"] = (f"the dataset is too small to show {target.rate_per_h:g} false statics per flight-hour at "
+                   f"{target.confidence:.0%}: the best point, {point_name(best)}, has {best['false_statics']} false "
+                   f"statics in {best['in_window_h']:,.0f} in-window h (bound {best['rate_upper_per_h']:.3g} /h); "
+                   f"the claim needs {need:,.0f} h{' with no more events' if best['false_statics'] else ' with none'}, "
+                   f"{short:,.0f} h more: {more}{limit}")
+    return out
+
+
+# ---------------------------------------------------------------------- seed 000 section 5.1.1
+def threshold_from_static(static, pm: float, n_window: int, method: str = "nmv", weight: float = 1.0,
+                          window_s: float = 1.0, confidence: float = 0.95) -> dict:
+    """Seed 000 section 5.1.1's threshold for a probability of misdetection ``pm``, in units of
+    sigma^2, from the truly static checks of the swept flights (module docstring), beside eq. 13 and
+    the exact chi-square for white noise over an ``n_window``-sample window."""
+    import pyarrow.compute as pc
+    from scipy.stats import chi2, norm
+
+    from flightmode.detector.confidence import proportion_upper_bound
+    from flightmode.detector.statistics import nmv_moments
+    from flightmode.scenarios.sweep import AXES, STATIC_EDGES
+
+    sel = static.filter(pc.and_(pc.and_(pc.equal(static["method"], method), pc.equal(static["weight"], weight)),
+                                pc.equal(static["window_s"], window_s)))
+    if sel.num_rows == 0:
+        raise InputDataError(f"the sweep has no {method} W_s {window_s:g} s: section 5.1.1 needs that window in the grid")
+    d = sel.to_pydict()
+    n = int(sum(d["static_checks"]))
+    if n == 0:
+        raise InputDataError("no check of the swept flights has a truly static window: section 5.1.1 needs static data")
+    out: dict = {"method": method, "weight": weight, "window_s": window_s, "pm": pm, "static_checks": n,
+                 "static_h": n * window_s / 3600.0, "flights": sel.num_rows}
+    pm_axis = 1.0 - (1.0 - pm) ** (1.0 / 3.0)  # three independent axes, any of which misdetects
+    out["pm_per_axis"] = pm_axis
+    edges = STATIC_EDGES
+    hists = {a: np.sum(np.array(d[f"hist_{a}"], np.int64), axis=0) for a in (*AXES, "max")}
+    surv = {a: np.concatenate([np.cumsum(h[::-1])[::-1], [0]]) / n for a, h in hists.items()}  # P(MV >= edge)
+    out["survival_k"] = edges.tolist()
+    out["survival_max"] = surv["max"].tolist()
+    ok = np.flatnonzero(surv["max"] <= pm)
+    k_emp = float(edges[ok[0]])
+    count = int(round(surv["max"][ok[0]] * n))
+    out["empirical_k"] = k_emp
+    out["empirical_resolved"] = bool(n * pm >= 3.0)  # fewer than 3 expected exceedances: the tail is not measured
+    out["empirical_pm_at_k"] = count / n
+    out["empirical_pm_upper"] = proportion_upper_bound(count, n, confidence)
+    per_axis = {}
+    for a in AXES:
+        s = float(np.sum(d[f"sum_{a}"]))
+        ss = float(np.sum(d[f"sumsq_{a}"]))
+        mu = s / n
+        sd = math.sqrt(max(ss / n - mu * mu, 0.0))
+        k_a = float(edges[np.flatnonzero(surv[a] <= pm_axis)[0]])
+        per_axis[a] = {"mean": mu, "sd": sd, "empirical_k": k_a,
+                       "gaussian_k": mu + sd * float(norm.isf(pm_axis))}  # eq. 13 inverted, measured mu, sigma_MV
+    out["axes"] = per_axis
+    out["gaussian_measured_k"] = max(v["gaussian_k"] for v in per_axis.values())
+    mu, sd = nmv_moments(n_window)
+    out["samples_per_window"] = n_window
+    out["gaussian_white_k"] = mu + sd * float(norm.isf(pm_axis))  # seed 000 eq. 13 with white-noise moments
+    out["chi2_white_k"] = float(chi2.isf(pm_axis, n_window - 1)) / n_window  # N MV / sigma^2 ~ chi2(N - 1)
+    return out
+
+
+def worst_flight(points, phases, point: dict) -> dict | None:
+    """The flight closest to trouble at ``point``: the most false-static seconds; on a tie (none),
+    the most in-window checks under ``k sigma^2`` on all axes (eq. 7's temporary statics)."""
+    import pyarrow.compute as pc
+
+    from flightmode.scenarios.sweep import at_point
+
+    rows = at_point(points, point)
+    if not rows:
+        return None
+    under: dict[tuple, int] = {}
+    m = pc.and_(pc.and_(pc.equal(phases["method"], point["method"]), pc.equal(phases["weight"], point["weight"])),
+                pc.and_(pc.equal(phases["window_s"], point["window_s"]), pc.equal(phases["k"], point["k"])))
+    for r in phases.filter(m).select(["dataset", "flight_id", "under_all"]).to_pylist():
+        key = (r["dataset"], r["flight_id"])
+        under[key] = under.get(key, 0) + r["under_all"]
+    best = max(rows, key=lambda r: (r["false_static_s"], under.get((r["dataset"], r["flight_id"]), 0)))
+    return {"dataset": best["dataset"], "flight_id": best["flight_id"], "false_static_s": best["false_static_s"],
+            "false_statics": best["false_static_count"], "under_all": under.get((best["dataset"], best["flight_id"]), 0),
+            "aircraft": best.get("aircraft"), "placement": best.get("placement"), "turbulence": best.get("turbulence"),
+            "family": best.get("family")}
+
+
+# ---------------------------------------------------------------------- the whole job
+def _sweep_matches(meta: dict, datasets: list[Path], grid, sigma2_from: str) -> bool:
+    from flightmode.scenarios.sweep import manifest_digest
+
+    have = [(d["path"], d["manifest_sha256"]) for d in meta.get("datasets", [])]
+    want = [(str(p), manifest_digest(p)) for p in datasets]
+    g = meta.get("grid", {})
+    return (have == want and meta.get("sigma2_from") == sigma2_from
+            and g.get("methods") == [list(m) for m in grid.methods] and g.get("windows_s") == list(grid.windows_s)
+            and g.get("ks") == list(grid.ks) and g.get("time_thresholds_s") == list(grid.time_thresholds_s))
+
+
+def command_of(datasets_meta: list[dict], grid, target: Target, sigma2_from: str, out: Path) -> list[str]:
+    """The commands that make the datasets again and certify them (for the report)."""
+    lines = []
+    for d in datasets_meta:
+        opts = d.get("options") or {}
+        extra = "".join([f" --truth {opts['truth']}" if opts.get("truth") not in (None, "10hz") else "",
+                         " --rrd" if opts.get("rrd") else ""])
+        lines.append(f"flightmode dataset {d['family']} --n {d['flights']} --out {d['path']}{extra}")
+    methods = sorted({m for m, _ in grid.methods})
+    weights = sorted({w for m, w in grid.methods if m == "emv"})
+
+    def axis(v):
+        return ",".join(f"{x:g}" for x in v)
+
+    cmd = (f"flightmode certify {' '.join(d['path'] for d in datasets_meta)} --target-fa-per-h {target.rate_per_h:g} "
+           f"--confidence {target.confidence:g} --pm {target.pm:g}"
+           + (f" --max-response-s {target.max_response_s:g}" if target.max_response_s else "")
+           + f" --method {','.join(methods)}" + (f" --weight {axis(weights)}" if weights else "")
+           + f" --window-s {axis(grid.windows_s)} --k {axis(grid.ks)} --time-threshold-s {axis(grid.time_thresholds_s)}"
+           + f" --sigma2-from {sigma2_from} --out {out}")
+    return lines + [cmd]
+
+
+def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from: str = "preset", workers: int = 1,
+            out: str | Path, on_start: Callable[[int], None] | None = None,
+            on_flight: Callable[[str], None] | None = None, figures: bool = True,
+            log: Callable[[str], None] = lambda s: None) -> Certification:
+    """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``."""
+    from flightmode.scenarios.dataset import _atomic_text
+    from flightmode.scenarios.sweep import breakdown, read_sweep, summarise, sweep
+
+    target.validate()
+    paths = [Path(d) for d in datasets]
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise InputDataError(f"--out {out} is a file: give a folder for the report")
+    sweep_dir = out / "sweep"
+    result = None
+    if (sweep_dir / "sweep.json").exists():
+        cached = read_sweep(sweep_dir)
+        if _sweep_matches(cached.meta, paths, grid, sigma2_from):
+            log(f"reusing the sweep in {sweep_dir} (same datasets, grid and sigma^2 source)")
+            result = cached
+    if result is None:
+        result = sweep(paths, grid, sigma2_from=sigma2_from, workers=workers, out=sweep_dir,
+                       on_start=on_start, on_flight=on_flight)
+    summary = summarise(result.points, target.confidence, target.rate_per_h)
+    front = pareto_front(summary)
+    rec = recommend(summary, target, lambda p: _hours_per_flight(result.points, p))
+    seed000 = next((r for r in summary if _point(r) == SEED000_POINT), None)
+    if seed000 is not None:
+        seed000 = seed000 | {"meets": bool(seed000["rate_upper_per_h"] <= target.rate_per_h and (
+            target.max_response_s is None or seed000["response_p95_s"] <= target.max_response_s))}
+    rp = _point(rec["point"])
+    window_5_1_1 = 1.0 if 1.0 in grid.windows_s else rp["window_s"]
+    method_5_1_1 = ("nmv", 1.0) if ("nmv", 1.0) in grid.methods else (rp["method"], rp["weight"])
+    th = threshold_from_static(result.static, target.pm, int(round(window_5_1_1 * _fs_of(result.points))),
+                               *method_5_1_1, window_5_1_1, target.confidence)
+    th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
+    breakdowns = {"recommended": breakdown(result.points, rp)}
+    if seed000 is not None:
+        breakdowns["seed000"] = breakdown(result.points, SEED000_POINT)
+    worst = worst_flight(result.points, result.phases, SEED000_POINT if seed000 is not None else rp)
+    meta = result.meta | {"excluded": [{"dataset": r["dataset"], "flight_id": r["flight_id"],
+                                         "error": (r.get("error") or "")[:300]} for r in result.failed],
+                          "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out)}
+    cert = Certification(target, summary, front, rec, seed000, th, breakdowns, worst, meta)
+    out.mkdir(parents=True, exist_ok=True)
+    _atomic_text(json.dumps(as_dict(cert), indent=2, default=_jsonable), out / "certify.json")
+    if figures:
+        from flightmode.viz.certify_report import write_report
+
+        write_report(cert, result, out)
+    return cert
+
+
+def _fs_of(points) -> float:
+    """The streams' sampling rate (Hz), from the first swept flight's samples."""
+    import pyarrow.parquet as pq
+
+    from flightmode.scenarios.dataset import read_manifest
+
+    r = points.slice(0, 1).to_pylist()[0]
+    row = next(x for x in read_manifest(Path(r["dataset"])).values() if x["flight_id"] == r["flight_id"])
+    t = pq.read_table(Path(r["dataset"]) / row["samples_file"], columns=["t_s"])["t_s"].to_numpy()[:1000]
+    return round(1.0 / float(np.median(np.diff(t))), 6)
+
+
+def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target: Target) -> dict | None:
+    """Seed 000 section 5.1.1's last step: the P_FA at the grid's k nearest below the threshold found,
+    as the in-window fraction of checks under it on all axes (P_FA^t, joint) and the false-static rate
+    bound at T_th 4 s (seed 000's) or the nearest."""
+    import pyarrow.compute as pc
+
+    ks = sorted({r["k"] for r in summary if (r["method"], r["weight"], r["window_s"]) == (*method, window_s)})
+    below = [x for x in ks if x <= k]
+    if not below:
+        return None
+    kg = below[-1]
+    m = pc.and_(pc.and_(pc.equal(phases["method"], method[0]), pc.equal(phases["weight"], method[1])),
+                pc.and_(pc.equal(phases["window_s"], window_s), pc.equal(phases["k"], kg)))
+    d = phases.filter(m).select(["checks", "under_all"]).to_pydict()
+    checks, under = int(sum(d["checks"])), int(sum(d["under_all"]))
+    rows = [r for r in summary if (r["method"], r["weight"], r["window_s"], r["k"]) == (*method, window_s, kg)]
+    tths = sorted(r["time_threshold_s"] for r in rows)
+    tth = min(tths, key=lambda t: abs(t - 4.0))
+    r = next(x for x in rows if x["time_threshold_s"] == tth)
+    return {"k": kg, "in_window_checks": checks, "under_all": under,
+            "p_fa_t_joint": under / checks if checks else math.nan, "time_threshold_s": tth,
+            "false_statics": r["false_statics"], "rate_upper_per_h": r["rate_upper_per_h"],
+            "meets": bool(r["rate_upper_per_h"] <= target.rate_per_h)}
+
+
+def as_dict(cert: Certification) -> dict:
+    import dataclasses
+
+    d = dataclasses.asdict(cert)
+    d["threshold"] = {k: v for k, v in d["threshold"].items() if k not in ("survival_k", "survival_max")}
+    return d
+
+
+def _jsonable(v):
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    if isinstance(v, (np.floating,)):
+        return float(v)
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    return str(v)
+
+
+__all__ = ["certify", "Certification", "Target", "pareto_front", "recommend", "threshold_from_static",
+           "worst_flight", "SEED000_POINT", "point_name", "command_of"]

@@ -1,0 +1,127 @@
+"""flightmode certify's pieces on data whose answer is known: the Pareto front of hand-made points,
+the recommendation's three outcomes, seed 000 section 5.1.1's threshold on white-noise static data,
+and the one-line refusals. (certify on real flights, its report and the browser: test_dataset.py.)"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from flightmode.errors import InputDataError
+from flightmode.scenarios.certify import Target, pareto_front, recommend, threshold_from_static
+
+
+def _row(i, events, hours, rate_up, p95, avail, k=4.0):
+    return {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": k, "time_threshold_s": float(i),
+            "false_statics": events, "in_window_h": hours, "rate_per_h": events / hours, "rate_upper_per_h": rate_up,
+            "response_p95_s": p95, "availability": avail}
+
+
+def test_the_pareto_front_holds_exactly_the_points_nothing_beats():
+    rows = [_row(0, 0, 10, 0.3, 10.0, 0.90),   # front: lowest bound
+            _row(1, 0, 10, 0.3, 12.0, 0.80),   # beaten by 0 everywhere
+            _row(2, 1, 10, 0.5, 5.0, 0.95),    # front: fastest
+            _row(3, 1, 10, 0.5, 5.0, 0.99),    # front: beats 2 on availability alone
+            _row(4, 2, 10, 0.6, 8.0, 0.99),    # beaten by 3 (worse bound and response, equal availability)
+            _row(5, 0, 10, 0.3, math.nan, 1.0),  # never answers: the worst response, but the best availability
+            _row(6, 0, 10, 0.3, 10.0, 0.90)]   # a tie with 0: neither beats the other, both on the front
+    assert pareto_front(rows) == [0, 3, 5, 6]
+
+
+def test_the_recommendation_meets_the_target_or_says_what_is_missing():
+    from flightmode.detector.confidence import hours_needed, rate_upper_bound
+
+    t = Target(rate_per_h=0.01, confidence=0.95, max_response_s=30.0)
+    per = {"airline-mix": 2.0, "rough-air": 1.5}
+    # 600 h with no event: bound 3.0 / 600 = 5e-3 < 1e-2, so both quiet points meet it; the faster one wins
+    rows = [_row(0, 0, 600, rate_upper_bound(0, 600), 20.0, 0.9), _row(1, 0, 600, rate_upper_bound(0, 600), 12.0, 0.8),
+            _row(2, 3, 600, rate_upper_bound(3, 600), 4.0, 0.99), _row(3, 0, 600, rate_upper_bound(0, 600), 40.0, 1.0)]
+    r = recommend(rows, t, lambda p: per)
+    assert r["status"] == "meets" and r["point"]["time_threshold_s"] == 1.0 and r["candidates"] == 2
+    # 100 h: no bound reaches 1e-2; the provisional point has no event and answers within 30 s, and the
+    # claim needs 3.0 / 1e-2 = 299.6 h: 199.6 h more, 100 flights of airline-mix or 134 of rough-air
+    rows100 = [x | {"in_window_h": 100.0, "rate_upper_per_h": rate_upper_bound(x["false_statics"], 100.0),
+                    "rate_per_h": x["false_statics"] / 100.0} for x in rows]
+    r = recommend(rows100, t, lambda p: per)
+    assert r["status"] == "too_small" and r["point"]["time_threshold_s"] == 1.0
+    assert r["hours_needed"] == pytest.approx(-math.log(0.05) / 0.01)
+    assert r["hours_short"] == pytest.approx(hours_needed(0.01) - 100.0)
+    assert r["flights_short"] == {"airline-mix": 100, "rough-air": 134}
+    assert "199.6" not in r["text"] and "200 h more" in r["text"]  # hours shown rounded, as a reader wants them
+    # every point with events at an observed rate above the target: no amount of data helps
+    hot = [_row(0, 5, 100, rate_upper_bound(5, 100), 5.0, 0.9), _row(1, 2, 100, rate_upper_bound(2, 100), 50.0, 0.9)]
+    r = recommend(hot, t, lambda p: per)
+    assert r["status"] == "unreachable" and r["point"]["false_statics"] == 5  # the only one within 30 s
+    assert "observed rate of 0.05 /h already above the target" in r["text"]
+
+
+def _static_table(rng, n_checks: int, n: int = 100, colour: float = 1.0):
+    """The static statistics of synthetic flights, made by the sweep's own reducer, from MVs of white
+    Gaussian noise: N MV / sigma^2 ~ chi-square(N - 1) per axis (``colour`` > 1 widens the spread)."""
+    import pyarrow as pa
+
+    from flightmode.scenarios.sweep import _static_stats
+
+    rows = []
+    for f in range(4):
+        r = rng.chisquare(n - 1, size=(n_checks // 4, 3)) / n
+        r = 1 + (r - 1) * colour
+        rows.append({"dataset": "d", "family": "f", "flight_id": f"{f:06d}", "method": "nmv", "weight": 1.0,
+                     "window_s": 1.0, **_static_stats(r, np.ones(3), np.ones(r.shape[0], bool))})
+    return pa.Table.from_pylist(rows)
+
+
+def test_section_5_1_1_threshold_from_white_static_data_is_the_chi_square_quantile():
+    from scipy.stats import chi2
+
+    rng = np.random.default_rng(511)
+    th = threshold_from_static(_static_table(rng, 400_000), 1e-3, n_window=100)
+    assert th["static_checks"] == 400_000 and th["empirical_resolved"]
+    # exact: P(any of 3 independent axes >= k) = 1e-3 at the chi-square(99) quantile / 100, k = 1.54
+    pm_axis = 1 - (1 - 1e-3) ** (1 / 3)
+    k_exact = chi2.isf(pm_axis, 99) / 100
+    assert th["chi2_white_k"] == pytest.approx(k_exact, rel=1e-12)
+    # the measured k is a bin edge (2.3 % wide) at or just above the quantile; 400 expected exceedances
+    # give a 5 % count error, about 0.4 % in k at this tail's slope: within one bin and a half
+    assert k_exact * 0.985 < th["empirical_k"] < k_exact * 1.035
+    assert th["empirical_pm_at_k"] <= 1e-3
+    # eq. 13 with the measured moments is close to the white-noise moments' version (mean 0.99, sd 0.141)
+    for a in "xyz":
+        assert th["axes"][a]["mean"] == pytest.approx(0.99, abs=0.002)  # 4e5 samples: se 2e-4
+        assert th["axes"][a]["sd"] == pytest.approx(math.sqrt(2 * 99) / 100, rel=0.01)
+    assert th["gaussian_measured_k"] == pytest.approx(th["gaussian_white_k"], abs=0.01)
+    # the Gaussian (eq. 13) underestimates the chi-square's heavier right tail: its k is lower
+    assert th["gaussian_white_k"] < k_exact
+    # a wider spread (coloured noise, as seed 000's Table 2 implies) moves the measured threshold up
+    wide = threshold_from_static(_static_table(rng, 400_000, colour=2.5), 1e-3, n_window=100)
+    assert wide["empirical_k"] > th["empirical_k"] + 0.5
+    # too few checks to see P_M: said, not hidden
+    few = threshold_from_static(_static_table(rng, 2_000), 1e-3, n_window=100)
+    assert not few["empirical_resolved"]
+
+
+def test_bad_targets_and_inputs_are_one_line_errors(tmp_path):
+    for t, msg in ((Target(rate_per_h=0.0), "--target-fa-per-h 0.0: must be a rate > 0"),
+                   (Target(rate_per_h=-1e-4), "must be a rate > 0"),
+                   (Target(confidence=1.0), "--confidence 1.0: must be strictly between 0 and 1"),
+                   (Target(max_response_s=0.0), "--max-response-s 0.0: must be > 0 s"),
+                   (Target(pm=0.0), "--pm 0.0: a probability of misdetection strictly between 0 and 1")):
+        with pytest.raises(InputDataError, match=msg):
+            t.validate()
+    from typer.testing import CliRunner
+
+    from flightmode.scenarios.cli import app
+
+    cases = ((["certify", str(tmp_path), "--target-fa-per-h", "0"], "--target-fa-per-h 0.0: must be a rate > 0"),
+             (["certify", str(tmp_path)], "no flights.parquet: not a dataset made by `flightmode dataset`"),
+             (["certify", str(tmp_path), "--k", "0,4"], "--k 0.0: the threshold k sigma^2 needs k > 0"),
+             (["certify", str(tmp_path), "--window-s", ""], "--window-s: the grid axis is empty"),
+             (["sweep", str(tmp_path), str(tmp_path)], "several datasets: give --out"))
+    for args, msg in cases:
+        r = CliRunner().invoke(app, args)
+        assert r.exit_code == 2, (args, r.output)
+        assert msg in r.output and "Traceback" not in r.output
+        assert len(r.output.strip().splitlines()) == 1, r.output
+    assert not any(tmp_path.iterdir())  # nothing half-written
