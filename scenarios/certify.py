@@ -227,29 +227,35 @@ def worst_flight(points, phases, point: dict) -> dict | None:
     under: dict[tuple, int] = {}
     m = pc.and_(pc.and_(pc.equal(phases["method"], point["method"]), pc.equal(phases["weight"], point["weight"])),
                 pc.and_(pc.equal(phases["window_s"], point["window_s"]), pc.equal(phases["k"], point["k"])))
-    for r in phases.filter(m).select(["dataset", "flight_id", "under_all"]).to_pylist():
-        key = (r["dataset"], r["flight_id"])
+    for r in phases.filter(m).select(["dataset", "flight_id", "sensor_preset", "under_all"]).to_pylist():
+        key = (r["dataset"], r["flight_id"], r["sensor_preset"])
         under[key] = under.get(key, 0) + r["under_all"]
-    best = max(rows, key=lambda r: (r["false_static_s"], under.get((r["dataset"], r["flight_id"]), 0)))
-    return {"dataset": best["dataset"], "flight_id": best["flight_id"], "false_static_s": best["false_static_s"],
-            "false_statics": best["false_static_count"], "under_all": under.get((best["dataset"], best["flight_id"]), 0),
+
+    def key(r):
+        return r["dataset"], r["flight_id"], r["sensor_preset"]
+
+    best = max(rows, key=lambda r: (r["false_static_s"], under.get(key(r), 0)))
+    return {"dataset": best["dataset"], "flight_id": best["flight_id"], "sensor_preset": best["sensor_preset"],
+            "false_static_s": best["false_static_s"], "false_statics": best["false_static_count"],
+            "under_all": under.get(key(best), 0),
             "aircraft": best.get("aircraft"), "placement": best.get("placement"), "turbulence": best.get("turbulence"),
             "family": best.get("family")}
 
 
 # ---------------------------------------------------------------------- the whole job
-def _sweep_matches(meta: dict, datasets: list[Path], grid, sigma2_from: str) -> bool:
+def _sweep_matches(meta: dict, datasets: list[Path], grid, sigma2_from: str, sensors) -> bool:
     from flightmode.scenarios.sweep import manifest_digest
 
     have = [(d["path"], d["manifest_sha256"]) for d in meta.get("datasets", [])]
     want = [(str(p), manifest_digest(p)) for p in datasets]
     g = meta.get("grid", {})
-    return (have == want and meta.get("sigma2_from") == sigma2_from
+    return (have == want and meta.get("sigma2_from") == sigma2_from and meta.get("sensors") == (list(sensors) if sensors else None)
             and g.get("methods") == [list(m) for m in grid.methods] and g.get("windows_s") == list(grid.windows_s)
             and g.get("ks") == list(grid.ks) and g.get("time_thresholds_s") == list(grid.time_thresholds_s))
 
 
-def command_of(datasets_meta: list[dict], grid, target: Target, sigma2_from: str, out: Path) -> list[str]:
+def command_of(datasets_meta: list[dict], grid, target: Target, sigma2_from: str, out: Path,
+               sensors=None) -> list[str]:
     """The commands that make the datasets again and certify them (for the report)."""
     lines = []
     for d in datasets_meta:
@@ -268,12 +274,12 @@ def command_of(datasets_meta: list[dict], grid, target: Target, sigma2_from: str
            + (f" --max-response-s {target.max_response_s:g}" if target.max_response_s else "")
            + f" --method {','.join(methods)}" + (f" --weight {axis(weights)}" if weights else "")
            + f" --window-s {axis(grid.windows_s)} --k {axis(grid.ks)} --time-threshold-s {axis(grid.time_thresholds_s)}"
-           + f" --sigma2-from {sigma2_from} --out {out}")
+           + f" --sigma2-from {sigma2_from}" + (f" --sensor {','.join(sensors)}" if sensors else "") + f" --out {out}")
     return lines + [cmd]
 
 
 def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from: str = "preset", workers: int = 1,
-            out: str | Path, on_start: Callable[[int], None] | None = None,
+            sensors: Sequence[str] | None = None, out: str | Path, on_start: Callable[[int], None] | None = None,
             on_flight: Callable[[str], None] | None = None, figures: bool = True,
             log: Callable[[str], None] = lambda s: None) -> Certification:
     """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``."""
@@ -289,11 +295,11 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
     result = None
     if (sweep_dir / "sweep.json").exists():
         cached = read_sweep(sweep_dir)
-        if _sweep_matches(cached.meta, paths, grid, sigma2_from):
+        if _sweep_matches(cached.meta, paths, grid, sigma2_from, sensors):
             log(f"reusing the sweep in {sweep_dir} (same datasets, grid and sigma^2 source)")
             result = cached
     if result is None:
-        result = sweep(paths, grid, sigma2_from=sigma2_from, workers=workers, out=sweep_dir,
+        result = sweep(paths, grid, sigma2_from=sigma2_from, workers=workers, sensors=sensors, out=sweep_dir,
                        on_start=on_start, on_flight=on_flight)
     summary = summarise(result.points, target.confidence, target.rate_per_h)
     front = pareto_front(summary)
@@ -314,7 +320,7 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
     worst = worst_flight(result.points, result.phases, SEED000_POINT if seed000 is not None else rp)
     meta = result.meta | {"excluded": [{"dataset": r["dataset"], "flight_id": r["flight_id"],
                                          "error": (r.get("error") or "")[:300]} for r in result.failed],
-                          "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out)}
+                          "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors)}
     cert = Certification(target, summary, front, rec, seed000, th, breakdowns, worst, meta)
     out.mkdir(parents=True, exist_ok=True)
     _atomic_text(json.dumps(as_dict(cert), indent=2, default=_jsonable), out / "certify.json")

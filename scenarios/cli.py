@@ -389,6 +389,10 @@ def _grid(method: str, weight: str, window_s: str, k: str, time_threshold_s: str
     return Grid(pairs, _axis(window_s, "--window-s"), _axis(k, "--k"), _axis(time_threshold_s, "--time-threshold-s"))
 
 
+def _sensors(text: str | None) -> tuple[str, ...] | None:
+    return None if text is None else tuple(x.strip() for x in text.split(",") if x.strip())
+
+
 def _sweep_progress():
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -420,6 +424,7 @@ def sweep_cmd(
     k: Annotated[str, typer.Option("--k", help=GRID_HELP["k"])] = "2:8:0.5",
     time_threshold_s: Annotated[str, typer.Option("--time-threshold-s", help=GRID_HELP["time_threshold_s"])] = "1:8:1",
     sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (each unit's bench calibration) or rest.")] = "preset",
+    sensor: Annotated[Optional[str], typer.Option("--sensor", help="Re-sense every flight with these presets (e.g. lis302dl,lis302dl-8g; a dataset made with --truth full).")] = None,
     workers: Annotated[int, typer.Option("--workers", help="Dask worker processes (1: in this process).")] = 1,
     out: Annotated[Optional[Path], typer.Option("--out", help="The sweep folder (default DATASET/sweep; needed for several datasets).")] = None,
     confidence: Annotated[float, typer.Option("--confidence", help="Confidence of the upper bounds.")] = 0.95,
@@ -438,10 +443,11 @@ def sweep_cmd(
             if len(datasets) > 1:
                 raise ScenarioError("several datasets: give --out, the folder for their common sweep")
             out = Path(datasets[0]) / "sweep"
-        check_request(datasets, grid, sigma2_from)
+        sensors = _sensors(sensor)
+        check_request(datasets, grid, sigma2_from, sensors)
         with _sweep_progress() as progress:
             task = progress.add_task("sweep", total=None)
-            result = sweep(datasets, grid, sigma2_from=sigma2_from, workers=workers, out=out,
+            result = sweep(datasets, grid, sigma2_from=sigma2_from, workers=workers, sensors=sensors, out=out,
                            on_start=lambda n: progress.update(task, total=n),
                            on_flight=lambda fid: progress.update(task, advance=1))
         _excluded(result.failed)
@@ -489,6 +495,7 @@ def certify_cmd(
     k: Annotated[str, typer.Option("--k", help=GRID_HELP["k"])] = "2:8:0.5",
     time_threshold_s: Annotated[str, typer.Option("--time-threshold-s", help=GRID_HELP["time_threshold_s"])] = "1:8:1",
     sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (each unit's bench calibration) or rest.")] = "preset",
+    sensor: Annotated[Optional[str], typer.Option("--sensor", help="Re-sense every flight with these presets (e.g. lis302dl,lis302dl-8g; a dataset made with --truth full).")] = None,
     workers: Annotated[int, typer.Option("--workers", help="Dask worker processes for the sweep (1: in this process).")] = 1,
     out: Annotated[Optional[Path], typer.Option("--out", help="The report folder (default DATASET/certify; needed for several datasets).")] = None,
 ) -> None:
@@ -506,10 +513,11 @@ def certify_cmd(
             if len(datasets) > 1:
                 raise ScenarioError("several datasets: give --out, the folder for the report")
             out = Path(datasets[0]) / "certify"
-        check_request(datasets, grid, sigma2_from)
+        sensors = _sensors(sensor)
+        check_request(datasets, grid, sigma2_from, sensors)
         with _sweep_progress() as progress:
             task = progress.add_task("sweep", total=None)
-            cert = certify(datasets, grid, target, sigma2_from=sigma2_from, workers=workers, out=out,
+            cert = certify(datasets, grid, target, sigma2_from=sigma2_from, workers=workers, sensors=sensors, out=out,
                            on_start=lambda n: progress.update(task, total=n),
                            on_flight=lambda fid: progress.update(task, advance=1),
                            log=lambda m: console.print(m, highlight=False))

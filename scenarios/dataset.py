@@ -135,6 +135,9 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
             step = max(1, int(round(r.track.fs_hz / 10.0)))
             truth = truth.take(pa.array(np.arange(0, truth.num_rows, step)))
         truth = truth.append_column("flight_id", pa.array(np.full(truth.num_rows, fid)))
+        if options["truth"] == "full":  # what rebuilds the FlightTrack, so that the flight can be re-sensed
+            truth = truth.replace_schema_metadata(
+                {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(r.track), default=run_io._json_default)})
         files["truth"] = f"truth/{part}"
         _atomic_parquet(truth, out / files["truth"])
     if options.get("rrd"):

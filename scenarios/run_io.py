@@ -193,7 +193,6 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
     import pyarrow.parquet as pq
 
     from flightmode.errors import InputDataError
-    from flightmode.sim.flight.track import Event, euler_to_quat_wxyz
 
     run_dir = Path(run_dir)
     if not (run_dir / "truth.parquet").is_file() or not (run_dir / "run.json").is_file():
@@ -206,13 +205,32 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
         t = pq.read_table(run_dir / "truth.parquet")
     except Exception as e:  # pyarrow raises several types for a file that is not Parquet
         raise InputDataError(f"{run_dir / 'truth.parquet'}: not a readable Parquet file ({e})") from None
+    return track_from_table(t, info), info
+
+
+TRACK_INFO_KEY = b"flightmode.track"  # Parquet metadata of a dataset's full-rate truth: what read_track needs of run.json
+
+
+def track_info(track: FlightTrack) -> dict:
+    """The part of run.json a FlightTrack needs besides its columns (:func:`track_from_table`)."""
+    return {"aircraft": track.aircraft, "plan": {"origin": {"lat_deg": track.origin_lat_deg, "lon_deg": track.origin_lon_deg,
+                                                           "elevation_m": track.origin_alt_m}},
+            "events": [{"t_s": e.t_s, "name": e.name, "detail": e.detail} for e in track.events],
+            "conditions": track.conditions, "truth": {"fs_hz": track.fs_hz}}
+
+
+def track_from_table(t, info: dict) -> FlightTrack:
+    """A FlightTrack from a truth table (:func:`track_table`, every FDM step) and run.json's
+    aircraft, plan origin, events, conditions and truth rate."""
+    from flightmode.sim.flight.track import Event, euler_to_quat_wxyz
+
     c = {name: t[name].to_numpy(zero_copy_only=False) for name in t.column_names}
     ne = sum(1 for k in c if k.startswith("n1_pct_e"))
     f64 = lambda *names: np.stack([np.asarray(c[n], dtype=float) for n in names], axis=1)  # noqa: E731
     phase = t["phase"].combine_chunks()
     turb = t["turbulence_severity"].combine_chunks()
     euler = f64("phi_rad", "theta_rad", "psi_rad")
-    track = FlightTrack(
+    return FlightTrack(
         aircraft=info["aircraft"],
         fs_hz=float(info["truth"]["fs_hz"]),
         origin_lat_deg=info["plan"]["origin"]["lat_deg"],
@@ -244,7 +262,6 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
         events=tuple(Event(e["t_s"], e["name"], e["detail"]) for e in info["events"]),
         conditions=info.get("conditions", {}),
     )
-    return track, info
 
 
 def _strings(col) -> np.ndarray:

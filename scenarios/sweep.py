@@ -105,13 +105,47 @@ def _static_stats(mv: np.ndarray, sigma2: np.ndarray, whole_static: np.ndarray) 
     return out
 
 
-def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", family: str = "") -> dict:
-    """Every grid point on one flight of a dataset: {"points", "phases", "static"} lists of rows
-    (module docstring)."""
-    from flightmode.detector.grid import evaluate_grid
+def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
+    """(sensor preset, columns, scenario TOML) of each stream to sweep on one flight: the dataset's
+    own samples, or the flight re-sensed from its full-rate truth with each preset of ``sensors``
+    (the flight's own sensor streams, its carrier and floor: only the sensor differs)."""
     from flightmode.scenarios.run_io import read_samples
 
-    cols, _ = read_samples(Path(dataset) / row["samples_file"])
+    if not sensors:
+        cols, _ = read_samples(Path(dataset) / row["samples_file"])
+        yield row.get("sensor_preset"), cols, row["scenario_toml"]
+        return
+    import pyarrow.parquet as pq
+
+    from flightmode.scenarios import pipeline, run_io
+    from flightmode.scenarios.scenario import Scenario
+
+    t = pq.read_table(Path(dataset) / row["truth_file"])
+    track = run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
+    sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
+    for preset in sensors:
+        sc2 = sc.replace(sensor={"preset": preset, "odr_hz": None})
+        rec = pipeline.sense(track, sc2.carrier, sc2.sensor, pipeline.streams_of(sc2.seed).child("sensor"))
+        yield preset, {"t_s": rec.t_s, "acc_g": rec.acc_g, "in_flight_window": rec.in_flight_window,
+                       "sensor_static": rec.sensor_static, "phase": rec.phase}, sc2.to_toml()
+
+
+def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", family: str = "",
+                 sensors: Sequence[str] | None = None) -> dict:
+    """Every grid point on one flight of a dataset (on each of ``sensors``, re-sensed, if given):
+    {"points", "phases", "static"} lists of rows (module docstring)."""
+    out: dict = {"points": [], "phases": [], "static": []}
+    for preset, cols, text in _streams(dataset, row, sensors):
+        part = _sweep_stream(cols, row | {"scenario_toml": text, "sensor_preset": preset}, grid, sigma2_from,
+                             {"dataset": dataset, "family": family, "flight_id": row["flight_id"]})
+        for k in out:
+            out[k] += part[k]
+    return out
+
+
+def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> dict:
+    from flightmode.detector.grid import evaluate_grid
+
     t, acc = cols["t_s"], cols["acc_g"]
     fs = round(1.0 / float(np.median(np.diff(t))), 6)
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
@@ -122,8 +156,8 @@ def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", fam
     dt = 1.0 / fs
     in_window_h = float(window.sum()) * dt / 3600.0
     w_start = float(t[np.flatnonzero(window)[0]]) if window.any() else math.nan
-    key = {"dataset": dataset, "family": family, "flight_id": row["flight_id"]}
-    cond = {k: row.get(k) for k in CONDITIONS if k != "family"}
+    key = key | {"sensor_preset": row.get("sensor_preset")}
+    cond = {k: row.get(k) for k in CONDITIONS if k not in ("family", "sensor_preset")}
     points, phases, statics = [], [], []
     seen: set[tuple] = set()
     for p, e in evaluate_grid(t, acc, labels, grid, fs, _sigma2_of(sigma2_from, row, cols)):
@@ -195,9 +229,11 @@ def _versions() -> dict:
     return out
 
 
-def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from: str = "preset") -> list[Path]:
-    """The dataset folders, once each, every one a dataset with a successful flight; the grid's axes;
-    the sigma^2 source. An InputDataError or DetectorError naming what is wrong; reads only."""
+def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from: str = "preset",
+                  sensors: Sequence[str] | None = None) -> list[Path]:
+    """The dataset folders, once each, every one a dataset with a successful flight (and its full-rate
+    truth if ``sensors`` re-sense it); the grid's axes; the sigma^2 source; the sensor presets. An
+    InputDataError, DetectorError or SensorError naming what is wrong; reads only."""
     paths = [Path(datasets)] if isinstance(datasets, (str, Path)) else [Path(d) for d in datasets]
     if not paths:
         raise InputDataError("no dataset given: name at least one folder made by `flightmode dataset`")
@@ -206,21 +242,34 @@ def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from
     if sigma2_from not in ("preset", "rest"):
         raise InputDataError(f"--sigma2-from {sigma2_from!r}: use preset or rest")
     grid.check_axes()
+    if sensors is not None:
+        from flightmode.sim.sensor.accelerometer import get_preset
+
+        if not sensors or len(set(sensors)) != len(sensors):
+            raise InputDataError(f"--sensor {','.join(sensors)!r}: name each preset once, at least one")
+        for name in sensors:
+            get_preset(name)  # a SensorError with the presets to choose from
     for d in paths:
-        _ok_rows(d)
+        _, _, meta = _ok_rows(d)
+        truth = (meta.get("options") or {}).get("truth")
+        if sensors and truth != "full":
+            raise InputDataError(f"{d}: --sensor re-senses each flight from its full-rate truth, and this dataset "
+                                 f"keeps truth {truth!r}; make it with `flightmode dataset ... --truth full`")
     return paths
 
 
 def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str = "preset", workers: int = 1,
-          out: str | Path | None = None, on_start: Callable[[int], None] | None = None,
-          on_flight: Callable[[str], None] | None = None) -> SweepResult:
+          sensors: Sequence[str] | None = None, out: str | Path | None = None,
+          on_start: Callable[[int], None] | None = None, on_flight: Callable[[str], None] | None = None) -> SweepResult:
     """Evaluate ``grid`` on every successful flight of ``datasets`` (module docstring); the failed
-    flights are excluded and returned. Writes the sweep folder ``out`` if given. ``on_start(flights)``
-    and ``on_flight(flight_id)`` report progress."""
+    flights are excluded and returned. ``sensors``: re-sense each flight with each of these presets
+    (datasets made with ``--truth full``) instead of reading its samples. Writes the sweep folder
+    ``out`` if given. ``on_start(flights)`` and ``on_flight(flight_id)`` report progress."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    paths = check_request(datasets, grid, sigma2_from)
+    paths = check_request(datasets, grid, sigma2_from, sensors)
+    sensors = tuple(sensors) if sensors else None
     jobs, failed, described = [], [], []
     for d in paths:
         ok, bad, meta = _ok_rows(d)
@@ -239,7 +288,7 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
     results: list[dict] = []
     if workers <= 1:
         for d, r, fam in jobs:
-            results.append(sweep_flight(d, r, grid, sigma2_from, fam))
+            results.append(sweep_flight(d, r, grid, sigma2_from, fam, sensors))
             if on_flight:
                 on_flight(r["flight_id"])
     else:
@@ -250,7 +299,7 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
                           dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL) as cluster, \
                 Client(cluster) as client:
-            futs = {client.submit(sweep_flight, d, r, grid, sigma2_from, fam, pure=False): n
+            futs = {client.submit(sweep_flight, d, r, grid, sigma2_from, fam, sensors, pure=False): n
                     for n, (d, r, fam) in enumerate(jobs)}
             done: dict[int, dict] = {}
             for f in as_completed(futs):
@@ -260,7 +309,7 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
             results = [done[n] for n in range(len(jobs))]  # dataset and flight order, whatever the completion order
     tables = {part: pa.Table.from_pylist([row for res in results for row in res[part]])
               for part in ("points", "phases", "static")}
-    meta = {"datasets": described, "sigma2_from": sigma2_from,
+    meta = {"datasets": described, "sigma2_from": sigma2_from, "sensors": list(sensors) if sensors else None,
             "grid": {"methods": [list(m) for m in grid.methods], "windows_s": list(grid.windows_s),
                      "ks": list(grid.ks), "time_thresholds_s": list(grid.time_thresholds_s), "points": len(grid)},
             "static_edges": "geomspace(1e-2, 1e3, 501)", "versions": _versions()}

@@ -226,14 +226,15 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
 
     from flightmode.detector.flight_mode import DetectorParams, detect, final_static
     from flightmode.scenarios.dataset import read_manifest
-    from flightmode.scenarios.run_io import read_samples
-    from flightmode.scenarios.sweep import _sigma2_of
+    from flightmode.scenarios.sweep import _sigma2_of, _streams
 
     plt = _plt()
     w = cert.worst_flight
     ds = Path(w["dataset"])
     row = next(r for r in read_manifest(ds).values() if r["flight_id"] == w["flight_id"])
-    cols, _ = read_samples(ds / row["samples_file"])
+    resense = [w["sensor_preset"]] if w["sensor_preset"] != row["sensor_preset"] else None  # swept re-sensed
+    _, cols, text = next(_streams(str(ds), row, resense))
+    row = row | {"scenario_toml": text}
     t, acc = cols["t_s"], cols["acc_g"]
     fs = round(1.0 / float(np.median(np.diff(t))), 6)
     p = DetectorParams(fs_hz=fs, window_s=1.0, k_sigma=4.0, time_threshold_s=4.0, method="nmv")
@@ -254,7 +255,7 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
         if on.size:
             a_.axvspan(tm[on[0]], tm[on[-1]], color="grey", alpha=0.12, lw=0)
     ax.legend(fontsize=7, ncol=7, loc="upper right")
-    ax.set_title(f"flight {w['flight_id']} ({w.get('family') or ''}, {w.get('aircraft')}, {w.get('placement')}, "
+    ax.set_title(f"flight {w['flight_id']} ({w.get('family') or ''}, {w.get('aircraft')}, {w['sensor_preset']}, {w.get('placement')}, "
                  f"turbulence {w.get('turbulence')}); grey: pushback to engines off", fontsize=9)
 
     def lanes(ax, items, title):

@@ -303,6 +303,39 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
         assert s["hours_short"] == pytest.approx(max(0.0, s["hours_needed"] - s["in_window_h"]))
 
 
+@pytest.mark.slow
+def test_sweep_re_senses_full_truth_flights_with_other_presets(tmp_path, family_file, reference):
+    from flightmode.detector.grid import Grid
+    from flightmode.errors import InputDataError, SensorError
+    from flightmode.scenarios.sweep import at_point, sweep
+
+    grid = Grid(methods=(("nmv", 1.0),), windows_s=(1.0,), ks=(4.0,), time_thresholds_s=(4.0,))
+    # a 10 Hz truth cannot be re-sensed (the floor vibration is 10-30 Hz): said before any work
+    with pytest.raises(InputDataError, match=r"--sensor re-senses each flight from its full-rate truth.*--truth full"):
+        sweep(reference, grid, sensors=("lis302dl",))
+    with pytest.raises(SensorError, match="lis302"):
+        sweep(reference, grid, sensors=("lis302d",))
+    full = tmp_path / "full"
+    rows = make_dataset(str(family_file), 1, full, workers=1, truth="full")
+    own = rows[0]["sensor_preset"]
+    res = sweep(full, grid, sensors=(own, "lis302dl-8g"))
+    got = {r["sensor_preset"]: r for r in at_point(res.points, {"method": "nmv", "weight": 1.0, "window_s": 1.0,
+                                                                "k": 4.0, "time_threshold_s": 4.0})}
+    assert sorted(got) == sorted({own, "lis302dl-8g"})
+    stored = sweep(full, grid).points.to_pylist()[0]
+    # re-sensed with its own preset from the full-rate truth, the flight is the flight: the same labels
+    # (in-window hours, static time, to the sample) and the same detector outcome (the truth keeps the
+    # forces in float32, 7 digits, far below one count of the sensor)
+    for k in ("in_window_h", "in_flight_checks", "static_s", "false_static_count"):
+        assert got[own][k] == stored[k], k
+    assert got[own]["response_s"] == pytest.approx(stored["response_s"], abs=0.011)  # one 100 Hz sample
+    # another preset: the same flight and labels, another sensor (8 g range: 4x coarser counts)
+    assert got["lis302dl-8g"]["in_window_h"] == stored["in_window_h"]
+    st = {r["sensor_preset"]: r for r in res.static.to_pylist()}
+    assert st["lis302dl-8g"]["static_checks"] == st[own]["static_checks"]
+    assert st["lis302dl-8g"]["hist_max"] != st[own]["hist_max"]
+
+
 GRID_SMALL = (("nmv", 1.0), ("emv", 5.0)), (1.0, 2.0), (3.0, 4.0, 5.0), (2.0, 4.0, 6.0)
 
 
