@@ -294,8 +294,11 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
     sweep_dir = out / "sweep"
     result = None
     if (sweep_dir / "sweep.json").exists():
-        cached = read_sweep(sweep_dir)
-        if _sweep_matches(cached.meta, paths, grid, sigma2_from, sensors):
+        try:
+            cached = read_sweep(sweep_dir)
+        except InputDataError:  # an older layout: swept again below
+            cached = None
+        if cached is not None and _sweep_matches(cached.meta, paths, grid, sigma2_from, sensors):
             log(f"reusing the sweep in {sweep_dir} (same datasets, grid and sigma^2 source)")
             result = cached
     if result is None:
@@ -314,9 +317,9 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
     th = threshold_from_static(result.static, target.pm, int(round(window_5_1_1 * _fs_of(result.points))),
                                *method_5_1_1, window_5_1_1, target.confidence)
     th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
-    breakdowns = {"recommended": breakdown(result.points, rp)}
+    breakdowns = {"recommended": breakdown(result.points, rp, result.phases)}
     if seed000 is not None:
-        breakdowns["seed000"] = breakdown(result.points, SEED000_POINT)
+        breakdowns["seed000"] = breakdown(result.points, SEED000_POINT, result.phases)
     worst = worst_flight(result.points, result.phases, SEED000_POINT if seed000 is not None else rp)
     meta = result.meta | {"excluded": [{"dataset": r["dataset"], "flight_id": r["flight_id"],
                                          "error": (r.get("error") or "")[:300]} for r in result.failed],

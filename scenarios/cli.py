@@ -393,10 +393,29 @@ def _sensors(text: str | None) -> tuple[str, ...] | None:
     return None if text is None else tuple(x.strip() for x in text.split(",") if x.strip())
 
 
-def _sweep_progress():
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+class _SweepProgress:
+    """A progress bar shown only once the sweep starts (certify may reuse a sweep and sweep nothing)."""
 
-    return Progress(TextColumn("sweeping"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(), console=console)
+    def __enter__(self):
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+        self.bar = Progress(TextColumn("sweeping"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                            console=console)
+        self.task = self.bar.add_task("sweep", total=None)
+        self.started = False
+        return self
+
+    def start(self, flights: int) -> None:
+        self.bar.update(self.task, total=flights)
+        self.bar.start()
+        self.started = True
+
+    def advance(self, flight_id: str) -> None:
+        self.bar.update(self.task, advance=1)
+
+    def __exit__(self, *exc):
+        if self.started:
+            self.bar.stop()
 
 
 def _excluded(failed: list[dict]) -> None:
@@ -445,11 +464,9 @@ def sweep_cmd(
             out = Path(datasets[0]) / "sweep"
         sensors = _sensors(sensor)
         check_request(datasets, grid, sigma2_from, sensors)
-        with _sweep_progress() as progress:
-            task = progress.add_task("sweep", total=None)
+        with _SweepProgress() as progress:
             result = sweep(datasets, grid, sigma2_from=sigma2_from, workers=workers, sensors=sensors, out=out,
-                           on_start=lambda n: progress.update(task, total=n),
-                           on_flight=lambda fid: progress.update(task, advance=1))
+                           on_start=progress.start, on_flight=progress.advance)
         _excluded(result.failed)
         table = result.points
         rows = summarise(table, confidence, target_fa_per_h)
@@ -471,7 +488,7 @@ def sweep_cmd(
         b = Table("condition", "value", "flights", "in-window h", "false statics", "response p95 s",
                   title=f"by condition at {best_point['method']} W_s {best_point['window_s']:g} k {best_point['k']:g} "
                         f"T_th {best_point['time_threshold_s']:g}")
-        for r in breakdown(table, best_point):
+        for r in breakdown(table, best_point, result.phases):
             b.add_row(r["condition"], r["value"], str(r["flights"]), f"{r['in_window_h']:.1f}", str(r["false_statics"]),
                       f"{r['response_p95_s']:.1f}")
         console.print(b)
@@ -515,11 +532,9 @@ def certify_cmd(
             out = Path(datasets[0]) / "certify"
         sensors = _sensors(sensor)
         check_request(datasets, grid, sigma2_from, sensors)
-        with _sweep_progress() as progress:
-            task = progress.add_task("sweep", total=None)
+        with _SweepProgress() as progress:
             cert = certify(datasets, grid, target, sigma2_from=sigma2_from, workers=workers, sensors=sensors, out=out,
-                           on_start=lambda n: progress.update(task, total=n),
-                           on_flight=lambda fid: progress.update(task, advance=1),
+                           on_start=progress.start, on_flight=progress.advance,
                            log=lambda m: console.print(m, highlight=False))
         ex = cert.meta["excluded"]
         if ex:
@@ -546,6 +561,13 @@ def certify_cmd(
                           f"{s['false_statics']} false statics in {s['in_window_h']:,.1f} h, bound "
                           f"{s['rate_upper_per_h']:.3g} /h, response p95 {s['response_p95_s']:.1f} s, "
                           f"availability {s['availability']:.3f}", highlight=False)
+        which = "seed000" if "seed000" in cert.breakdowns else "recommended"
+        b = Table("condition", "value", "flights", "in-window h", "false statics", "response p95 s",
+                  title=f"by condition at {'seed 000' if which == 'seed000' else 'the recommended'} point")
+        for r in cert.breakdowns[which]:
+            b.add_row(r["condition"], r["value"], str(r["flights"]), f"{r['in_window_h']:,.1f}", str(r["false_statics"]),
+                      "" if r["response_p95_s"] != r["response_p95_s"] else f"{r['response_p95_s']:.1f}")
+        console.print(b)
         th = cert.threshold
         console.print(f"section 5.1.1 at P_M {th['pm']:g} ({th['static_checks']:,} static checks, W_s {th['window_s']:g} s): "
                       f"k = {th['empirical_k']:.2f} measured{'' if th['empirical_resolved'] else ' (not resolved)'}, "

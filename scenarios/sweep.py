@@ -49,6 +49,7 @@ POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s")
 # overflow folded into the first and last bins, which a threshold search never reaches)
 STATIC_EDGES = np.geomspace(1e-2, 1e3, 501)
 AXES = ("x", "y", "z")
+SWEEP_FORMAT = 2  # the sweep folder's layout (read_sweep refuses others: sweep again)
 
 
 @dataclass(frozen=True)
@@ -309,7 +310,7 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
             results = [done[n] for n in range(len(jobs))]  # dataset and flight order, whatever the completion order
     tables = {part: pa.Table.from_pylist([row for res in results for row in res[part]])
               for part in ("points", "phases", "static")}
-    meta = {"datasets": described, "sigma2_from": sigma2_from, "sensors": list(sensors) if sensors else None,
+    meta = {"format": SWEEP_FORMAT, "datasets": described, "sigma2_from": sigma2_from, "sensors": list(sensors) if sensors else None,
             "grid": {"methods": [list(m) for m in grid.methods], "windows_s": list(grid.windows_s),
                      "ks": list(grid.ks), "time_thresholds_s": list(grid.time_thresholds_s), "points": len(grid)},
             "static_edges": "geomspace(1e-2, 1e3, 501)", "versions": _versions()}
@@ -343,6 +344,9 @@ def read_sweep(path: str | Path) -> SweepResult:
     if not (path / "sweep.json").exists():
         raise InputDataError(f"{path}: no sweep.json: not a finished sweep (run `flightmode sweep DATASET --out {path}`)")
     meta = json.loads((path / "sweep.json").read_text())
+    if meta.get("format") != SWEEP_FORMAT:
+        raise InputDataError(f"{path}: a sweep of an older flightmode (format {meta.get('format', 1)}); "
+                             f"sweep again (`flightmode sweep DATASET --out {path}`)")
     tables = {part: pq.read_table(path / f"{part}.parquet") for part in ("points", "phases", "static")}
     failed = [dict(r) for r in meta.pop("failed_flights", [])]
     return SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
@@ -398,10 +402,11 @@ def at_point(table, point: dict) -> list[dict]:
     return table.filter(mask).to_pylist()
 
 
-def breakdown(table, point: dict) -> list[dict]:
+def breakdown(table, point: dict, phases=None) -> list[dict]:
     """At one grid point: per condition (:data:`CONDITIONS`) and value, the flights, in-window hours,
     false statics, and the response p95, so that the conditions that produce false statics or slow
-    responses stand out."""
+    responses stand out. With the sweep's ``phases`` table, also per phase of the flight: the
+    in-window hours spent in it and the false statics that began in it."""
     rows = at_point(table, point)
     out = []
     for cond in CONDITIONS:
@@ -414,6 +419,25 @@ def breakdown(table, point: dict) -> list[dict]:
                         "false_statics": int(sum(r["false_static_count"] for r in sel)),
                         "false_static_s": float(sum(r["false_static_s"] for r in sel)),
                         "response_p95_s": float(np.percentile(resp, 95)) if resp.size else math.nan})
+    if phases is not None:
+        import pyarrow.compute as pc
+
+        m = None
+        for k in ("method", "weight", "window_s", "k"):
+            e = pc.equal(phases[k], point[k])
+            m = e if m is None else pc.and_(m, e)
+        hours: dict[str, float] = {}
+        flights: dict[str, set] = {}
+        for r in phases.filter(m).select(["phase", "checks", "dataset", "flight_id"]).to_pylist():
+            hours[r["phase"]] = hours.get(r["phase"], 0.0) + r["checks"] * point["window_s"] / 3600.0
+            flights.setdefault(r["phase"], set()).add((r["dataset"], r["flight_id"]))
+        events: dict[str, int] = {}
+        for r in rows:
+            for ph in filter(None, (r["false_static_phases"] or "").split(",")):
+                events[ph] = events.get(ph, 0) + 1
+        for ph in sorted(hours, key=lambda p: -hours[p]):
+            out.append({"condition": "phase", "value": ph, "flights": len(flights[ph]), "in_window_h": hours[ph],
+                        "false_statics": events.get(ph, 0), "false_static_s": math.nan, "response_p95_s": math.nan})
     return out
 
 

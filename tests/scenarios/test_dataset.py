@@ -291,6 +291,13 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
         part = [r for r in b if r["condition"] == cond]
         assert sum(r["flights"] for r in part) == N
         assert sum(r["false_statics"] for r in part) == sum(r["false_static_count"] for r in rec)
+    # by phase: the phases' in-window hours add up to the flights' (1 s checks tile the window to a
+    # second per flight), and every false static began in one of them
+    bp = [r for r in breakdown(table, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0},
+                               result.phases) if r["condition"] == "phase"]
+    assert sum(r["in_window_h"] for r in bp) == pytest.approx(sum(r["in_window_h"] for r in rec), abs=N / 3600)
+    assert sum(r["false_statics"] for r in bp) == sum(r["false_static_count"] for r in rec)
+    assert {"cruise", "taxi_out", "takeoff_roll"} <= {r["value"] for r in bp}
     # two worker processes give the same rows as this process
     result2 = sweep(reference, grid, workers=2)
     assert result2.points.equals(table) and result2.phases.equals(result.phases)
