@@ -24,15 +24,16 @@ Conventions (the same for every detector, batch and streaming):
 
 Exactness of batch against stream: the batch front ends push the whole stream as one chunk through
 the streaming class, and every operation on a window is either elementwise or an accumulation in a
-fixed order (:func:`window_sums`, ``np.cumsum``, ``np.logaddexp.accumulate``), never a reduction whose
-order could depend on how many windows are computed together. Results are bit-identical for any
-chunking.
+fixed order (:func:`window_sums`, running sums written as loops over the offsets inside a window,
+``np.cumsum``), never a reduction whose order could depend on how many windows are computed together
+(the maxima are exact in any order). Results are bit-identical for any chunking.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -51,6 +52,17 @@ class ActivityResult:
 
     marker: np.ndarray
     merit: np.ndarray
+
+
+@runtime_checkable
+class ActivityStream(Protocol):
+    """What every streaming detector of seed 001 offers (the batch function ``detect_<name>`` is one
+    ``push`` of the whole stream)."""
+
+    @property
+    def n_samples(self) -> int: ...
+
+    def push(self, t_s, acc_g, gyr_dps=None) -> ActivityResult: ...
 
 
 def decide(merit: np.ndarray, threshold: float) -> np.ndarray:
@@ -146,7 +158,9 @@ def _first_bad(x: np.ndarray) -> int:
 
 
 class StreamInput:
-    """Checks chunks of (t_s, acc_g, gyr_dps) and the time axis across chunks; counts samples."""
+    """Checks chunks of (t_s, acc_g, gyr_dps) and the time axis across chunks; counts samples. A
+    detector calls :meth:`take` first and :meth:`commit` once it has processed the chunk, so a chunk
+    that is refused (here or by the detector) leaves the stream as it was."""
 
     def __init__(self, fs_hz: float, need_gyro: bool, who: str):
         self.fs_hz = check_positive(fs_hz, "fs_hz", "the sampling rate in Hz")
@@ -154,10 +168,10 @@ class StreamInput:
         self.who = who
         self.n = 0  # samples accepted so far: the global index of the next one
         self._t_last: float | None = None
+        self._pending: tuple[int, float | None] = (0, None)
 
     def take(self, t_s, acc_g, gyr_dps) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-        """The chunk as float arrays, or DetectorError naming the first thing wrong with it. The
-        state changes only when the whole chunk is accepted."""
+        """The chunk as float arrays, or DetectorError naming the first thing wrong with it."""
         t = np.asarray(t_s, dtype=float)
         a = np.asarray(acc_g, dtype=float)
         if t.ndim != 1:
@@ -175,32 +189,47 @@ class StreamInput:
             g = np.asarray(gyr_dps, dtype=float)
             if g.shape != (t.shape[0], 3):
                 raise DetectorError(
-                    f"{self.who}: gyr_dps must be an ({t.shape[0]}, 3) array (one row per t_s), got shape {g.shape}"
+                    f"{self.who}: gyr_dps must be an ({t.shape[0]}, 3) array (one row per t_s), "
+                    f"got shape {g.shape}"
                 )
-        for name, x in (("t_s", t), ("acc_g", a), ("gyr_dps", g)):
-            if x is not None and not np.isfinite(x).all():
-                i = _first_bad(x)
-                raise DetectorError(f"{self.who}: NaN or inf in {name} at sample {self.n + i}: clean the stream")
+        if not (np.isfinite(t).all() and np.isfinite(a).all() and (g is None or np.isfinite(g).all())):
+            for name, x in (("t_s", t), ("acc_g", a), ("gyr_dps", g)):
+                if x is not None and not np.isfinite(x).all():
+                    i = _first_bad(x)
+                    raise DetectorError(
+                        f"{self.who}: NaN or inf in {name} at sample {self.n + i}: clean the stream"
+                    )
         if t.shape[0]:
             tt = t if self._t_last is None else np.concatenate([[self._t_last], t])
-            dt = np.diff(tt)
-            off = self.n - (tt.shape[0] - t.shape[0])  # global index of tt[0]
-            if np.any(dt <= 0):
-                i = int(np.flatnonzero(dt <= 0)[0])
-                raise DetectorError(
-                    f"{self.who}: time is not increasing at sample {off + i + 1} (t = {tt[i + 1]:.6g} s "
-                    f"after {tt[i]:.6g} s)"
-                )
-            period = 1.0 / self.fs_hz
-            if np.any(dt > GAP_PERIODS * period):
-                i = int(np.flatnonzero(dt > GAP_PERIODS * period)[0])
-                raise DetectorError(
-                    f"{self.who}: a gap of {dt[i]:.6g} s before sample {off + i + 1} (t = {tt[i + 1]:.6g} s; "
-                    f"the sample period is {period:.6g} s): split the stream at the gap and start a new detector"
-                )
-            self._t_last = float(t[-1])
-        self.n += t.shape[0]
+            if tt.shape[0] > 1:
+                dt = np.diff(tt)
+                period = 1.0 / self.fs_hz
+                if dt.min() <= 0 or dt.max() > GAP_PERIODS * period:
+                    self._bad_step(tt, dt, period, self.n - (tt.shape[0] - t.shape[0]))
+        self._pending = (t.shape[0], float(t[-1]) if t.shape[0] else self._t_last)
         return t, a, g
+
+    def commit(self) -> None:
+        """The chunk last taken is processed: count it."""
+        self.n += self._pending[0]
+        self._t_last = self._pending[1]
+        self._pending = (0, self._t_last)
+
+    def _bad_step(self, tt: np.ndarray, dt: np.ndarray, period: float, off: int) -> None:
+        """Raise for the first step back in time or gap (``off``: the global index of ``tt[0]``)."""
+        back = np.flatnonzero(dt <= 0)
+        gap = np.flatnonzero(dt > GAP_PERIODS * period)
+        if back.size and (not gap.size or back[0] < gap[0]):
+            i = int(back[0])
+            raise DetectorError(
+                f"{self.who}: time is not increasing at sample {off + i + 1} (t = {tt[i + 1]:.6g} s "
+                f"after {tt[i]:.6g} s)"
+            )
+        i = int(gap[0])
+        raise DetectorError(
+            f"{self.who}: a gap of {dt[i]:.6g} s before sample {off + i + 1} (t = {tt[i + 1]:.6g} s; "
+            f"the sample period is {period:.6g} s): split the stream at the gap and start a new detector"
+        )
 
 
 def batch_rate(t_s, fs_hz: float | None, who: str) -> float:
@@ -216,14 +245,17 @@ def batch_rate(t_s, fs_hz: float | None, who: str) -> float:
     dt = np.diff(t)
     if np.any(dt <= 0):
         i = int(np.flatnonzero(dt <= 0)[0])
-        raise DetectorError(f"{who}: time is not increasing at sample {i + 1} (t = {t[i + 1]:.6g} s after {t[i]:.6g} s)")
+        raise DetectorError(
+            f"{who}: time is not increasing at sample {i + 1} (t = {t[i + 1]:.6g} s after {t[i]:.6g} s)"
+        )
     med = float(np.median(dt))
     if fs_hz is None:
         return 1.0 / med
     fs = check_positive(fs_hz, "fs_hz", "the sampling rate in Hz")
     if abs(med * fs - 1.0) > RATE_TOLERANCE:
         raise DetectorError(
-            f"{who}: the stream is sampled at {1.0 / med:.6g} Hz but fs_hz = {fs:g}: give the stream's rate, or None"
+            f"{who}: the stream is sampled at {1.0 / med:.6g} Hz but fs_hz = {fs:g}: "
+            "give the stream's rate, or None"
         )
     return fs
 
@@ -266,6 +298,7 @@ class WindowedStream:
             m = self._merits(buf)
             merit[n - m.shape[0] :] = m
         self._tail = buf[max(0, buf.shape[0] - (self.window - 1)) :].copy()
+        self._input.commit()
         return ActivityResult(decide(merit, self.threshold), merit)
 
     def _features(self, acc_g: np.ndarray, gyr_dps: np.ndarray | None) -> np.ndarray:

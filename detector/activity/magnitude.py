@@ -55,6 +55,8 @@ from flightmode.detector.activity.common import (
 )
 from flightmode.errors import DetectorError
 
+SIGMA_ACC_UNIT = "the accelerometer noise standard deviation in g"
+SIGMA_GYR_UNIT = "the gyroscope noise standard deviation in deg/s"
 
 # ---------------------------------------------------------------- AMVD, eq. (1)
 def amvd_merits(acc_g: np.ndarray, window: int) -> np.ndarray:
@@ -99,7 +101,7 @@ class AMDStream(WindowedStream):
 
     def __init__(self, *, window: int, threshold: float, fs_hz: float, sigma_acc_g: float):
         super().__init__(window=window, threshold=threshold, fs_hz=fs_hz, need_gyro=False)
-        self.sigma_acc_g = check_positive(sigma_acc_g, "sigma_acc_g", "the accelerometer noise standard deviation in g")
+        self.sigma_acc_g = check_positive(sigma_acc_g, "sigma_acc_g", SIGMA_ACC_UNIT)
 
     def _features(self, acc_g, gyr_dps):
         d = norm3(acc_g) - GRAVITY_G
@@ -126,7 +128,7 @@ class AREDStream(WindowedStream):
 
     def __init__(self, *, window: int, threshold: float, fs_hz: float, sigma_gyr_dps: float):
         super().__init__(window=window, threshold=threshold, fs_hz=fs_hz, need_gyro=True)
-        self.sigma_gyr_dps = check_positive(sigma_gyr_dps, "sigma_gyr_dps", "the gyroscope noise standard deviation in deg/s")
+        self.sigma_gyr_dps = check_positive(sigma_gyr_dps, "sigma_gyr_dps", SIGMA_GYR_UNIT)
 
     def _features(self, acc_g, gyr_dps):
         return sq_norm3(gyr_dps)[:, None]
@@ -166,10 +168,11 @@ class SHODStream(WindowedStream):
 
     name, unit = "SHOD", "dimensionless (noise-variance units)"
 
-    def __init__(self, *, window: int, threshold: float, fs_hz: float, sigma_acc_g: float, sigma_gyr_dps: float):
+    def __init__(self, *, window: int, threshold: float, fs_hz: float, sigma_acc_g: float,
+                 sigma_gyr_dps: float):
         super().__init__(window=window, threshold=threshold, fs_hz=fs_hz, need_gyro=True)
-        self.sigma_acc_g = check_positive(sigma_acc_g, "sigma_acc_g", "the accelerometer noise standard deviation in g")
-        self.sigma_gyr_dps = check_positive(sigma_gyr_dps, "sigma_gyr_dps", "the gyroscope noise standard deviation in deg/s")
+        self.sigma_acc_g = check_positive(sigma_acc_g, "sigma_acc_g", SIGMA_ACC_UNIT)
+        self.sigma_gyr_dps = check_positive(sigma_gyr_dps, "sigma_gyr_dps", SIGMA_GYR_UNIT)
 
     def _features(self, acc_g, gyr_dps):
         return np.column_stack([acc_g, sq_norm3(gyr_dps)])
@@ -182,7 +185,8 @@ def detect_shod(t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, sigm
                 sigma_gyr_dps: float, fs_hz: float | None = None) -> ActivityResult:
     """SHOD over a whole stream (noise standard deviations in g and deg/s)."""
     fs = batch_rate(t_s, fs_hz, SHODStream.name)
-    det = SHODStream(window=window, threshold=threshold, fs_hz=fs, sigma_acc_g=sigma_acc_g, sigma_gyr_dps=sigma_gyr_dps)
+    det = SHODStream(window=window, threshold=threshold, fs_hz=fs, sigma_acc_g=sigma_acc_g,
+                     sigma_gyr_dps=sigma_gyr_dps)
     return run_batch(det, t_s, acc_g, gyr_dps, window)
 
 
@@ -194,7 +198,8 @@ FRD_LP_ORDER = 1  # first order: a positive impulse response keeps V >= 0
 class FRDStream:
     """Filtered Rectifier Detector (seed 001, section 2.1.5): V = LPF{|HPF{x}|} of the flexible input
     ``signal``; the merit is in the signal's unit (g for "acc", deg/s for "gyr"). Filter state is
-    carried between pushes (``scipy.signal.sosfilt`` with ``zi``: bit-identical for any chunking)."""
+    carried between pushes (``scipy.signal.lfilter`` with ``zi``: bit-identical for any chunking; at
+    these low orders the transfer-function form is well conditioned)."""
 
     name = "FRD"
 
@@ -209,28 +214,31 @@ class FRDStream:
         for name, f in (("hp_cutoff_hz", hp_cutoff_hz), ("lp_cutoff_hz", lp_cutoff_hz)):
             check_positive(f, name, "Hz")
             if f >= fs / 4:  # below a quarter of the rate the first-order low-pass stays positive
-                raise DetectorError(f"FRD: {name} = {f} Hz must be below a quarter of the sampling rate ({fs / 4:g} Hz)")
+                raise DetectorError(
+                    f"FRD: {name} = {f} Hz must be below a quarter of the sampling rate ({fs / 4:g} Hz)"
+                )
         self.hp_cutoff_hz, self.lp_cutoff_hz = float(hp_cutoff_hz), float(lp_cutoff_hz)
-        self._hp = butter(FRD_HP_ORDER, hp_cutoff_hz, "highpass", fs=fs, output="sos")
-        self._lp = butter(FRD_LP_ORDER, lp_cutoff_hz, "lowpass", fs=fs, output="sos")
+        self._hp = butter(FRD_HP_ORDER, hp_cutoff_hz, "highpass", fs=fs)  # (b, a)
+        self._lp = butter(FRD_LP_ORDER, lp_cutoff_hz, "lowpass", fs=fs)
         self._zi_hp: np.ndarray | None = None
-        self._zi_lp = np.zeros((self._lp.shape[0], 2))
+        self._zi_lp = np.zeros(FRD_LP_ORDER)
 
     @property
     def n_samples(self) -> int:
         return self._input.n
 
     def push(self, t_s, acc_g, gyr_dps=None) -> ActivityResult:
-        from scipy.signal import sosfilt, sosfilt_zi
+        from scipy.signal import lfilter, lfilter_zi
 
         _, a, g = self._input.take(t_s, acc_g, gyr_dps)
         x = flexible_signal(self.signal, a, g)
+        self._input.commit()
         if x.shape[0] == 0:
             return ActivityResult(np.zeros(0, np.int8), np.zeros(0))
         if self._zi_hp is None:  # the high-pass in its steady state for the first sample
-            self._zi_hp = sosfilt_zi(self._hp) * x[0]
-        y, self._zi_hp = sosfilt(self._hp, x, zi=self._zi_hp)  # HPF
-        v, self._zi_lp = sosfilt(self._lp, np.abs(y), zi=self._zi_lp)  # RECT, LPF: seed 001, eq. (5)
+            self._zi_hp = lfilter_zi(*self._hp) * x[0]
+        y, self._zi_hp = lfilter(*self._hp, x, zi=self._zi_hp)  # HPF
+        v, self._zi_lp = lfilter(*self._lp, np.abs(y), zi=self._zi_lp)  # RECT, LPF: seed 001, eq. (5)
         return ActivityResult(decide(v, self.threshold), v)
 
 
@@ -239,5 +247,6 @@ def detect_frd(t_s, acc_g, gyr_dps=None, *, threshold: float, signal: str = "acc
     """FRD over a whole stream (no window: the seed gives FRD none). ``threshold`` in the signal's
     unit (g for "acc")."""
     fs = batch_rate(t_s, fs_hz, FRDStream.name)
-    det = FRDStream(threshold=threshold, fs_hz=fs, signal=signal, hp_cutoff_hz=hp_cutoff_hz, lp_cutoff_hz=lp_cutoff_hz)
+    det = FRDStream(threshold=threshold, fs_hz=fs, signal=signal, hp_cutoff_hz=hp_cutoff_hz,
+                    lp_cutoff_hz=lp_cutoff_hz)
     return run_batch(det, t_s, acc_g, gyr_dps, None)

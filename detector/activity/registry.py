@@ -67,7 +67,8 @@ _TABLE = (
              ("window", "shift"), FLEXIBLE, False, "dB", nonnegative=False),
     Detector("fsd", "Framed Spectrum Detector", "spectrum", "seed 001, eq. (8)", "FSDStream",
              ("window", "shift"), FLEXIBLE, False, "dB", nonnegative=False),
-    Detector("mbgtd", "Memory-Based Graph Theoretic Detector", "memory", "seed 001, eq. (9)-(10)", "MBGTDStream",
+    Detector("mbgtd", "Memory-Based Graph Theoretic Detector", "memory", "seed 001, eq. (9)-(10)",
+             "MBGTDStream",
              ("window",), FLEXIBLE, False, "the signal's unit"),
     Detector("mbcd", "Memory-Based CUSUM Detector", "memory", "seed 001, eq. (12)-(14)", "MBCDStream",
              ("window", "bandwidth"), FLEXIBLE, False, "nats (log-likelihood ratio)"),
@@ -81,7 +82,9 @@ def get(name: str) -> Detector:
     """The detector called ``name`` (case-insensitive: "SHOD" is "shod"), or DetectorError."""
     key = str(name).lower()
     if key not in _BY_NAME:
-        raise DetectorError(f"no (in)activity detector {name!r}: use one of {', '.join(NAMES)}{did_you_mean(key, NAMES)}")
+        raise DetectorError(
+            f"no (in)activity detector {name!r}: use one of {', '.join(NAMES)}{did_you_mean(key, NAMES)}"
+        )
     return _BY_NAME[key]
 
 

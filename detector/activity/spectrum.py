@@ -19,9 +19,13 @@ Choices where the seed is silent or garbled:
   length of eq. (1)-(4) and the noise spectrum N(l) of eq. (7): the letter is overloaded, and its
   tables give LTSD a window, a shift and a threshold but no order. We keep the order a parameter
   of its own (``order`` frames on each side, default 6: our choice), as in ref. [21].
+- The frame mean is not removed: X(l, n) is the spectrum of the signal as the seed writes it, so for
+  "acc" the 1 g of |a| fills the low bands of both X and N(l). A frame shorter than about half a
+  period of the motion then sees a swing of |a| as a level change (on the test streams, 16-sample frames at
+  the peaks of a 2 Hz swing fall to 10 dB; 32-sample frames stay above 19 dB).
 - N(l), "the average noise spectrum magnitude": the mean of X(l, n) over the first ``noise_frames``
-  frames of the stream (which must then be still), or a given one-sided ``noise_spectrum`` (257
-  bands, in the signal's unit) measured on a still recording.
+  (default 20) frames of the stream, which must then be still, or a given one-sided
+  ``noise_spectrum`` (257 bands, in the signal's unit) measured on a still recording.
 - Causality: LTSE(l, n) needs the frames up to n + order. The merit of sample k is that of the last
   frame whose envelope is complete at k: V(m - order), m the last frame ending at or before k. It is
   NaN before that frame exists (m < order), and before the noise spectrum is known (m <
@@ -32,7 +36,6 @@ Choices where the seed is silent or garbled:
 from __future__ import annotations
 
 import numpy as np
-from numpy.lib.stride_tricks import sliding_window_view
 
 from flightmode.detector.activity.common import (
     ActivityResult,
@@ -82,7 +85,9 @@ class SpectralStream:
                  order: int = 6, noise_frames: int = 20, noise_spectrum: np.ndarray | None = None):
         self.window = check_window(window)
         if self.window > N_FFT:
-            raise DetectorError(f"{self.name}: window = {window} samples is longer than the FFT (N_FFT = {N_FFT})")
+            raise DetectorError(
+                f"{self.name}: window = {window} samples is longer than the FFT (N_FFT = {N_FFT})"
+            )
         self.shift = _check_count(shift, "shift", 1, self.name)
         self.order = _check_count(order, "order", 0, self.name)
         self.noise_frames = _check_count(noise_frames, "noise_frames", 1, self.name)
@@ -95,7 +100,8 @@ class SpectralStream:
             self._noise = _check_noise(np.asarray(noise_spectrum, dtype=float), self.name)
             self._noise_from = 0
         self._noise_buf: list[np.ndarray] = []  # spectra of the first frames, until the noise is known
-        self._ring = np.zeros((2 * self.order, N_BANDS))  # spectra of the last 2 order frames (0 before frame 0)
+        # spectra of the last 2 order frames (zeros stand for the frames before frame 0)
+        self._ring = np.zeros((2 * self.order, N_BANDS))
         self._tail = np.zeros(0)  # the last window - 1 samples of x
         self._last_v = np.nan  # merit of the last completed frame
 
@@ -116,7 +122,7 @@ class SpectralStream:
         v_new = np.zeros(0)
         if n_hi >= n_lo:
             starts = np.arange(n_lo, n_hi + 1) * s - b0
-            spec = amplitude_spectra(sliding_window_view(buf, w)[starts])
+            spec = amplitude_spectra(buf[starts[:, None] + np.arange(w)])
             frame_idx = np.arange(n_lo, n_hi + 1)
             self._learn_noise(spec, n_lo)
             v_new = self._merits(spec, frame_idx)
@@ -129,27 +135,31 @@ class SpectralStream:
         if v_new.shape[0]:
             self._last_v = float(v_new[-1])
         self._tail = buf[max(0, buf.shape[0] - (w - 1)) :].copy()
+        self._input.commit()
         return ActivityResult(decide(merit, self.threshold), merit)
 
     def _learn_noise(self, spec: np.ndarray, n_lo: int) -> None:
         """N(l): the mean spectrum of the first ``noise_frames`` frames (a cumulative sum in frame order)."""
         if self._noise is not None:
             return
-        self._noise_buf.extend(spec[: max(0, self.noise_frames - n_lo)])
-        if len(self._noise_buf) >= self.noise_frames:
-            first = np.stack(self._noise_buf[: self.noise_frames])
-            self._noise = _check_noise(np.cumsum(first, axis=0)[-1] / self.noise_frames, self.name, estimated=True)
-            self._noise_buf = []
+        frames = [*self._noise_buf, *spec[: max(0, self.noise_frames - n_lo)]]
+        if len(frames) >= self.noise_frames:
+            mean = np.cumsum(np.stack(frames), axis=0)[-1] / self.noise_frames
+            self._noise = _check_noise(mean, self.name, estimated=True)  # raises before any change
+            frames = []
+        self._noise_buf = frames
 
     def _merits(self, spec: np.ndarray, frame_idx: np.ndarray) -> np.ndarray:
         """The merit available at the end of each new frame m: V(m - order) (NaN when the envelope or
         the noise is not complete yet)."""
         allf = np.concatenate([self._ring, spec])  # frames m - 2 order ... (zeros before frame 0)
+        env = spec
         if self.order:
-            env = sliding_window_view(allf, 2 * self.order + 1, axis=0).max(axis=-1)  # seed 001, eq. (6)
+            f = spec.shape[0]
+            env = allf[0:f].copy()
+            for j in range(1, 2 * self.order + 1):  # max over frames m - 2 order .. m: seed 001, eq. (6)
+                np.maximum(env, allf[j : j + f], out=env)
             self._ring = allf[-2 * self.order :].copy()
-        else:
-            env = spec
         v = np.full(spec.shape[0], np.nan)
         ok = (frame_idx >= self.order) & (frame_idx >= self._noise_from)
         if ok.any():
@@ -168,13 +178,16 @@ def _check_count(value, name: str, least: int, who: str) -> int:
 def _check_noise(noise: np.ndarray, who: str, estimated: bool = False) -> np.ndarray:
     if noise.shape != (N_BANDS,):
         raise DetectorError(
-            f"{who}: noise_spectrum must hold the {N_BANDS} one-sided bands of a {N_FFT}-point FFT, got shape {noise.shape}"
+            f"{who}: noise_spectrum must hold the {N_BANDS} one-sided bands of a {N_FFT}-point FFT, "
+            f"got shape {noise.shape}"
         )
     bad = ~(np.isfinite(noise) & (noise > 0))
     if bad.any():
-        how = ("the first noise_frames frames are noiseless in it (an exactly constant input?): give noise_spectrum"
+        how = ("the first noise_frames frames are noiseless in it (an exactly constant input?): "
+               "give noise_spectrum"
                if estimated else "every band must be finite and > 0")
-        raise DetectorError(f"{who}: the noise spectrum N(l) is zero or not finite in band {int(np.flatnonzero(bad)[0])}: {how}")
+        band = int(np.flatnonzero(bad)[0])
+        raise DetectorError(f"{who}: the noise spectrum N(l) is zero or not finite in band {band}: {how}")
     return noise
 
 

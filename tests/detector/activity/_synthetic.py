@@ -17,7 +17,7 @@ ACT_GYR_DIR = np.array([1.0, 0.3, 0.0])
 
 def stream(segments: list[tuple[float, bool]], rng: np.random.Generator):
     """(t_s, acc_g, gyr_dps, truth) for consecutive (seconds, active) segments at FS_HZ."""
-    n_seg = [int(round(s * FS_HZ)) for s, _ in segments]
+    n_seg = [round(s * FS_HZ) for s, _ in segments]
     n = sum(n_seg)
     t = np.arange(n) / FS_HZ
     acc = GRAVITY_DIR + rng.normal(0.0, SIGMA_ACC_G, (n, 3))
@@ -51,23 +51,25 @@ def params(name: str, signal: str | None) -> dict:
     s = _FLEX[signal] if signal else 0
     p = {
         # rest: 3 sigma^2 = 7.5e-5 g^2; motion: ~0.05 g^2
-        "amvd": dict(window=20, threshold=1e-3),
+        "amvd": {"window": 20, "threshold": 1e-3},
         # rest ~1 (noise variances); motion ~4,500
-        "amd": dict(window=20, threshold=10.0, sigma_acc_g=SIGMA_ACC_G),
+        "amd": {"window": 20, "threshold": 10.0, "sigma_acc_g": SIGMA_ACC_G},
         # rest ~3; motion ~2e4
-        "ared": dict(window=20, threshold=30.0, sigma_gyr_dps=SIGMA_GYR_DPS),
+        "ared": {"window": 20, "threshold": 30.0, "sigma_gyr_dps": SIGMA_GYR_DPS},
         # rest ~6; motion ~2.6e4
-        "shod": dict(window=20, threshold=50.0, sigma_acc_g=SIGMA_ACC_G, sigma_gyr_dps=SIGMA_GYR_DPS),
+        "shod": {"window": 20, "threshold": 50.0, "sigma_acc_g": SIGMA_ACC_G, "sigma_gyr_dps": SIGMA_GYR_DPS},
         # rest 0.004 g / 0.11 deg/s; motion 0.3 g / 11 deg/s
-        "frd": dict(threshold=(0.05, 2.0)[s]),
-        # rest 0.7-6 dB; motion 22-42 dB
-        "ltsd": dict(window=16, shift=4, threshold=12.0),
-        # rest 0.1-1.3 dB; motion 19-38 dB
-        "fsd": dict(window=16, shift=4, threshold=10.0),
+        "frd": {"threshold": (0.05, 2.0)[s]},
+        # 0.32 s frames (the seed's best FSD/LTSD frames are 15-20 samples at 50 Hz): rest <= 7 dB,
+        # motion >= 25 dB. (16-sample frames, a third of the 2 Hz period, see the frames at the
+        # peaks of |a| as a higher constant: FSD-acc falls to 10 dB there.)
+        "ltsd": {"window": 32, "shift": 8, "threshold": 12.0},
+        # rest <= 4 dB; motion >= 19 dB
+        "fsd": {"window": 32, "shift": 8, "threshold": 10.0},
         # rest 0.011 g / 0.29 deg/s; motion 0.29 g / 20 deg/s
-        "mbgtd": dict(window=12, threshold=(0.03, 2.0)[s]),
+        "mbgtd": {"window": 12, "threshold": (0.03, 2.0)[s]},
         # kernel width 4 noise sigmas: rest median 0.6, motion ~1e3-1e4
-        "mbcd": dict(window=12, threshold=5.0, bandwidth=(0.02, 0.8)[s]),
+        "mbcd": {"window": 12, "threshold": 5.0, "bandwidth": (0.02, 0.8)[s]},
     }[name]
     if signal:
         p["signal"] = signal

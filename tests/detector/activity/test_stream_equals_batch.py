@@ -6,7 +6,8 @@ accumulation in a fixed order (flightmode.detector.activity.common)."""
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache, lru_cache
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -36,7 +37,7 @@ def _small(name, signal):
     return p
 
 
-@lru_cache(maxsize=None)
+@cache
 def _batch(name, signal):
     t, a, g = _data()
     return registry.get(name).detect(t, a, g, fs_hz=FS_HZ, **_small(name, signal))
@@ -45,7 +46,7 @@ def _batch(name, signal):
 def _pushed(name, signal, cuts):
     t, a, g = _data()
     det = registry.get(name).stream(fs_hz=FS_HZ, **_small(name, signal))
-    parts = [det.push(t[i:j], a[i:j], g[i:j]) for i, j in zip(cuts, cuts[1:])]
+    parts = [det.push(t[i:j], a[i:j], g[i:j]) for i, j in pairwise(cuts)]
     return np.concatenate([p.marker for p in parts]), np.concatenate([p.merit for p in parts])
 
 
