@@ -12,7 +12,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 ROOMS = {"flightmode": "flightmode", "scenarios": "flightmode/scenarios", "sim": "flightmode/sim",
-         "detector": "flightmode/detector", "nav": "flightmode/nav", "viz": "flightmode/viz"}
+         "detector": "flightmode/detector", "nav": "flightmode/nav", "viz": "flightmode/viz",
+         "eobs": "flightmode/eobs"}
 HEAVY = ("numpy", "scipy", "jsbsim", "rerun", "pyarrow", "pandas", "dask", "distributed", "matplotlib")
 
 

@@ -149,6 +149,21 @@ _LIS302DL = AccelerometerPreset(
     noise_gm_tau_s=0.146,
 )
 
+# e-obs per-axis sampling frequencies (seed 003). The note prints no table of settings; it gives a
+# rule and two total rates: the per-axis frequency is the total rate over the enabled axes
+# (section 4.2: "if you have three ACC axes enabled, then the sampling frequency for all axes
+# together is three times the sampling frequency for one axis"), the total rate is at least 10 Hz
+# (section 4.1: "10 is the minimum sampling rate that you can choose"; its 1 million samples a day
+# at 10 Hz count all axes together) and section 10 sets "the total sample rate to 100 Hz (33 Hz per
+# axis)". So the note's values are 10 and 100 Hz in total, per axis with 1, 2 or 3 axes:
+# 10 / 5 / 3.33 Hz and 100 / 50 / 33.33 Hz (the note rounds 100/3 to "33"; a rate is compared as one
+# exact number, so 10/3 and 100/3 are written to two decimals, 3.33 and 33.33). Rates the note does
+# not name (1, 2, 20, 25 Hz) are not accepted. The Movebank albatross file (2 axes at 5.0 Hz) is the
+# 10 Hz minimum. The sim preset always senses 3 axes yet keeps every per-axis value (its default
+# 10 Hz per axis is 30 Hz in total, a total the note does not name): this is the per-axis table.
+EOBS_TOTAL_RATES_HZ: tuple[float, ...] = (10.0, 100.0)
+EOBS_PER_AXIS_RATES_HZ: tuple[float, ...] = (3.33, 5.0, 10.0, 33.33, 50.0, 100.0)
+
 PRESETS: dict[str, AccelerometerPreset] = {
     "lis302dl": _LIS302DL,
     "lis302dl-8g": replace(
@@ -177,7 +192,7 @@ PRESETS: dict[str, AccelerometerPreset] = {
         name="eobs",
         description="e-obs tag accelerometer: 12-bit ADC (0.0022 g/count, zero-g 2048), no anti-alias filter",
         odr_hz=10.0,
-        allowed_odr_hz=(1.0, 2.0, 5.0, 10.0, 20.0, 25.0, 33.33, 50.0, 100.0),
+        allowed_odr_hz=EOBS_PER_AXIS_RATES_HZ,
         range_g=2048 * 0.0022,
         lsb_g=0.0022,
         bits=12,

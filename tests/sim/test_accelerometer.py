@@ -164,12 +164,13 @@ def test_bad_input_is_named():
 # range +-2.3 g typ.; FS = 1 64.8 / 72 / 79.2 mg/digit, +-9.2 g typ.; 8-bit two's complement output (OUT_X/Y/Z), ODR 100 or 400 Hz, bandwidth ODR / 2. Noise:
 # seed 000 Table 1 (2.23 mg). logged16: seed 000 section 2, the +-2.3 g span stored in 16 bits.
 # e-obs: seed 003 section 6, readings 0...4095 (12 bits), zero-g 2048 nominal, 0.0022 g per count
-# (tags > 2241); section 1, no anti-alias filter.
+# (tags > 2241); section 1, no anti-alias filter; per-axis rates: the 10 and 100 Hz totals over 1-3 axes
+# (sections 4.1, 4.2, 10; sim.sensor.accelerometer.EOBS_PER_AXIS_RATES_HZ).
 DATASHEET = {
     "lis302dl": (8, 0, (-128, 127), 0.018, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
     "lis302dl-8g": (8, 0, (-128, 127), 0.072, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
     "lis302dl-logged16": (16, 0, (-32768, 32767), 4.6 / 2**16, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
-    "eobs": (12, 2048, (0, 4095), 0.0022, (1.0, 2.0, 5.0, 10.0, 20.0, 25.0, 33.33, 50.0, 100.0), None,
+    "eobs": (12, 2048, (0, 4095), 0.0022, (3.33, 5.0, 10.0, 33.33, 50.0, 100.0), None,
              None, None),
 }
 
