@@ -209,9 +209,10 @@ def _print_detector_line(e) -> None:
 @app.command("detect")
 def detect_cmd(
     source: Annotated[Path, typer.Argument(help="A run folder, or a samples.parquet file.")],
-    method: Annotated[str, typer.Option("--method", help="Moving variance: nmv or emv.")] = "nmv",
+    method: Annotated[str, typer.Option("--method", help="nmv or emv (seed 000's moving variance), or one of seed 001's detectors: amvd, amd, ared, shod, frd, ltsd, fsd, mbgtd, mbcd.")] = "nmv",
     window_s: Annotated[float, typer.Option("--window-s", help="Window W_s and check period, s.")] = 1.0,
-    k: Annotated[float, typer.Option("--k", help="Amplitude threshold T_sigma = k sigma^2.")] = 4.0,
+    k: Annotated[float, typer.Option("--k", help="Amplitude threshold T_sigma = k sigma^2 (seed 001's detectors: k times the merit at rest).")] = 4.0,
+    signal: Annotated[str, typer.Option("--signal", help="Seed 001's flexible input: acc, gyr, sum or product.")] = "acc",
     time_threshold_s: Annotated[float, typer.Option("--time-threshold-s", help="Time threshold T_th, s.")] = 4.0,
     weight: Annotated[float, typer.Option("--weight", help="EMV weighting factor (1, 5, 10 in the seed).")] = 1.0,
     sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (bench calibration of the unit) or rest (the recording's static samples before the flight).")] = "preset",
@@ -234,10 +235,14 @@ def detect_cmd(
             fs = float(info["sensor"]["odr_hz"])
         else:
             fs = 1.0 / float(np.median(np.diff(t[: min(len(t), 10_000)])))
+        labels = labels_of(cols)
+        if method.lower() not in ("nmv", "emv"):
+            _detect_activity(source, cols, info, labels, fs, method.lower(), window_s, k, time_threshold_s, signal,
+                             sigma2_from)
+            return
         p = DetectorParams(fs_hz=fs, window_s=window_s, k_sigma=k, time_threshold_s=time_threshold_s,
                            method=method, weight=weight)
         p.validate()
-        labels = labels_of(cols)
         s2, s2_source = stream_sigma2(sigma2_from, cols, info, p.window)
         title = f"{source}" + (f": {info['sensor']['preset']} at {fs:g} Hz" if info and info.get("sensor") else "")
         console.print(Text(title, style="bold"), highlight=False)
@@ -247,6 +252,35 @@ def detect_cmd(
             dr.print_tables(console, t, a, labels, p, s2)
     except FlightmodeError as e:
         _die(e)
+
+
+def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_threshold_s, signal, rest_from) -> None:
+    """`flightmode detect --method <seed 001 detector>` (flightmode.detector.activity.flight)."""
+    from flightmode.detector.activity import registry
+    from flightmode.detector.activity.flight import ActivityParams, evaluate_activity, rest_figures
+    from flightmode.scenarios.pipeline import stream_rest
+
+    registry.get(name)  # an unknown name: one line with the nearest
+    p = ActivityParams(name, fs_hz=fs, window_s=window_s, k=k, time_threshold_s=time_threshold_s, signal=signal)
+    p.validate()
+    bench, bench_source = stream_rest(rest_from, cols, info)
+    rest = rest_figures(p, bench, None)
+    e = evaluate_activity(cols["t_s"], cols["acc_g"], cols.get("gyro_dps"), labels, p, rest)
+    d = registry.get(name)
+    t = Table(title=f"{d.title} ({d.equations}) with seed 000's decision rule: W_s {window_s:g} s, "
+                    f"threshold {k:g} x the rest level, T_th {time_threshold_s:g} s", show_header=False)
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    t.add_row("rest level of the merit (median)", f"{rest['merit_median']:.4g} {d.merit_unit}")
+    t.add_row("threshold", f"{rest['threshold']:.4g} {d.merit_unit}")
+    t.add_row("rest from", bench_source)
+    t.add_row("checks (in the in-flight window)", f"{e.checks.t_s.shape[0]:,} ({e.in_flight_checks:,})")
+    t.add_row("false-static events in flight", f"{e.false_static_count} ({e.false_static_s:g} s in all)")
+    t.add_row("response after the flight", "never" if e.response_s is None else f"{e.response_s:.1f} s")
+    t.add_row("static time missed outside the window", f"{e.missed_static_s:g} s")
+    t.add_row("accuracy / correlation vs sensor_static", f"{e.accuracy:.4f} / {e.correlation:.4f}")
+    console.print(Text(f"{source}", style="bold"), highlight=False)
+    console.print(t)
 
 
 @app.command("path")

@@ -133,6 +133,33 @@ def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng:
 SIGMA2_SOURCES = ("preset", "rest")
 
 
+def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarray, str]:
+    """A static recording of the unit at the stream's rate (acc in g) for the detectors that calibrate
+    on one (seed 001's, :mod:`flightmode.detector.activity.flight`), and where it came from: ``preset``
+    the same 60 s bench recording as :func:`stream_sigma2` (needs run.json); ``rest`` the longest run
+    of truly static samples before the flight."""
+    from flightmode.detector.evaluation import longest_static_run
+    from flightmode.errors import DetectorError
+    from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
+
+    if source not in SIGMA2_SOURCES:
+        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}{did_you_mean(source, SIGMA2_SOURCES)}")
+    if source == "preset":
+        if info is None or "sensor" not in info:
+            raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
+                                "use --sigma2-from rest for a bare samples file")
+        s = info["sensor"]
+        p = dataclasses.replace(get_preset(s["preset"]), odr_hz=float(s["odr_hz"]))
+        m = bench_static(p, UnitDraw.from_dict(s.get("unit")), streams_of(int(info["seed"])).rng("detector/bench"))
+        return m.acc_g, f"bench recording of this {s['preset']} unit (60 s static)"
+    static = np.asarray(columns["sensor_static"], bool).copy()
+    window = np.asarray(columns["in_flight_window"], bool)
+    if window.any():
+        static[int(np.flatnonzero(window)[0]):] = False  # only what a tracker saw before the flight
+    a, b = longest_static_run(static)
+    return columns["acc_g"][a:b], f"{b - a} truly static samples before the flight"
+
+
 def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) -> tuple[np.ndarray, str]:
     """sigma^2 per axis for a samples file and a sentence saying where it came from. ``preset``: the
     bench calibration of the recording's own unit (needs the run.json beside the samples; the same

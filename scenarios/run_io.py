@@ -153,6 +153,8 @@ def read_samples(path: Path) -> tuple[dict, dict | None]:
         "t_s": np.asarray(col("t_s"), float),
         "acc_g": np.stack([np.asarray(col(f"acc_{a}_g"), float) for a in "xyz"], axis=1),
     }
+    if "gyro_x_dps" in t.column_names:
+        out["gyro_dps"] = np.stack([np.asarray(col(f"gyro_{a}_dps"), float) for a in "xyz"], axis=1)
     if "raw_x" in t.column_names:
         out["counts"] = np.stack([np.asarray(col(f"raw_{a}"), np.int32) for a in "xyz"], axis=1)
     for name in ("in_flight_window", "airborne", "sensor_static", "clipped"):
