@@ -50,9 +50,20 @@ class Grid:
                            ("--time-threshold-s", self.time_thresholds_s)):
             if not axis:
                 raise DetectorError(f"{name}: the grid axis is empty; give at least one value")
+        from flightmode.detector.activity import registry
+
         for method, weight in self.methods:
             if method not in METHODS:
-                raise DetectorError(f"--method {method!r}: use nmv or emv")
+                if method not in registry.NAMES:
+                    from flightmode.errors import did_you_mean
+
+                    names = METHODS + registry.NAMES
+                    raise DetectorError(f"--method {method!r}: use nmv, emv or one of seed 001's detectors "
+                                        f"({', '.join(registry.NAMES)}){did_you_mean(method, names)}")
+                d = registry.get(method)
+                if d.needs_gyro:
+                    raise DetectorError(f"--method {method}: {d.title} needs a gyroscope, which the datasets' "
+                                        "samples do not carry; sweep it on accelerometer methods")
             if not weight > 0:
                 raise DetectorError(f"--weight {weight!r}: an EMV weighting factor must be > 0")
         for w in self.windows_s:

@@ -462,7 +462,8 @@ def _excluded(failed: list[dict]) -> None:
 # the default grid of sweep and certify: NMV and EMV (weight 5), three windows, 13 k, 8 time thresholds
 # (624 points); each moving variance is computed once, so the grid costs little more than one point
 GRID_HELP = {
-    "method": "nmv, emv or nmv,emv.", "weight": "EMV weighting factors, e.g. 1,5,10.",
+    "method": "nmv, emv (seed 000) and seed 001's accelerometer detectors amvd, amd, frd, ltsd, fsd, mbgtd, mbcd "
+              "(threshold k x the merit at rest; the memory detectors cost O(N^2), O(N^3) per sample: short windows).", "weight": "EMV weighting factors, e.g. 1,5,10.",
     "window_s": "Windows W_s, s (list or start:stop:step).", "k": "Amplitude thresholds T_sigma = k sigma^2.",
     "time_threshold_s": "Time thresholds T_th, s.",
 }
@@ -524,7 +525,7 @@ def sweep_cmd(
                         f"T_th {best_point['time_threshold_s']:g}")
         for r in breakdown(table, best_point, result.phases):
             b.add_row(r["condition"], r["value"], str(r["flights"]), f"{r['in_window_h']:.1f}", str(r["false_statics"]),
-                      f"{r['response_p95_s']:.1f}")
+                      "" if r["response_p95_s"] != r["response_p95_s"] else f"{r['response_p95_s']:.1f}")
         console.print(b)
         flights = table.num_rows // max(1, len(grid))
         console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {flights} flights) written to {out}",

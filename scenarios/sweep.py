@@ -49,6 +49,7 @@ POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s")
 # overflow folded into the first and last bins, which a threshold search never reaches)
 STATIC_EDGES = np.geomspace(1e-2, 1e3, 501)
 AXES = ("x", "y", "z")
+MV_METHODS = ("nmv", "emv")  # seed 000's moving variance; any other method is one of seed 001's detectors
 SWEEP_FORMAT = 2  # the sweep folder's layout (read_sweep refuses others: sweep again)
 
 
@@ -144,9 +145,46 @@ def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", fam
     return out
 
 
-def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> dict:
+def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
+    """Every point of the grid: the moving variance's (:func:`~flightmode.detector.grid.
+    evaluate_grid`) and seed 001's detectors' (:func:`~flightmode.detector.activity.flight.
+    evaluate_activity_grid`, calibrated on the same rest recording as sigma^2)."""
+    import dataclasses
+
     from flightmode.detector.grid import evaluate_grid
 
+    mv = tuple(m for m in grid.methods if m[0] in MV_METHODS)
+    if mv:
+        yield from evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=mv), fs,
+                                 _sigma2_of(sigma2_from, row, cols))
+    others = [m for m, _ in grid.methods if m not in MV_METHODS]
+    if others:
+        from flightmode.detector.activity.flight import evaluate_activity_grid
+
+        bench = _rest_of(sigma2_from, row, cols, fs)
+        for name in others:
+            yield from evaluate_activity_grid(t, acc, gyr, labels, name, grid.windows_s, grid.ks,
+                                              grid.time_thresholds_s, fs, bench)
+
+
+def _rest_of(source: str, row: dict, cols: dict, fs: float) -> np.ndarray:
+    """The rest recording seed 001's detectors calibrate on: the unit's bench recording (the stream
+    that gives sigma^2 for ``preset``), or the truly static samples before the flight (``rest``)."""
+    import dataclasses
+
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.scenario import Scenario
+    from flightmode.sim.sensor.accelerometer import bench_static, draw_unit
+
+    if source == "rest":
+        return pipeline.stream_rest("rest", cols, None)[0]
+    sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
+    preset = dataclasses.replace(pipeline.sensor_preset(sc.sensor), odr_hz=fs)
+    unit = draw_unit(preset, pipeline.streams_of(sc.seed).child("sensor").rng("unit"))
+    return bench_static(preset, unit, pipeline.streams_of(sc.seed).rng("detector/bench")).acc_g
+
+
+def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> dict:
     t, acc = cols["t_s"], cols["acc_g"]
     fs = round(1.0 / float(np.median(np.diff(t))), 6)
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
@@ -161,24 +199,29 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
     cond = {k: row.get(k) for k in CONDITIONS if k not in ("family", "sensor_preset")}
     points, phases, statics = [], [], []
     seen: set[tuple] = set()
-    for p, e in evaluate_grid(t, acc, labels, grid, fs, _sigma2_of(sigma2_from, row, cols)):
+    for p, e in _evaluate(t, acc, cols.get("gyro_dps"), labels, grid, fs, sigma2_from, row, cols):
         c = e.checks
         base = (p.method, p.weight, p.window_s)
-        if base not in seen:  # once per moving variance: per-phase checks under each k, and the static MV
-            seen.add(base)
-            bk = {**key, "method": p.method, "weight": p.weight, "window_s": p.window_s}
-            in_w = window[c.index]
-            codes = phase_code[c.index][in_w]
+        mv_method = p.method in MV_METHODS
+        bk = {**key, "method": p.method, "weight": p.weight, "window_s": p.window_s}
+        in_w = window[c.index]
+        codes = phase_code[c.index][in_w]
+        if (*base, p.k_sigma) not in seen:  # once per (detector run, k): per-phase checks under k
+            seen.add((*base, p.k_sigma))
             n_ph = np.bincount(codes, minlength=len(phase_names))
-            for k in grid.ks:
-                below = (c.mv < k * e.sigma2[None, :])[in_w]  # eq. 7, per axis
-                under = [np.bincount(codes[below[:, j]], minlength=len(phase_names)) for j in range(3)]
-                under_all = np.bincount(codes[below.all(axis=1)], minlength=len(phase_names))
-                for i, name in enumerate(phase_names):
-                    if n_ph[i]:
-                        phases.append({**bk, "k": k, "phase": str(name), "checks": int(n_ph[i]),
-                                       "under_x": int(under[0][i]), "under_y": int(under[1][i]),
-                                       "under_z": int(under[2][i]), "under_all": int(under_all[i])})
+            if mv_method:
+                below = (c.mv < p.k_sigma * e.sigma2[None, :])[in_w]  # eq. 7, per axis
+            else:  # seed 001's detectors: one merit for the three axes
+                below = np.repeat(c.temporary_static[in_w][:, None], 3, axis=1)
+            under = [np.bincount(codes[below[:, j]], minlength=len(phase_names)) for j in range(3)]
+            under_all = np.bincount(codes[below.all(axis=1)], minlength=len(phase_names))
+            for i, name in enumerate(phase_names):
+                if n_ph[i]:
+                    phases.append({**bk, "k": p.k_sigma, "phase": str(name), "checks": int(n_ph[i]),
+                                   "under_x": int(under[0][i]), "under_y": int(under[1][i]),
+                                   "under_z": int(under[2][i]), "under_all": int(under_all[i])})
+        if mv_method and base not in seen:  # once per moving variance: the static MV in sigma^2 units
+            seen.add(base)
             whole = (c.index + 1 >= p.window) & (
                 static_cs[c.index + 1] - static_cs[np.maximum(c.index + 1 - p.window, 0)] == p.window)
             statics.append({**bk, **_static_stats(c.mv, e.sigma2, whole)})

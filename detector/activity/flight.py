@@ -49,8 +49,8 @@ class ActivityParams:
         return int(round(self.window_s * self.fs_hz))
 
     @property
-    def checks_needed(self) -> int:
-        return max(1, int(round(self.time_threshold_s / self.window_s)))
+    def checks_needed(self) -> int:  # as DetectorParams.checks_needed (eq. 8)
+        return max(1, math.ceil(self.time_threshold_s / self.window_s - 1e-9))
 
     def validate(self) -> None:
         from flightmode.detector.activity import registry
@@ -118,11 +118,13 @@ def rest_figures(p: ActivityParams, bench_acc_g: np.ndarray, bench_gyr_dps: np.n
     if merit.size == 0:
         raise DetectorError(f"{p.name}: the bench recording ({n} samples) is shorter than one window ({p.window})")
     rest["merit_median"] = float(np.median(merit))
-    if p.name in DB_DETECTORS:
-        rest["threshold"] = rest["merit_median"] + 10.0 * math.log10(p.k)
-    else:
-        rest["threshold"] = p.k * rest["merit_median"]
+    rest["threshold"] = threshold_of(p.name, rest["merit_median"], p.k)
     return rest
+
+
+def threshold_of(name: str, rest_median: float, k: float) -> float:
+    """k times the rest level (a power ratio of k, 10 log10(k) dB, for the dB detectors)."""
+    return rest_median + 10.0 * math.log10(k) if name in DB_DETECTORS else k * rest_median
 
 
 def _rest_spectrum(x: np.ndarray, window: int, shift: int) -> np.ndarray:
@@ -138,20 +140,57 @@ def activity_checks(t_s: np.ndarray, acc_g: np.ndarray, gyr_dps: np.ndarray | No
     from flightmode.detector.activity import registry
 
     p.validate()
-    d = registry.get(p.name)
-    res = d.detect(t_s, acc_g, gyr_dps, threshold=rest["threshold"], **_kwargs(p, rest))
-    n = p.window
-    k = res.marker.shape[0] // n
+    res = registry.get(p.name).detect(t_s, acc_g, gyr_dps, threshold=rest["threshold"], **_kwargs(p, rest))
+    periods, index, after_reset = _periods(res.marker.shape[0], p.window)
+    return _checks(t_s, res.marker, res.merit, periods, index, after_reset, p.checks_needed)
+
+
+def _periods(n_samples: int, window: int):
+    k = n_samples // window
     if k == 0:
-        raise DetectorError(f"the stream ({res.marker.shape[0]} samples) is shorter than one check ({n})")
-    periods = res.marker[: k * n].reshape(k, n)
-    temp = ~periods.astype(bool).any(axis=1)  # every sample of the period inactive
-    index = np.arange(k) * n + n - 1
+        raise DetectorError(f"the stream ({n_samples} samples) is shorter than one check ({window})")
+    index = np.arange(k) * window + window - 1
     after_reset = np.zeros(k, bool)
     after_reset[0] = True
-    merit = np.repeat(res.merit[index][:, None], 3, axis=1)
-    return Checks(index, np.asarray(t_s, float)[index], merit, temp, final_static(temp, after_reset, p.checks_needed),
-                  after_reset)
+    return (k, window), index, after_reset
+
+
+def _checks(t_s, marker, merit, periods, index, after_reset, need: int) -> Checks:
+    k, n = periods
+    temp = ~marker[: k * n].reshape(k, n).astype(bool).any(axis=1)  # every sample of the period inactive
+    mv = np.repeat(merit[index][:, None], 3, axis=1)
+    return Checks(index, np.asarray(t_s, float)[index], mv, temp, final_static(temp, after_reset, need), after_reset)
+
+
+def evaluate_activity_grid(t_s, acc_g, gyr_dps, labels: dict, name: str, windows_s, ks, time_thresholds_s,
+                           fs_hz: float, bench_acc_g: np.ndarray, signal: str = "acc"):
+    """(parameters, evaluation) for every (window, k, T_th) of one detector over one stream, the
+    detector run once per window: its figure of merit does not depend on the threshold, so each k is
+    one comparison (seed 001's step IV) and each T_th one run-length pass (seed 000's eq. 8), as the
+    moving variance's grid (:func:`~flightmode.detector.grid.evaluate_grid`). The decisions are
+    exactly :func:`evaluate_activity`'s."""
+    import dataclasses
+
+    from flightmode.detector.activity import registry
+    from flightmode.detector.activity.common import decide
+    from flightmode.detector.evaluation import score
+    from flightmode.detector.flight_mode import DetectorParams
+
+    d = registry.get(name)
+    for w in windows_s:
+        base = ActivityParams(name, fs_hz=fs_hz, window_s=w, k=ks[0], time_threshold_s=time_thresholds_s[0],
+                              signal=signal)
+        rest = rest_figures(base, bench_acc_g)
+        merit = d.detect(t_s, acc_g, gyr_dps, threshold=rest["threshold"], **_kwargs(base, rest)).merit
+        periods, index, after_reset = _periods(merit.shape[0], base.window)
+        for k in ks:
+            thr = threshold_of(name, rest["merit_median"], k)
+            marker = decide(merit, thr)
+            for tth in time_thresholds_s:
+                p = dataclasses.replace(base, k=k, time_threshold_s=tth)
+                c = _checks(t_s, marker, merit, periods, index, after_reset, p.checks_needed)
+                dp = DetectorParams(fs_hz=fs_hz, window_s=w, k_sigma=k, time_threshold_s=tth, method=name)
+                yield dp, score(c, t_s, labels, dp, np.full(3, thr))
 
 
 def evaluate_activity(t_s, acc_g, gyr_dps, labels: dict, p: ActivityParams, rest: dict):
@@ -169,4 +208,5 @@ def evaluate_activity(t_s, acc_g, gyr_dps, labels: dict, p: ActivityParams, rest
     return score(c, t_s, labels, dp, np.full(3, rest["threshold"]))
 
 
-__all__ = ["ActivityParams", "rest_figures", "activity_checks", "evaluate_activity", "DB_DETECTORS"]
+__all__ = ["ActivityParams", "rest_figures", "activity_checks", "evaluate_activity", "evaluate_activity_grid",
+           "threshold_of", "DB_DETECTORS"]

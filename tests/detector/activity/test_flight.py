@@ -92,3 +92,23 @@ def test_detect_cli_runs_every_accelerometer_detector_and_refuses_in_one_line(pa
         assert r.exit_code == 2 and msg in r.output and len(r.output.strip().splitlines()) == 1, (args, r.output)
     with pytest.raises(DetectorError, match="a window needs at least 2"):
         ActivityParams("amvd", fs_hz=100.0, window_s=0.01).validate()
+
+
+@pytest.mark.parametrize("name", ["amvd", "frd", "ltsd", "mbgtd"])
+def test_the_grid_runs_the_detector_once_per_window_and_decides_as_alone(name):
+    """evaluate_activity_grid: each point's checks and scores equal the detector run alone with those
+    parameters (its merit does not depend on the threshold, so one run per window serves every k)."""
+    from flightmode.detector.activity.flight import evaluate_activity_grid
+
+    rng = np.random.default_rng(11)
+    t, a, static, _ = _still_burst_still(rng)
+    labels = {"in_flight_window": ~static, "sensor_static": static, "phase": np.where(static, "terminal_rest", "cruise")}
+    bench = np.column_stack([rng.normal(0, 2.2e-3, 6000), rng.normal(0, 2.2e-3, 6000), 1 + rng.normal(0, 2.2e-3, 6000)])
+    windows, ks, tths = (0.32, 0.5), (2.0, 4.0, 8.0), (1.0, 3.0)
+    got = list(evaluate_activity_grid(t, a, None, labels, name, windows, ks, tths, FS, bench))
+    assert len(got) == len(windows) * len(ks) * len(tths)
+    for dp, e in got:
+        p = ActivityParams(name, fs_hz=FS, window_s=dp.window_s, k=dp.k_sigma, time_threshold_s=dp.time_threshold_s)
+        alone = evaluate_activity(t, a, None, labels, p, rest_figures(p, bench))
+        assert np.array_equal(e.checks.final_static, alone.checks.final_static), dp
+        assert e.false_static_events == alone.false_static_events and e.response_s == alone.response_s
