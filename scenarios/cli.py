@@ -217,8 +217,12 @@ def detect_cmd(
     weight: Annotated[float, typer.Option("--weight", help="EMV weighting factor (1, 5, 10 in the seed).")] = 1.0,
     sigma2_from: Annotated[str, typer.Option("--sigma2-from", help="preset (bench calibration of the unit) or rest (the recording's static samples before the flight).")] = "preset",
     tables: Annotated[bool, typer.Option("--tables", help="Also print the seed's Table 2, 3, 4/5 forms and the Fig. 18 response.")] = False,
+    bursts: Annotated[int, typer.Option("--bursts", help="Movebank e-obs file: final static after this many quiet bursts in a row.")] = 2,
+    tag_number: Annotated[Optional[int], typer.Option("--tag-number", help="Movebank e-obs file: the tag's number (sets the nominal slope; a Movebank id is not one).")] = None,
+    calibration: Annotated[Optional[Path], typer.Option("--calibration", help="Movebank e-obs file: a calibration TOML from `flightmode eobs calibrate`.")] = None,
 ) -> None:
-    """Run the flight-mode detector over a recording and print how it did against the truth."""
+    """Run the flight-mode detector over a recording (a run folder or samples.parquet) and print how
+    it did against the truth; or, on a Movebank e-obs CSV, the duty-cycled detector per burst."""
     import numpy as np
 
     from flightmode.detector.evaluation import evaluate
@@ -229,6 +233,9 @@ def detect_cmd(
     from flightmode.scenarios.pipeline import stream_sigma2
 
     try:
+        if Path(source).suffix.lower() == ".csv":
+            _detect_movebank(source, k, bursts, tag_number, calibration)
+            return
         cols, info = run_io.read_samples(source)
         t, a = cols["t_s"], cols["acc_g"]
         if info and info.get("sensor"):
@@ -252,6 +259,34 @@ def detect_cmd(
             dr.print_tables(console, t, a, labels, p, s2)
     except FlightmodeError as e:
         _die(e)
+
+
+def _detect_movebank(source: Path, k: float, m: int, tag_number: int | None, calibration: Path | None) -> None:
+    """`flightmode detect FILE.csv`: seed 003's bursts through the duty-cycled detector (eobs.duty_cycle)."""
+    import warnings
+
+    from flightmode.eobs.calibration import read_calibration
+    from flightmode.eobs.duty_cycle import detect_movebank
+
+    cal = read_calibration(calibration) if calibration is not None else None
+    if cal is None and tag_number is None:
+        raise ScenarioError(f"{source}: give --tag-number (a Movebank id is not a tag number; it sets the nominal "
+                            "slope) or --calibration FILE.toml")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        det = detect_movebank(source, k=k, m=m, calibration=cal, tag_number=tag_number)
+    if det.nominal:
+        console.print(f"warning: counts converted with the nominal constants of tag {tag_number} (seed 003 section 6); "
+                      "calibrate the tag (flightmode eobs calibrate) for its own offsets and slopes", highlight=False)
+    del caught
+    t = Table("individual", "axes", "bursts", "quiet", "final static", "sigma^2 per axis g^2",
+              title=f"{source}: burst variance < {k:g} sigma^2 on every axis; final static after {m} quiet bursts "
+                    f"(sigma^2: {det.sigma2_source})")
+    for ind in det.individuals.values():
+        c = ind.checks
+        t.add_row(ind.individual, ind.axes, str(c.t.shape[0]), str(int(c.quiet.sum())), str(int(c.final_static.sum())),
+                  ", ".join(f"{v:.2e}" for v in ind.sigma2_g2))
+    console.print(t)
 
 
 def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_threshold_s, signal, rest_from) -> None:
@@ -281,6 +316,46 @@ def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_thr
     t.add_row("accuracy / correlation vs sensor_static", f"{e.accuracy:.4f} / {e.correlation:.4f}")
     console.print(Text(f"{source}", style="bold"), highlight=False)
     console.print(t)
+
+
+eobs_app = typer.Typer(help="The e-obs tag toolkit (seed 003): calibration.", no_args_is_help=True)
+app.add_typer(eobs_app, name="eobs")
+
+
+@eobs_app.command("calibrate")
+def eobs_calibrate_cmd(
+    plus_x: Annotated[Path, typer.Option("--plus-x", help="Movebank CSV of the tag still with X at +1 g.")],
+    minus_x: Annotated[Path, typer.Option("--minus-x", help="... X at -1 g.")],
+    plus_y: Annotated[Path, typer.Option("--plus-y", help="... Y at +1 g.")],
+    minus_y: Annotated[Path, typer.Option("--minus-y", help="... Y at -1 g.")],
+    plus_z: Annotated[Path, typer.Option("--plus-z", help="... Z at +1 g.")],
+    minus_z: Annotated[Path, typer.Option("--minus-z", help="... Z at -1 g.")],
+    out: Annotated[Path, typer.Option("--out", help="The calibration TOML to write.")],
+    tag_number: Annotated[Optional[int], typer.Option("--tag-number", help="The tag's number (recorded; old tags <= 2241).")] = None,
+) -> None:
+    """Seed 003 section 7's six-orientation calibration: zero-g count and slope per axis from six static
+    recordings, each a Movebank e-obs file whose bursts all hold the tag in one orientation (XYZ bursts)."""
+    import numpy as np
+
+    from flightmode.eobs.calibration import calibrate, write_calibration
+    from flightmode.eobs.movebank import read_movebank
+
+    try:
+        recs = {}
+        for key, path in (("+x", plus_x), ("-x", minus_x), ("+y", plus_y), ("-y", minus_y), ("+z", plus_z),
+                          ("-z", minus_z)):
+            bursts = [r.burst for r in read_movebank(path).rows if r.burst is not None]
+            if not bursts or any(b.axes != "XYZ" for b in bursts):
+                raise ScenarioError(f"{path}: the {key} recording needs bursts of all three axes (XYZ)")
+            recs[key] = np.concatenate([b.raw for b in bursts])
+        cal = calibrate(recs, tag_number)
+        write_calibration(cal, out)
+        t = Table("axis", "zero-g count", "slope g/count", title=f"seed 003 section 7: {out}")
+        for j, a in enumerate("XYZ"):
+            t.add_row(a, f"{cal.zero_count[j]:.2f}", f"{cal.slope_g_per_count[j]:.6f}")
+        console.print(t)
+    except FlightmodeError as e:
+        _die(e)
 
 
 @app.command("path")

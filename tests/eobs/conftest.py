@@ -7,11 +7,11 @@ from pathlib import Path
 
 import pytest
 
-REAL_MOVEBANK = Path("/work/shared/data/eobs/albatrosses_movebank_format.csv")
+# beside the checkout (shared/data/eobs: data nobody here wrote, not copied into the repository)
+REAL_MOVEBANK = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "eobs" / "albatrosses_movebank_format.csv"
 
 
 @pytest.fixture(scope="module")
 def real_movebank() -> Path:
-    if not REAL_MOVEBANK.is_file():
-        pytest.skip(f"the real e-obs Movebank file is not on this machine ({REAL_MOVEBANK})")
+    assert REAL_MOVEBANK.is_file(), f"the real e-obs Movebank file is expected at {REAL_MOVEBANK} (shared/data beside the checkout)"
     return REAL_MOVEBANK
