@@ -295,7 +295,11 @@ def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_thr
     from flightmode.detector.activity.flight import ActivityParams, evaluate_activity, rest_figures
     from flightmode.scenarios.pipeline import stream_rest
 
-    registry.get(name)  # an unknown name: one line with the nearest
+    if name not in registry.NAMES:
+        from flightmode.errors import DetectorError, did_you_mean
+
+        raise DetectorError(f"--method {name!r}: use 'nmv' or 'emv' (seed 000) or one of seed 001's detectors: "
+                            f"{', '.join(registry.NAMES)}{did_you_mean(name, ('nmv', 'emv') + registry.NAMES)}")
     p = ActivityParams(name, fs_hz=fs, window_s=window_s, k=k, time_threshold_s=time_threshold_s, signal=signal)
     p.validate()
     bench, bench_source = stream_rest(rest_from, cols, info)

@@ -47,6 +47,40 @@ def max_duration_s(plan: FlightPlan) -> float:
     return ground + d / 120.0 + 3600.0  # 120 m/s: slower than any airliner's mean speed
 
 
+# the fuel an airline loads beyond the trip: 30 min at holding speed (final reserve, ICAO Annex 6
+# Part I 4.3.6.3) and about as much again for contingency (5 % of the trip) and an alternate; as
+# hours of the type's mean burn
+RESERVE_H = 1.0
+# climb and descent take longer than cruising the same ground distance: about 0.3 h on any airliner's
+# profile (WRAP's climb and descent phases against cruise TAS)
+CLIMB_DESCENT_EXTRA_H = 0.3
+
+
+# on the ground the engines idle: a tenth of the airborne burn (an A320 taxis on about 10 kg/min)
+TAXI_BURN_FRACTION = 0.1
+
+
+def planned_fuel_kg(plan: FlightPlan, prof) -> float:
+    """The fuel loaded at the gate: the type's mean airborne burn over the estimated airborne time
+    plus reserves (:data:`RESERVE_H`), and taxi fuel; never less than the profile's ``fuel_kg`` (the
+    tanks cap it)."""
+    d = float(geodesy.great_circle_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg,
+                                              plan.destination.lon_deg))
+    ground_h = (plan.gate_wait_s + sum(plan.taxi_out.holds_s) + sum(plan.taxi_in.holds_s)) / 3600.0 + 0.5
+    tas_mps = prof.cruise_mach * 295.0  # the speed of sound in the ISA above 36,000 ft (295 m/s)
+    airborne_h = d / tas_mps / 3600.0 + CLIMB_DESCENT_EXTRA_H
+    return max(prof.fuel_kg, prof.burn_kg_per_h * (airborne_h + RESERVE_H + TAXI_BURN_FRACTION * ground_h))
+
+
+def _fuel_lbs(ac: JSBSimAircraft) -> float:
+    """The fuel in every tank (``propulsion/total-fuel-lbs`` is only summed when the FDM runs)."""
+    total, i = 0.0, 0
+    while ac._pm.hasNode(f"propulsion/tank[{i}]/contents-lbs"):
+        total += ac.get(f"propulsion/tank[{i}]/contents-lbs")
+        i += 1
+    return total
+
+
 def _load_fuel(ac: JSBSimAircraft, fuel_kg: float) -> None:
     """Fill the model's (initially non-empty) tanks with ``fuel_kg`` in proportion to capacity."""
     caps = []
@@ -90,7 +124,9 @@ def fly(
     (gx, gy), gh = taxi.stand_xy_m, taxi.stand_heading_rad
     lat0, lon0 = origin.to_latlon(gx, gy)
     ac.init_on_ground(lat0, lon0, plan.origin.elevation_m, (plan.origin.heading_deg + math.degrees(gh)) % 360.0)
-    _load_fuel(ac, prof.fuel_kg)
+    fuel_kg = planned_fuel_kg(plan, prof)
+    _load_fuel(ac, fuel_kg)
+    fuel_start_lbs = _fuel_lbs(ac)
     ac.set("atmosphere/turb-type", 0)  # JSBSim's own turbulence is off: flightmode feeds its gusts
     ac.set("propulsion/cutoff_cmd", 1)
     draws = draw_flight(plan, prof, streams)
@@ -200,7 +236,9 @@ def fly(
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
     track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
-    return dataclasses.replace(track, conditions=draws.as_dict() | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m})
+    fuel = {"fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
+    return dataclasses.replace(track, conditions=draws.as_dict() | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m}
+                               | fuel)
 
 
 def _gather(raw: np.ndarray, scales: np.ndarray, groups: dict[str, list[int]], block: int = 8192) -> dict[str, np.ndarray]:

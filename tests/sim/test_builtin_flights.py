@@ -82,7 +82,10 @@ def test_turbulence_intensity_rises_with_severity(fly_cached):
     from flightmode.sim.flight.plan import TurbulenceSegment
     from flightmode.sim.flight.turbulence import EDR_BANDS
 
-    edr = {"light": 0.15, "moderate": 0.35, "severe": 0.6}
+    # moderate at 0.4, not mid-band 0.35: with its planned fuel (sim.flight.simulate.planned_fuel_kg)
+    # the A320 is 4 % heavier than it was with a fixed 5.5 t, and its gust load factor falls as its
+    # wing loading rises (Pratt's gust formula): 0.35 peaked at 0.49 g in this realisation
+    edr = {"light": 0.15, "moderate": 0.4, "severe": 0.6}
     assert all(EDR_BANDS[k][0] < v < EDR_BANDS[k][1] for k, v in edr.items())
     segs = (
         TurbulenceSegment(1300.0, 240.0, "light", edr=edr["light"]),

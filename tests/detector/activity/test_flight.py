@@ -84,7 +84,7 @@ def test_detect_cli_runs_every_accelerometer_detector_and_refuses_in_one_line(pa
     r = CliRunner().invoke(app, ["detect", str(run), "--method", "frd"])
     assert r.exit_code == 0, r.output
     assert "Filtered Rectifier Detector (seed 001, eq. (5))" in r.output and "false-static events in flight" in r.output
-    for args, msg in ((["--method", "mvcd"], "no (in)activity detector 'mvcd'"),
+    for args, msg in ((["--method", "mvcd"], "--method 'mvcd': use 'nmv' or 'emv' (seed 000) or one of seed 001's"),
                       (["--method", "shod"], "shod needs a gyroscope"),
                       (["--method", "frd", "--signal", "sum"], "frd with --signal sum needs a gyroscope"),
                       (["--method", "amvd", "--k", "-1"], "--k -1.0: the threshold is k times the rest level")):
