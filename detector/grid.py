@@ -50,6 +50,8 @@ class Grid:
                            ("--time-threshold-s", self.time_thresholds_s)):
             if not axis:
                 raise DetectorError(f"{name}: the grid axis is empty; give at least one value")
+            if len(set(axis)) != len(axis):  # a point twice would count its flights' hours twice
+                raise DetectorError(f"{name}: a value is given twice; give each once")
         from flightmode.detector.activity import registry
 
         for method, weight in self.methods:

@@ -77,12 +77,14 @@ class Certification:
 def _point(row: dict) -> dict:
     from flightmode.scenarios.sweep import POINT_KEYS
 
-    return {k: row[k] for k in POINT_KEYS}
+    return {k: row[k] for k in POINT_KEYS + (("sensor_preset",) if "sensor_preset" in row else ())}
 
 
 def point_name(row: dict) -> str:
     m = row["method"].upper() + (f" w{row['weight']:g}" if row["method"] == "emv" else "")
-    return f"{m}, W_s {row['window_s']:g} s, {row['k']:g} sigma^2, T_th {row['time_threshold_s']:g} s"
+    k = f"{row['k']:g} sigma^2" if row["method"] in ("nmv", "emv") else f"{row['k']:g} x rest"
+    sensor = f" on {row['sensor_preset']}" if row.get("sensor_preset") else ""
+    return f"{m}, W_s {row['window_s']:g} s, {k}, T_th {row['time_threshold_s']:g} s{sensor}"
 
 
 # ---------------------------------------------------------------------- the Pareto front
@@ -111,20 +113,49 @@ def _hours_per_flight(points, point: dict) -> dict[str, float]:
     return {f: float(np.mean(v)) for f, v in sorted(by.items())}
 
 
+def _fixed_order(r: dict) -> tuple:
+    """A total order on points for ties: whatever order the grid was given in, the same choice."""
+    return r["method"], r["weight"], r["window_s"], r["k"], r["time_threshold_s"], str(r.get("sensor_preset", ""))
+
+
+def hours_at_rate(target_rate_per_h: float, confidence: float, rate_per_h: float) -> float:
+    """In-window hours after which the exact bound reaches the target if events keep coming at the
+    observed ``rate_per_h`` (< the target): the smallest T with chi2.ppf(c, 2 (rT + 1)) / 2T <= target."""
+    from scipy.optimize import brentq
+    from scipy.stats import chi2
+
+    if rate_per_h >= target_rate_per_h:
+        return math.inf  # the bound tends to the rate: never below a target it exceeds
+
+    def excess(t_h: float) -> float:
+        return chi2.ppf(confidence, 2.0 * (rate_per_h * t_h + 1.0)) / (2.0 * t_h) - target_rate_per_h
+
+    lo = chi2.ppf(confidence, 2.0) / (2.0 * target_rate_per_h)  # no event at all: the least it can need
+    hi = lo
+    while excess(hi) > 0:
+        hi *= 2.0
+    return float(brentq(excess, lo * 0.999, hi)) if hi > lo else float(lo)
+
+
 def recommend(summary: Sequence[dict], target: Target, hours_per_flight: Callable[[dict], dict[str, float]]) -> dict:
-    """The point to ship, or why the dataset cannot show one (module docstring)."""
+    """The point to ship, or why the dataset cannot show one (module docstring). Statuses: ``meets``;
+    ``too_slow`` (points meet the rate but none answers within ``max_response_s``); ``unreachable``
+    (even the best point's lower bound on its rate is above the target); ``too_small`` (more
+    flight-hours would show it)."""
+    from scipy.stats import chi2
+
     from flightmode.detector.confidence import hours_needed
 
     def fast(r):
-        return target.max_response_s is None or (math.isfinite(r["response_p95_s"])
-                                                 and r["response_p95_s"] <= target.max_response_s)
+        return target.max_response_s is None or r["response_p95_s"] <= target.max_response_s  # NaN: not fast
 
     def by_response(r):
-        resp = r["response_p95_s"] if math.isfinite(r["response_p95_s"]) else math.inf
-        avail = r["availability"] if math.isfinite(r["availability"]) else -math.inf
-        return resp, -avail, r["rate_upper_per_h"]
+        resp = r["response_p95_s"] if r["response_p95_s"] == r["response_p95_s"] else math.inf
+        avail = r["availability"] if r["availability"] == r["availability"] else -math.inf
+        return (resp, -avail, r["rate_upper_per_h"], *_fixed_order(r))
 
-    meets = [r for r in summary if r["rate_upper_per_h"] <= target.rate_per_h and fast(r)]
+    rate_ok = [r for r in summary if r["rate_upper_per_h"] <= target.rate_per_h]
+    meets = [r for r in rate_ok if fast(r)]
     if meets:
         best = min(meets, key=by_response)
         return {"status": "meets", "point": best, "candidates": len(meets),
@@ -132,39 +163,54 @@ def recommend(summary: Sequence[dict], target: Target, hours_per_flight: Callabl
                         f"per flight-hour ({target.confidence:.0%} bound, {best['false_statics']} in "
                         f"{best['in_window_h']:,.0f} h), response p95 {best['response_p95_s']:.1f} s, "
                         f"availability {best['availability']:.3f}"}
+    if rate_ok:  # the rate is shown, the response limit is what fails
+        best = min(rate_ok, key=by_response)
+        return {"status": "too_slow", "point": best, "candidates": 0,
+                "text": f"{len(rate_ok)} points meet {target.rate_per_h:g} false statics per flight-hour, but none "
+                        f"answers within {target.max_response_s:g} s at the gate (p95); the fastest of them, "
+                        f"{point_name(best)}, answers in {best['response_p95_s']:.1f} s: raise --max-response-s or "
+                        "widen the grid (shorter T_th)"}
     pool = [r for r in summary if fast(r)] or list(summary)
     fewest = min(r["false_statics"] for r in pool)
     best = min((r for r in pool if r["false_statics"] == fewest), key=by_response)
     out = {"status": "too_small", "point": best, "candidates": 0}
-    limit = "" if target.max_response_s is None or fast(best) else (
-        f"; no point answers within {target.max_response_s:g} s (p95), so the response limit is not met either")
-    if best["false_statics"] > 0 and best["rate_per_h"] >= target.rate_per_h:
+    limit = "" if fast(best) else (f"; and no point answers within {target.max_response_s:g} s (p95), so the "
+                                   "response limit fails too")
+    x, t_h = best["false_statics"], best["in_window_h"]
+    lower = chi2.ppf(1.0 - target.confidence, 2 * x) / (2.0 * t_h) if x > 0 else 0.0  # Garwood's lower bound
+    if lower > target.rate_per_h:
         out["status"] = "unreachable"
-        out["text"] = (f"no grid point can meet {target.rate_per_h:g} per flight-hour on these flights: the one with the "
-                       f"fewest false statics, {point_name(best)}, has {best['false_statics']} in "
-                       f"{best['in_window_h']:,.0f} h, an observed rate of {best['rate_per_h']:.3g} /h already above "
-                       f"the target; widen the grid (lower k, longer T_th){limit}")
+        out["rate_lower_per_h"] = float(lower)
+        out["text"] = (f"no grid point can meet {target.rate_per_h:g} per flight-hour on such flights: the one with "
+                       f"the fewest false statics, {point_name(best)}, has {x} in {t_h:,.0f} h, and even the "
+                       f"{target.confidence:.0%} lower bound on its rate, {lower:.3g} /h, is above the target; widen "
+                       f"the grid (lower k, longer T_th){limit}")
         return out
-    need = hours_needed(target.rate_per_h, target.confidence, best["false_statics"])
-    short = max(0.0, need - best["in_window_h"])
+    need = hours_needed(target.rate_per_h, target.confidence, x)
+    short = max(0.0, need - t_h)
     per = hours_per_flight(_point(best))
     out |= {"hours_needed": need, "hours_short": short,
             "flights_short": {f: int(math.ceil(short / h)) for f, h in per.items() if h > 0}}
+    if x > 0:  # if the events keep coming at the observed rate, the claim needs more
+        out["hours_needed_at_rate"] = hours_at_rate(target.rate_per_h, target.confidence, best["rate_per_h"])
     more = " or ".join(f"{n:,} more flights of {f} ({per[f]:.2f} in-window h each)" for f, n in out["flights_short"].items())
+    at_rate = ("" if x == 0 else
+               f"; never, if they keep coming at {best['rate_per_h']:.2g} /h" if math.isinf(out["hours_needed_at_rate"])
+               else f"; {out['hours_needed_at_rate']:,.0f} h in all if they keep coming at {best['rate_per_h']:.2g} /h")
     out["text"] = (f"the dataset is too small to show {target.rate_per_h:g} false statics per flight-hour at "
-                   f"{target.confidence:.0%}: the best point, {point_name(best)}, has {best['false_statics']} false "
-                   f"statics in {best['in_window_h']:,.0f} in-window h (bound {best['rate_upper_per_h']:.3g} /h); "
-                   f"the claim needs {need:,.0f} h{' with no more events' if best['false_statics'] else ' with none'}, "
-                   f"{short:,.0f} h more: {more}{limit}")
+                   f"{target.confidence:.0%}: the best point, {point_name(best)}, has {x} false statics in "
+                   f"{t_h:,.0f} in-window h (bound {best['rate_upper_per_h']:.3g} /h); the claim needs {need:,.0f} h "
+                   f"{'with no more events' if x else 'with none'}, {short:,.0f} h more: {more}{at_rate}{limit}")
     return out
 
 
 # ---------------------------------------------------------------------- seed 000 section 5.1.1
-def threshold_from_static(static, pm: float, n_window: int, method: str = "nmv", weight: float = 1.0,
-                          window_s: float = 1.0, confidence: float = 0.95) -> dict:
+def threshold_from_static(static, pm: float, method: str = "nmv", weight: float = 1.0, window_s: float = 1.0,
+                          confidence: float = 0.95) -> dict:
     """Seed 000 section 5.1.1's threshold for a probability of misdetection ``pm``, in units of
     sigma^2, from the truly static checks of the swept flights (module docstring), beside eq. 13 and
-    the exact chi-square for white noise over an ``n_window``-sample window."""
+    the exact chi-square for white noise over the window's N samples (the streams of the most common
+    rate: N depends on it)."""
     import pyarrow.compute as pc
     from scipy.stats import chi2, norm
 
@@ -176,6 +222,10 @@ def threshold_from_static(static, pm: float, n_window: int, method: str = "nmv",
                                 pc.equal(static["window_s"], window_s)))
     if sel.num_rows == 0:
         raise InputDataError(f"the sweep has no {method} W_s {window_s:g} s: section 5.1.1 needs that window in the grid")
+    rates = sel["fs_hz"].to_pylist()
+    fs = max(set(rates), key=lambda f: (rates.count(f), f))
+    sel = sel.filter(pc.equal(sel["fs_hz"], fs))
+    n_window = int(round(window_s * fs))
     d = sel.to_pydict()
     n = int(sum(d["static_checks"]))
     if n == 0:
@@ -190,10 +240,13 @@ def threshold_from_static(static, pm: float, n_window: int, method: str = "nmv",
     out["survival_k"] = edges.tolist()
     out["survival_max"] = surv["max"].tolist()
     ok = np.flatnonzero(surv["max"] <= pm)
-    k_emp = float(edges[ok[0]])
+    overflow = ok[0] >= edges.size - 2  # the tail beyond the last bin (1e3 sigma^2): not measured
+    k_emp = math.inf if overflow else float(edges[ok[0]])
     count = int(round(surv["max"][ok[0]] * n))
     out["empirical_k"] = k_emp
-    out["empirical_resolved"] = bool(n * pm >= 3.0)  # fewer than 3 expected exceedances: the tail is not measured
+    out["fs_hz"] = fs
+    # fewer than 3 expected exceedances, or the tail beyond the histogram: the threshold is not measured
+    out["empirical_resolved"] = bool(n * pm >= 3.0 and not overflow)
     out["empirical_pm_at_k"] = count / n
     out["empirical_pm_upper"] = proportion_upper_bound(count, n, confidence)
     per_axis = {}
@@ -202,7 +255,8 @@ def threshold_from_static(static, pm: float, n_window: int, method: str = "nmv",
         ss = float(np.sum(d[f"sumsq_{a}"]))
         mu = s / n
         sd = math.sqrt(max(ss / n - mu * mu, 0.0))
-        k_a = float(edges[np.flatnonzero(surv[a] <= pm_axis)[0]])
+        i_a = np.flatnonzero(surv[a] <= pm_axis)[0]
+        k_a = math.inf if i_a >= edges.size - 2 else float(edges[i_a])
         per_axis[a] = {"mean": mu, "sd": sd, "empirical_k": k_a,
                        "gaussian_k": mu + sd * float(norm.isf(pm_axis))}  # eq. 13 inverted, measured mu, sigma_MV
     out["axes"] = per_axis
@@ -263,8 +317,8 @@ def command_of(datasets_meta: list[dict], grid, target: Target, sigma2_from: str
         extra = "".join([f" --truth {opts['truth']}" if opts.get("truth") not in (None, "10hz") else "",
                          " --rrd" if opts.get("rrd") else ""])
         lines.append(f"flightmode dataset {d['family']} --n {d['flights']} --out {d['path']}{extra}")
-    methods = sorted({m for m, _ in grid.methods})
-    weights = sorted({w for m, w in grid.methods if m == "emv"})
+    methods = list(dict.fromkeys(m for m, _ in grid.methods))  # the grid's own order (ties follow it nowhere)
+    weights = list(dict.fromkeys(w for m, w in grid.methods if m == "emv"))
 
     def axis(v):
         return ",".join(f"{x:g}" for x in v)
@@ -304,23 +358,29 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
     if result is None:
         result = sweep(paths, grid, sigma2_from=sigma2_from, workers=workers, sensors=sensors, out=sweep_dir,
                        on_start=on_start, on_flight=on_flight)
-    summary = summarise(result.points, target.confidence, target.rate_per_h)
+    summary = summarise(result.points, target.confidence, target.rate_per_h, by_sensor=bool(result.meta.get("sensors")))
+    summary.sort(key=_fixed_order)
     front = pareto_front(summary)
     rec = recommend(summary, target, lambda p: _hours_per_flight(result.points, p))
-    seed000 = next((r for r in summary if _point(r) == SEED000_POINT), None)
+    seed000 = next((r for r in summary if {k: r[k] for k in SEED000_POINT} == SEED000_POINT), None)
     if seed000 is not None:
         seed000 = seed000 | {"meets": bool(seed000["rate_upper_per_h"] <= target.rate_per_h and (
             target.max_response_s is None or seed000["response_p95_s"] <= target.max_response_s))}
     rp = _point(rec["point"])
-    window_5_1_1 = 1.0 if 1.0 in grid.windows_s else rp["window_s"]
-    method_5_1_1 = ("nmv", 1.0) if ("nmv", 1.0) in grid.methods else (rp["method"], rp["weight"])
-    th = threshold_from_static(result.static, target.pm, int(round(window_5_1_1 * _fs_of(result.points))),
-                               *method_5_1_1, window_5_1_1, target.confidence)
-    th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
+    # section 5.1.1 is about the moving variance: seed 000's NMV at 1 s if the grid has it, else the
+    # first moving-variance method and window of the grid; none at all: no section 5.1.1
+    mv_methods = [m for m in grid.methods if m[0] in ("nmv", "emv")]
+    th: dict = {}
+    if mv_methods:
+        method_5_1_1 = ("nmv", 1.0) if ("nmv", 1.0) in mv_methods else mv_methods[0]
+        window_5_1_1 = 1.0 if 1.0 in grid.windows_s else grid.windows_s[0]
+        th = threshold_from_static(result.static, target.pm, *method_5_1_1, window_5_1_1, target.confidence)
+        th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
     breakdowns = {"recommended": breakdown(result.points, rp, result.phases)}
+    seed_point = SEED000_POINT | ({"sensor_preset": seed000["sensor_preset"]} if seed000 and "sensor_preset" in seed000 else {})
     if seed000 is not None:
-        breakdowns["seed000"] = breakdown(result.points, SEED000_POINT, result.phases)
-    worst = worst_flight(result.points, result.phases, SEED000_POINT if seed000 is not None else rp)
+        breakdowns["seed000"] = breakdown(result.points, seed_point, result.phases)
+    worst = worst_flight(result.points, result.phases, seed_point if seed000 is not None else rp)
     meta = result.meta | {"excluded": [{"dataset": r["dataset"], "flight_id": r["flight_id"],
                                          "error": (r.get("error") or "")[:300]} for r in result.failed],
                           "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors)}
@@ -334,18 +394,6 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
     return cert
 
 
-def _fs_of(points) -> float:
-    """The streams' sampling rate (Hz), from the first swept flight's samples."""
-    import pyarrow.parquet as pq
-
-    from flightmode.scenarios.dataset import read_manifest
-
-    r = points.slice(0, 1).to_pylist()[0]
-    row = next(x for x in read_manifest(Path(r["dataset"])).values() if x["flight_id"] == r["flight_id"])
-    t = pq.read_table(Path(r["dataset"]) / row["samples_file"], columns=["t_s"])["t_s"].to_numpy()[:1000]
-    return round(1.0 / float(np.median(np.diff(t))), 6)
-
-
 def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target: Target) -> dict | None:
     """Seed 000 section 5.1.1's last step: the P_FA at the grid's k nearest below the threshold found,
     as the in-window fraction of checks under it on all axes (P_FA^t, joint) and the false-static rate
@@ -353,6 +401,8 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
     import pyarrow.compute as pc
 
     ks = sorted({r["k"] for r in summary if (r["method"], r["weight"], r["window_s"]) == (*method, window_s)})
+    if not math.isfinite(k):
+        return None
     below = [x for x in ks if x <= k]
     if not below:
         return None

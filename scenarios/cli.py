@@ -17,6 +17,7 @@ Rich are imported to start; each command imports what it needs.
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -265,20 +266,19 @@ def _detect_movebank(source: Path, k: float, m: int, tag_number: int | None, cal
     """`flightmode detect FILE.csv`: seed 003's bursts through the duty-cycled detector (eobs.duty_cycle)."""
     import warnings
 
-    from flightmode.eobs.calibration import read_calibration
+    from flightmode.eobs.calibration import NominalCalibrationWarning, read_calibration
     from flightmode.eobs.duty_cycle import detect_movebank
 
     cal = read_calibration(calibration) if calibration is not None else None
     if cal is None and tag_number is None:
         raise ScenarioError(f"{source}: give --tag-number (a Movebank id is not a tag number; it sets the nominal "
                             "slope) or --calibration FILE.toml")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", category=NominalCalibrationWarning)  # said once, below
         det = detect_movebank(source, k=k, m=m, calibration=cal, tag_number=tag_number)
     if det.nominal:
         console.print(f"warning: counts converted with the nominal constants of tag {tag_number} (seed 003 section 6); "
                       "calibrate the tag (flightmode eobs calibrate) for its own offsets and slopes", highlight=False)
-    del caught
     t = Table("individual", "axes", "bursts", "quiet", "final static", "sigma^2 per axis g^2",
               title=f"{source}: burst variance < {k:g} sigma^2 on every axis; final static after {m} quiet bursts "
                     f"(sigma^2: {det.sigma2_source})")
@@ -295,15 +295,18 @@ def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_thr
     from flightmode.detector.activity.flight import ActivityParams, evaluate_activity, rest_figures
     from flightmode.scenarios.pipeline import stream_rest
 
-    if name not in registry.NAMES:
-        from flightmode.errors import DetectorError, did_you_mean
+    from flightmode.errors import DetectorError, did_you_mean
 
+    if name not in registry.NAMES:
         raise DetectorError(f"--method {name!r}: use 'nmv' or 'emv' (seed 000) or one of seed 001's detectors: "
                             f"{', '.join(registry.NAMES)}{did_you_mean(name, ('nmv', 'emv') + registry.NAMES)}")
     p = ActivityParams(name, fs_hz=fs, window_s=window_s, k=k, time_threshold_s=time_threshold_s, signal=signal)
     p.validate()
-    bench, bench_source = stream_rest(rest_from, cols, info)
-    rest = rest_figures(p, bench, None)
+    bench, bench_gyr, bench_source = stream_rest(rest_from, cols, info)
+    if bench_gyr is None and cols.get("gyro_dps") is not None and (registry.get(name).needs_gyro or signal != "acc"):
+        raise DetectorError(f"{name}: the bench recording has no gyroscope; calibrate on the rest before the "
+                            "flight instead: --sigma2-from rest")
+    rest = rest_figures(p, bench, bench_gyr)
     e = evaluate_activity(cols["t_s"], cols["acc_g"], cols.get("gyro_dps"), labels, p, rest)
     d = registry.get(name)
     t = Table(title=f"{d.title} ({d.equations}) with seed 000's decision rule: W_s {window_s:g} s, "
@@ -583,8 +586,15 @@ def sweep_cmd(
                            on_start=progress.start, on_flight=progress.advance)
         _excluded(result.failed)
         table = result.points
-        rows = summarise(table, confidence, target_fa_per_h)
-        rows.sort(key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"], -r["availability"]))
+        rows = summarise(table, confidence, target_fa_per_h, by_sensor=bool(sensors))
+
+        def order(r):  # NaN last (a point nothing could measure), then a fixed order on ties
+            def fin(v, sign=1.0):
+                return sign * v if v == v else math.inf
+            return (fin(r["rate_upper_per_h"]), fin(r["response_p95_s"]), fin(r["availability"], -1.0),
+                    r["method"], r["weight"], r["window_s"], r["k"], r["time_threshold_s"])
+
+        rows.sort(key=order)
         t = Table("method", "W_s", "k", "T_th s", "false statics", "in-window h", f"{confidence:.0%} bound /h",
                   "response p50/p95/max s", "availability", "h needed")
         shown = rows[:top]
@@ -606,8 +616,9 @@ def sweep_cmd(
             b.add_row(r["condition"], r["value"], str(r["flights"]), f"{r['in_window_h']:.1f}", str(r["false_statics"]),
                       "" if r["response_p95_s"] != r["response_p95_s"] else f"{r['response_p95_s']:.1f}")
         console.print(b)
-        flights = table.num_rows // max(1, len(grid))
-        console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {flights} flights) written to {out}",
+        flights = len(set(zip(table["dataset"].to_pylist(), table["flight_id"].to_pylist())))
+        console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {flights} flights"
+                      + (f" x {len(sensors)} sensors" if sensors else "") + f") written to {out}",
                       highlight=False)
     except FlightmodeError as e:
         _die(e)
@@ -655,7 +666,7 @@ def certify_cmd(
             console.print(f"excluded: {len(ex)} failed flight(s) ("
                           + ", ".join(f"{Path(r['dataset']).name}/{r['flight_id']}" for r in ex[:10]) + ")",
                           highlight=False)
-        style = {"meets": "green", "too_small": "yellow", "unreachable": "red"}[cert.recommendation["status"]]
+        style = {"meets": "green", "too_small": "yellow", "too_slow": "yellow", "unreachable": "red"}[cert.recommendation["status"]]
         console.print(Text(f"{cert.recommendation['status']}: {cert.recommendation['text']}", style=style))
         t = Table("method", "W_s", "k", "T_th s", "false statics", "in-window h", f"{confidence:.0%} bound /h",
                   "response p50/p95/max s", "availability",
@@ -683,11 +694,12 @@ def certify_cmd(
                       "" if r["response_p95_s"] != r["response_p95_s"] else f"{r['response_p95_s']:.1f}")
         console.print(b)
         th = cert.threshold
-        console.print(f"section 5.1.1 at P_M {th['pm']:g} ({th['static_checks']:,} static checks, W_s {th['window_s']:g} s): "
-                      f"k = {th['empirical_k']:.2f} measured{'' if th['empirical_resolved'] else ' (not resolved)'}, "
-                      f"{th['gaussian_measured_k']:.2f} eq. 13 with the measured spread, "
-                      f"{th['gaussian_white_k']:.2f} eq. 13 white, {th['chi2_white_k']:.2f} chi-square white",
-                      highlight=False)
+        if th:
+            console.print(f"section 5.1.1 at P_M {th['pm']:g} ({th['static_checks']:,} static checks, W_s {th['window_s']:g} s): "
+                          f"k = {th['empirical_k']:.2f} measured{'' if th['empirical_resolved'] else ' (not resolved)'}, "
+                          f"{th['gaussian_measured_k']:.2f} eq. 13 with the measured spread, "
+                          f"{th['gaussian_white_k']:.2f} eq. 13 white, {th['chi2_white_k']:.2f} chi-square white",
+                          highlight=False)
         console.print(f"report: {Path(out) / 'report.html'}", highlight=False)
     except FlightmodeError as e:
         _die(e)

@@ -133,11 +133,12 @@ def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng:
 SIGMA2_SOURCES = ("preset", "rest")
 
 
-def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarray, str]:
-    """A static recording of the unit at the stream's rate (acc in g) for the detectors that calibrate
-    on one (seed 001's, :mod:`flightmode.detector.activity.flight`), and where it came from: ``preset``
-    the same 60 s bench recording as :func:`stream_sigma2` (needs run.json); ``rest`` the longest run
-    of truly static samples before the flight."""
+def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarray, np.ndarray | None, str]:
+    """A static recording of the unit at the stream's rate for the detectors that calibrate on one
+    (seed 001's, :mod:`flightmode.detector.activity.flight`): (acc in g, the gyroscope in deg/s or
+    None, where it came from). ``preset``: the same 60 s bench recording as :func:`stream_sigma2`
+    (needs run.json; the bench models no gyroscope); ``rest``: the longest run of truly static
+    samples before the flight (with the recording's gyroscope, if it has one)."""
     from flightmode.detector.evaluation import longest_static_run
     from flightmode.errors import DetectorError
     from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
@@ -151,13 +152,14 @@ def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarr
         s = info["sensor"]
         p = dataclasses.replace(get_preset(s["preset"]), odr_hz=float(s["odr_hz"]))
         m = bench_static(p, UnitDraw.from_dict(s.get("unit")), streams_of(int(info["seed"])).rng("detector/bench"))
-        return m.acc_g, f"bench recording of this {s['preset']} unit (60 s static)"
+        return m.acc_g, None, f"bench recording of this {s['preset']} unit (60 s static)"
     static = np.asarray(columns["sensor_static"], bool).copy()
     window = np.asarray(columns["in_flight_window"], bool)
     if window.any():
         static[int(np.flatnonzero(window)[0]):] = False  # only what a tracker saw before the flight
     a, b = longest_static_run(static)
-    return columns["acc_g"][a:b], f"{b - a} truly static samples before the flight"
+    gyr = columns.get("gyro_dps")
+    return columns["acc_g"][a:b], None if gyr is None else gyr[a:b], f"{b - a} truly static samples before the flight"
 
 
 def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) -> tuple[np.ndarray, str]:

@@ -50,7 +50,7 @@ POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s")
 STATIC_EDGES = np.geomspace(1e-2, 1e3, 501)
 AXES = ("x", "y", "z")
 MV_METHODS = ("nmv", "emv")  # seed 000's moving variance; any other method is one of seed 001's detectors
-SWEEP_FORMAT = 2  # the sweep folder's layout (read_sweep refuses others: sweep again)
+SWEEP_FORMAT = 3  # the sweep folder's layout (read_sweep refuses others: sweep again)
 
 
 @dataclass(frozen=True)
@@ -123,6 +123,9 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
     from flightmode.scenarios.scenario import Scenario
 
     t = pq.read_table(Path(dataset) / row["truth_file"])
+    if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
+        raise InputDataError(f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "
+                             "dataset); make the dataset again with `flightmode dataset ... --truth full`")
     track = run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
     for preset in sensors:
@@ -195,7 +198,10 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
     dt = 1.0 / fs
     in_window_h = float(window.sum()) * dt / 3600.0
     w_start = float(t[np.flatnonzero(window)[0]]) if window.any() else math.nan
-    key = key | {"sensor_preset": row.get("sensor_preset")}
+    # truly at rest after the flight: a response that never comes is then infinitely slow (inf), not
+    # missing (NaN: nothing to answer), so that percentiles count it
+    rest_after = bool(window.any() and static[int(np.flatnonzero(window)[-1]):].any())
+    key = key | {"sensor_preset": row.get("sensor_preset"), "fs_hz": fs}
     cond = {k: row.get(k) for k in CONDITIONS if k not in ("family", "sensor_preset")}
     points, phases, statics = [], [], []
     seen: set[tuple] = set()
@@ -238,7 +244,7 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
             "longest_false_static_s": max((ev["duration_s"] for ev in events), default=0.0),
             "false_static_phases": ",".join(ev["phase"] for ev in events),
             "suspend_s": float(c.t_s[after[0]] - w_start) if after.size else math.nan,
-            "response_s": math.nan if e.response_s is None else e.response_s,
+            "response_s": e.response_s if e.response_s is not None else (math.inf if rest_after else math.nan),
             "static_s": static_s, "missed_static_s": e.missed_static_s,
             "availability": (static_s - e.missed_static_s) / static_s if static_s > 0 else math.nan,
         })
@@ -293,8 +299,14 @@ def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from
             raise InputDataError(f"--sensor {','.join(sensors)!r}: name each preset once, at least one")
         for name in sensors:
             get_preset(name)  # a SensorError with the presets to choose from
+    seen: dict[str, str] = {}
     for d in paths:
-        _, _, meta = _ok_rows(d)
+        ok, _, meta = _ok_rows(d)
+        for r in ok:  # the same flight twice would count its hours and events twice
+            other = seen.setdefault(r["samples_sha256"], f"{d}/{r['flight_id']}")
+            if other != f"{d}/{r['flight_id']}":
+                raise InputDataError(f"{d}: flight {r['flight_id']} has the very samples of {other}: the same flight "
+                                     "in two datasets would count twice; name each dataset once")
         truth = (meta.get("options") or {}).get("truth")
         if sensors and truth != "full":
             raise InputDataError(f"{d}: --sensor re-senses each flight from its full-rate truth, and this dataset "
@@ -395,14 +407,18 @@ def read_sweep(path: str | Path) -> SweepResult:
     return SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
 
 
-def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None = None) -> list[dict]:
+def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None = None,
+              by_sensor: bool = False) -> list[dict]:
     """One row per grid point over all flights: events, in-window hours, rate, its exact upper bound,
-    response p50/p95/max, availability, and the hours still needed for ``target_rate_per_h``."""
+    response p50/p95/max (a flight that never answered counts as infinitely slow), availability (the
+    share of all truly static time reported static), and the hours still needed for
+    ``target_rate_per_h``. ``by_sensor``: a point per sensor preset too (a sweep with ``--sensor``
+    re-senses the same flights: their hours must not add up across presets)."""
     from flightmode.detector.confidence import hours_needed, rate_upper_bound
 
-    keys = list(POINT_KEYS)
-    df = table.select(keys + ["in_window_h", "false_static_count", "false_static_s", "response_s", "availability",
-                              "suspend_s"]).to_pydict()
+    keys = list(POINT_KEYS) + (["sensor_preset"] if by_sensor else [])
+    df = table.select(keys + ["in_window_h", "false_static_count", "false_static_s", "response_s", "static_s",
+                              "missed_static_s", "suspend_s"]).to_pydict()
     groups: dict[tuple, list[int]] = {}
     for i in range(len(df["k"])):
         groups.setdefault(tuple(df[k][i] for k in keys), []).append(i)
@@ -411,21 +427,22 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
         hours = float(sum(df["in_window_h"][i] for i in idx))
         events = int(sum(df["false_static_count"][i] for i in idx))
         resp = np.array([df["response_s"][i] for i in idx], float)
-        resp = resp[np.isfinite(resp)]
+        resp = resp[~np.isnan(resp)]  # NaN: no rest after the flight, nothing to answer; inf: never answered
         susp = np.array([df["suspend_s"][i] for i in idx], float)
         susp = susp[np.isfinite(susp)]
-        avail = np.array([df["availability"][i] for i in idx], float)
+        static_s = float(sum(df["static_s"][i] for i in idx))
+        missed_s = float(sum(df["missed_static_s"][i] for i in idx))
         row = dict(zip(keys, key)) | {
             "flights": len(idx), "in_window_h": hours, "false_statics": events,
             "false_static_s": float(sum(df["false_static_s"][i] for i in idx)),
             "rate_per_h": events / hours if hours > 0 else math.nan,
             "rate_upper_per_h": rate_upper_bound(events, hours, confidence) if hours > 0 else math.nan,
-            "response_p50_s": float(np.percentile(resp, 50)) if resp.size else math.nan,
-            "response_p95_s": float(np.percentile(resp, 95)) if resp.size else math.nan,
+            "response_p50_s": float(np.percentile(resp, 50, method="higher")) if resp.size else math.nan,
+            "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan,
             "response_max_s": float(resp.max()) if resp.size else math.nan,
-            "no_response": int(len(idx) - resp.size),
+            "no_response": int(np.isinf(resp).sum()),
             "suspend_max_s": float(susp.max()) if susp.size else math.nan,
-            "availability": float(np.nanmean(avail)) if np.isfinite(avail).any() else math.nan,
+            "availability": (static_s - missed_s) / static_s if static_s > 0 else math.nan,
         }
         if target_rate_per_h is not None:  # in-window flight-hours the claim needs, with this many events
             row["hours_needed"] = hours_needed(target_rate_per_h, confidence, events)
@@ -435,11 +452,12 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
 
 
 def at_point(table, point: dict) -> list[dict]:
-    """The rows of one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``)."""
+    """The rows of one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``,
+    and ``sensor_preset`` if the point names one)."""
     import pyarrow.compute as pc
 
     mask = None
-    for k in POINT_KEYS:
+    for k in POINT_KEYS + (("sensor_preset",) if "sensor_preset" in point else ()):
         m = pc.equal(table[k], point[k])
         mask = m if mask is None else pc.and_(mask, m)
     return table.filter(mask).to_pylist()
@@ -456,17 +474,17 @@ def breakdown(table, point: dict, phases=None) -> list[dict]:
         for value in sorted({str(r.get(cond)) for r in rows}):
             sel = [r for r in rows if str(r.get(cond)) == value]
             resp = np.array([r["response_s"] for r in sel], float)
-            resp = resp[np.isfinite(resp)]
+            resp = resp[~np.isnan(resp)]
             out.append({"condition": cond, "value": value or "none", "flights": len(sel),
                         "in_window_h": float(sum(r["in_window_h"] for r in sel)),
                         "false_statics": int(sum(r["false_static_count"] for r in sel)),
                         "false_static_s": float(sum(r["false_static_s"] for r in sel)),
-                        "response_p95_s": float(np.percentile(resp, 95)) if resp.size else math.nan})
+                        "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan})
     if phases is not None:
         import pyarrow.compute as pc
 
         m = None
-        for k in ("method", "weight", "window_s", "k"):
+        for k in ("method", "weight", "window_s", "k") + (("sensor_preset",) if "sensor_preset" in point else ()):
             e = pc.equal(phases[k], point[k])
             m = e if m is None else pc.and_(m, e)
         hours: dict[str, float] = {}

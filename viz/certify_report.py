@@ -66,7 +66,8 @@ def fig_vs_k(summary, value: str, ylabel: str, path: Path, target: float | None 
                 rows = sorted((r for r in summary if (r["method"], r["weight"], r["window_s"], r["time_threshold_s"])
                                == (m, wt, w, tth)), key=lambda r: r["k"])
                 if rows:
-                    ax.plot([r["k"] for r in rows], [r[value] for r in rows], ls="-" if m == "nmv" else "--",
+                    ax.plot([r["k"] for r in rows], [r[value] for r in rows],
+                            ls={"nmv": "-", "emv": "--"}.get(m, ":"),
                             color=cmap(ti / max(1, len(tths) - 1)), lw=1.2,
                             label=f"T_th {tth:g} s" if mi == 0 else None)
         if target is not None:
@@ -77,7 +78,7 @@ def fig_vs_k(summary, value: str, ylabel: str, path: Path, target: float | None 
             ax.set_yscale("log")
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel(ylabel)
-    axes[0][-1].legend(fontsize=7, loc="best", title="solid NMV, dashed EMV", title_fontsize=7)
+    axes[0][-1].legend(fontsize=7, loc="best", title="solid NMV, dashed EMV, dotted seed 001's", title_fontsize=7)
     fig.tight_layout()
     _save(fig, path)
 
@@ -154,7 +155,7 @@ def fig_phase_heatmap(phases, cert, path: Path) -> None:
 
 
 def fig_pareto(cert, path: Path) -> None:
-    from flightmode.scenarios.certify import SEED000_POINT, _point
+    from flightmode.scenarios.certify import _point
 
     plt = _plt()
     s = cert.summary
@@ -162,16 +163,20 @@ def fig_pareto(cert, path: Path) -> None:
     y = np.array([r["rate_upper_per_h"] for r in s], float)
     c = np.array([r["availability"] for r in s], float)
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
-    sc = ax.scatter(np.where(np.isfinite(x), x, np.nanmax(x[np.isfinite(x)], initial=1.0) * 1.5), y, c=c, s=12,
-                    cmap="viridis")
+    # a point that never answered on enough flights (p95 infinite or missing) is drawn at the right edge
+    x = np.where(np.isfinite(x), x, np.nanmax(np.where(np.isfinite(x), x, np.nan), initial=1.0) * 1.5)
+    sc = ax.scatter(x, y, c=c, s=12, cmap="viridis")
     f = cert.pareto
     ax.scatter(x[f], y[f], facecolors="none", edgecolors="black", s=60, lw=1, label="Pareto front")
     rp = cert.recommendation["point"]
-    ax.scatter([rp["response_p95_s"]], [rp["rate_upper_per_h"]], marker="*", s=260, color="crimson",
+    i_rp = cert.summary.index(rp) if rp in cert.summary else None
+    ax.scatter([x[i_rp] if i_rp is not None else rp["response_p95_s"]], [rp["rate_upper_per_h"]], marker="*", s=260,
+               color="crimson",
                label=f"recommended ({cert.recommendation['status']})", zorder=5)
-    seed = next((r for r in s if _point(r) == SEED000_POINT), None)
+    seed = cert.seed000
     if seed:
-        ax.scatter([seed["response_p95_s"]], [seed["rate_upper_per_h"]], marker="D", s=70, facecolors="none",
+        i_s = next(i for i, r in enumerate(s) if _point(r) == _point(seed))
+        ax.scatter([x[i_s]], [seed["rate_upper_per_h"]], marker="D", s=70, facecolors="none",
                    edgecolors="tab:orange", lw=2, label="seed 000 (NMV 1 s, 4 sigma^2, 4 s)", zorder=5)
     ax.axhline(cert.target.rate_per_h, color="crimson", lw=1, ls=":", label="target")
     if cert.target.max_response_s:
@@ -309,55 +314,8 @@ POINT_COLS = [("name", "point", ""), ("false_statics", "false statics", "d"), ("
               ("availability", "availability", ".3f"), ("hours_short", "h short", ",.0f")]
 
 
-def render_html(cert, figures: dict[str, bytes]) -> str:
-    from flightmode.scenarios.certify import point_name
-
-    def named(rows):
-        return [r | {"name": point_name(r)} for r in rows]
-
-    e = html.escape
-    t = cert.target
-    meta = cert.meta
-    parts = ["<!doctype html><html lang='en'><head><meta charset='utf-8'>",
-             "<title>flightmode certify</title><style>",
-             "body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222}",
-             "table{border-collapse:collapse;font-size:13px;margin:0.6em 0}td,th{border:1px solid #ccc;padding:3px 7px;"
-             "text-align:right}th{background:#f0f0f0}td:first-child{text-align:left}",
-             ".verdict{padding:0.8em 1em;border-left:6px solid;background:#fafafa}.meets{border-color:#2a2}"
-             ".too_small{border-color:#d90}.unreachable{border-color:#c22}img{max-width:100%;border:1px solid #ddd}"
-             "pre{background:#f6f6f6;padding:0.6em;overflow-x:auto;font-size:12px}",
-             "</style></head><body>",
-             "<h1>Flight-mode detector certification</h1>",
-             f"<p>Target: at most <b>{t.rate_per_h:g}</b> false statics per in-window flight-hour (pushback to "
-             f"engines off) at <b>{t.confidence:.0%}</b> confidence"
-             + (f", response p95 within {t.max_response_s:g} s" if t.max_response_s else "")
-             + f"; section 5.1.1 at P_M = {t.pm:g}.</p>",
-             f"<div class='verdict {e(cert.recommendation['status'])}'><b>{e(cert.recommendation['status'])}</b>: "
-             f"{e(cert.recommendation['text'])}</div>"]
-    if cert.seed000:
-        s = cert.seed000
-        parts.append(f"<p>Seed 000's recommended point (NMV, W_s 1 s, 4 sigma^2, T_th 4 s) "
-                     f"<b>{'meets' if s['meets'] else 'does not meet'}</b> the target: {s['false_statics']} false "
-                     f"statics in {s['in_window_h']:,.1f} h, bound {s['rate_upper_per_h']:.3g} /h, response p95 "
-                     f"{s['response_p95_s']:.1f} s, availability {s['availability']:.3f}.</p>")
-    parts.append("<h2>Data</h2>")
-    parts.append(_table(meta["datasets"], [("path", "dataset", ""), ("family", "family", ""),
-                                           ("flights", "flights", "d"), ("flights_ok", "used", "d"),
-                                           ("manifest_sha256", "manifest SHA-256", "")]))
-    ex = meta.get("excluded", [])
-    parts.append(f"<p>Excluded as failed: <b>{len(ex)}</b> flight(s)"
-                 + (": " + "; ".join(e(f"{x['flight_id']} ({Path(x['dataset']).name}): {x['error'][:120]}") for x in ex[:20])
-                    if ex else "") + "</p>")
-    parts.append(f"<p>Grid: {meta['grid']['points']} points; sigma^2 from {e(meta['sigma2_from'])}.</p>")
-    rec = cert.recommendation["point"]
-    front = sorted((cert.summary[i] for i in cert.pareto), key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"]))
-    parts.append("<h2>Recommendation, seed 000 and the Pareto front</h2>")
-    shown = named([rec] + ([cert.seed000] if cert.seed000 else []))
-    parts.append(_table(shown, POINT_COLS))
-    parts.append(f"<p>The Pareto front ({len(front)} of {len(cert.summary)} points; the first 25 by bound):</p>")
-    parts.append(_table(named(front[:25]), POINT_COLS))
-    th = cert.threshold
-    parts.append("<h2>Seed 000 section 5.1.1: the threshold from a probability of misdetection</h2>")
+def _section_511(th: dict) -> list[str]:
+    parts = ["<h2>Seed 000 section 5.1.1: the threshold from a probability of misdetection</h2>"]
     parts.append(f"<p>{th['static_checks']:,} truly static checks ({th['static_h']:.1f} h) of {th['flights']} flights, "
                  f"{th['method'].upper()} W_s {th['window_s']:g} s; P_M = {th['pm']:g} for any axis "
                  f"({th['pm_per_axis']:.3g} per axis).</p>")
@@ -376,6 +334,64 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
                      f"(P_FA^t {pf['p_fa_t_joint']:.2g}); at T_th {pf['time_threshold_s']:g} s, {pf['false_statics']} "
                      f"false statics, bound {pf['rate_upper_per_h']:.3g} /h: the target is "
                      f"{'met' if pf['meets'] else 'not met'}.</p>")
+    return parts
+
+
+def render_html(cert, figures: dict[str, bytes]) -> str:
+    from flightmode.scenarios.certify import point_name
+
+    def named(rows):
+        return [r | {"name": point_name(r)} for r in rows]
+
+    e = html.escape
+    t = cert.target
+    meta = cert.meta
+    parts = ["<!doctype html><html lang='en'><head><meta charset='utf-8'>",
+             "<title>flightmode certify</title><style>",
+             "body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222}",
+             "table{border-collapse:collapse;font-size:13px;margin:0.6em 0}td,th{border:1px solid #ccc;padding:3px 7px;"
+             "text-align:right}th{background:#f0f0f0}td:first-child{text-align:left}",
+             ".verdict{padding:0.8em 1em;border-left:6px solid;background:#fafafa}.meets{border-color:#2a2}"
+             ".too_small,.too_slow{border-color:#d90}.unreachable{border-color:#c22}img{max-width:100%;border:1px solid #ddd}"
+             "pre{background:#f6f6f6;padding:0.6em;overflow-x:auto;font-size:12px}",
+             "</style></head><body>",
+             "<h1>Flight-mode detector certification</h1>",
+             f"<p>Target: at most <b>{t.rate_per_h:g}</b> false statics per in-window flight-hour (pushback to "
+             f"engines off) at <b>{t.confidence:.0%}</b> confidence"
+             + (f", response p95 within {t.max_response_s:g} s" if t.max_response_s else "")
+             + f"; section 5.1.1 at P_M = {t.pm:g}.</p>",
+             f"<div class='verdict {e(cert.recommendation['status'])}'><b>{e(cert.recommendation['status'])}</b>: "
+             f"{e(cert.recommendation['text'])}</div>",
+             f"<p><small>The bound is the chosen point's own, over the flights it was chosen on: picking the best "
+             f"of {len(cert.summary)} points makes it optimistic. Confirm the choice on flights it was not chosen "
+             "on (a second dataset of the same family, `flightmode certify` with the one point as its grid).</small></p>"]
+    if cert.seed000:
+        s = cert.seed000
+        parts.append(f"<p>Seed 000's recommended point (NMV, W_s 1 s, 4 sigma^2, T_th 4 s) "
+                     f"<b>{'meets' if s['meets'] else 'does not meet'}</b> the target: {s['false_statics']} false "
+                     f"statics in {s['in_window_h']:,.1f} h, bound {s['rate_upper_per_h']:.3g} /h, response p95 "
+                     f"{s['response_p95_s']:.1f} s, availability {s['availability']:.3f}.</p>")
+    if "pareto" in figures:  # the verdict's picture, above the fold
+        parts.append(f"<img alt='pareto' src='data:image/png;base64,{base64.b64encode(figures['pareto']).decode()}'>")
+    parts.append("<h2>Data</h2>")
+    parts.append(_table(meta["datasets"], [("path", "dataset", ""), ("family", "family", ""),
+                                           ("flights", "flights", "d"), ("flights_ok", "used", "d"),
+                                           ("manifest_sha256", "manifest SHA-256", "")]))
+    ex = meta.get("excluded", [])
+    parts.append(f"<p>Excluded as failed: <b>{len(ex)}</b> flight(s)"
+                 + (": " + "; ".join(e(f"{x['flight_id']} ({Path(x['dataset']).name}): {x['error'][:120]}") for x in ex[:20])
+                    if ex else "") + "</p>")
+    parts.append(f"<p>Grid: {meta['grid']['points']} points; sigma^2 from {e(meta['sigma2_from'])}.</p>")
+    rec = cert.recommendation["point"]
+    front = sorted((cert.summary[i] for i in cert.pareto), key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"]))
+    parts.append("<h2>Recommendation, seed 000 and the Pareto front</h2>")
+    shown = named([rec] + ([cert.seed000] if cert.seed000 else []))
+    parts.append(_table(shown, POINT_COLS))
+    parts.append(f"<p>The Pareto front ({len(front)} of {len(cert.summary)} points; the first 25 by bound):</p>")
+    parts.append(_table(named(front[:25]), POINT_COLS))
+    th = cert.threshold
+    if th:
+        parts += _section_511(th)
     for key, title in (("recommended", "recommended point"), ("seed000", "seed 000's point")):
         if key in cert.breakdowns:
             parts.append(f"<h2>By condition, at the {title}</h2>")
@@ -386,6 +402,8 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
                                                       ("response_p95_s", "response p95 s", ".1f")]))
     parts.append("<h2>Figures</h2>")
     for name, png in figures.items():
+        if name == "pareto":
+            continue
         parts.append(f"<h3>{e(name)}</h3><img alt='{e(name)}' src='data:image/png;base64,"
                      f"{base64.b64encode(png).decode()}'>")
     parts.append("<h2>Reproduce</h2><pre>" + e("\n".join(meta["commands"])) + "</pre>")
@@ -407,7 +425,10 @@ def write_report(cert, result, out: Path) -> dict[str, Path]:
     fig_vs_k(cert.summary, "availability", "availability (static time reported static)", paths["availability_vs_k"])
     fig_response_cdf(result.points, cert, paths["response_cdf"])
     fig_phase_heatmap(result.phases, cert, paths["phase_heatmap"])
-    fig_static_survival(cert, paths["static_survival"])
+    if cert.threshold:
+        fig_static_survival(cert, paths["static_survival"])
+    else:
+        paths.pop("static_survival")
     if cert.worst_flight:
         fig_worst_flight(cert, paths["worst_flight"], result.meta["sigma2_from"])
     else:

@@ -61,9 +61,9 @@ class ActivityParams:
                                 "a window needs at least 2")
         if not (self.k > 0 and math.isfinite(self.k)):
             raise DetectorError(f"--k {self.k!r}: the threshold is k times the rest level, k > 0")
-        if not self.time_threshold_s >= self.window_s:
-            raise DetectorError(f"--time-threshold-s {self.time_threshold_s:g}: at least one check period "
-                                f"(W_s {self.window_s:g} s)")
+        if not self.time_threshold_s > 0:
+            raise DetectorError(f"--time-threshold-s {self.time_threshold_s:g}: must be > 0 (one check suffices "
+                                "below W_s, as for the moving variance)")
         if d.signals and self.signal not in d.signals:
             raise DetectorError(f"--signal {self.signal!r}: {self.name} takes {', '.join(d.signals)}")
 

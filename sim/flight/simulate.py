@@ -56,14 +56,14 @@ RESERVE_H = 1.0
 CLIMB_DESCENT_EXTRA_H = 0.3
 
 
-# on the ground the engines idle: a tenth of the airborne burn (an A320 taxis on about 10 kg/min)
+# on the ground the engines idle: a tenth of the airborne burn (the gate wait counted too, with the APU)
 TAXI_BURN_FRACTION = 0.1
 
 
 def planned_fuel_kg(plan: FlightPlan, prof) -> float:
-    """The fuel loaded at the gate: the type's mean airborne burn over the estimated airborne time
-    plus reserves (:data:`RESERVE_H`), and taxi fuel; never less than the profile's ``fuel_kg`` (the
-    tanks cap it)."""
+    """The fuel planned at the gate: the type's mean airborne burn over the estimated airborne time
+    plus reserves (:data:`RESERVE_H`), and taxi fuel; never less than the profile's ``fuel_kg``. The
+    tanks may hold less: the track's conditions record what was loaded (``fuel_loaded_kg``)."""
     d = float(geodesy.great_circle_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg,
                                               plan.destination.lon_deg))
     ground_h = (plan.gate_wait_s + sum(plan.taxi_out.holds_s) + sum(plan.taxi_in.holds_s)) / 3600.0 + 0.5
@@ -236,7 +236,7 @@ def fly(
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
     track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
-    fuel = {"fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
+    fuel = {"fuel_planned_kg": fuel_kg, "fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
     return dataclasses.replace(track, conditions=draws.as_dict() | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m}
                                | fuel)
 

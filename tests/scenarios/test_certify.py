@@ -50,14 +50,31 @@ def test_the_recommendation_meets_the_target_or_says_what_is_missing():
     assert r["hours_short"] == pytest.approx(hours_needed(0.01) - 100.0)
     assert r["flights_short"] == {"airline-mix": 100, "rough-air": 134}
     assert "199.6" not in r["text"] and "200 h more" in r["text"]  # hours shown rounded, as a reader wants them
-    # every point with events at an observed rate above the target: no amount of data helps
+    # the best point's rate is above the target even at its lower bound (Garwood: chi2.ppf(0.05, 10) / 200
+    # = 0.0197 /h for 5 events in 100 h): no amount of data helps
+    from scipy.stats import chi2
+
     hot = [_row(0, 5, 100, rate_upper_bound(5, 100), 5.0, 0.9), _row(1, 2, 100, rate_upper_bound(2, 100), 50.0, 0.9)]
     r = recommend(hot, t, lambda p: per)
     assert r["status"] == "unreachable" and r["point"]["false_statics"] == 5  # the only one within 30 s
-    assert "observed rate of 0.05 /h already above the target" in r["text"]
+    assert r["rate_lower_per_h"] == pytest.approx(chi2.ppf(0.05, 10) / 200)
+    # one event in 90 h against 1e-2 /h: observed 1.1e-2, but the lower bound (5.7e-4) is below the
+    # target: more hours can still show it, if the events slow down; with events at 1.1e-2 /h never
+    warm = [_row(0, 1, 90, rate_upper_bound(1, 90), 5.0, 0.9)]
+    r = recommend(warm, t, lambda p: per)
+    assert r["status"] == "too_small" and r["hours_needed"] == pytest.approx(chi2.ppf(0.95, 4) / 2 / 0.01)
+    # 3 events in 1000 h (3e-3 /h < 1e-2): if they keep coming at that rate, the bound reaches the
+    # target at T with chi2.ppf(0.95, 2 (3e-3 T + 1)) / 2T = 1e-2
+    r = recommend([_row(0, 3, 100, rate_upper_bound(3, 100), 5.0, 0.9) | {"rate_per_h": 3e-3}], t, lambda p: per)
+    big_t = r["hours_needed_at_rate"]
+    assert chi2.ppf(0.95, 2 * (3e-3 * big_t + 1)) / (2 * big_t) == pytest.approx(0.01, rel=1e-6)
+    # points that meet the rate but not the response limit: the response limit is what fails
+    slow = [_row(0, 0, 600, rate_upper_bound(0, 600), 45.0, 0.9), _row(1, 0, 600, rate_upper_bound(0, 600), 40.0, 0.9)]
+    r = recommend(slow, t, lambda p: per)
+    assert r["status"] == "too_slow" and r["point"]["time_threshold_s"] == 1.0 and "raise --max-response-s" in r["text"]
 
 
-def _static_table(rng, n_checks: int, n: int = 100, colour: float = 1.0):
+def _static_table(rng, n_checks: int, n: int = 100, colour: float = 1.0, keep: list | None = None):
     """The static statistics of synthetic flights, made by the sweep's own reducer, from MVs of white
     Gaussian noise: N MV / sigma^2 ~ chi-square(N - 1) per axis (``colour`` > 1 widens the spread)."""
     import pyarrow as pa
@@ -68,8 +85,11 @@ def _static_table(rng, n_checks: int, n: int = 100, colour: float = 1.0):
     for f in range(4):
         r = rng.chisquare(n - 1, size=(n_checks // 4, 3)) / n
         r = 1 + (r - 1) * colour
-        rows.append({"dataset": "d", "family": "f", "flight_id": f"{f:06d}", "method": "nmv", "weight": 1.0,
-                     "window_s": 1.0, **_static_stats(r, np.ones(3), np.ones(r.shape[0], bool))})
+        if keep is not None:
+            keep.append(r)
+        rows.append({"dataset": "d", "family": "f", "flight_id": f"{f:06d}", "sensor_preset": "x", "fs_hz": 100.0,
+                     "method": "nmv", "weight": 1.0, "window_s": 1.0,
+                     **_static_stats(r, np.ones(3), np.ones(r.shape[0], bool))})
     return pa.Table.from_pylist(rows)
 
 
@@ -77,7 +97,11 @@ def test_section_5_1_1_threshold_from_white_static_data_is_the_chi_square_quanti
     from scipy.stats import chi2
 
     rng = np.random.default_rng(511)
-    th = threshold_from_static(_static_table(rng, 400_000), 1e-3, n_window=100)
+    raw: list = []
+    th = threshold_from_static(_static_table(rng, 400_000, keep=raw), 1e-3)
+    # the histograms' survival at the measured k is the share of checks whose largest axis reaches it
+    r = np.concatenate(raw)
+    assert th["empirical_pm_at_k"] == np.mean(r.max(axis=1) >= th["empirical_k"])
     assert th["static_checks"] == 400_000 and th["empirical_resolved"]
     # exact: P(any of 3 independent axes >= k) = 1e-3 at the chi-square(99) quantile / 100, k = 1.54
     pm_axis = 1 - (1 - 1e-3) ** (1 / 3)
@@ -95,10 +119,10 @@ def test_section_5_1_1_threshold_from_white_static_data_is_the_chi_square_quanti
     # the Gaussian (eq. 13) underestimates the chi-square's heavier right tail: its k is lower
     assert th["gaussian_white_k"] < k_exact
     # a wider spread (coloured noise, as seed 000's Table 2 implies) moves the measured threshold up
-    wide = threshold_from_static(_static_table(rng, 400_000, colour=2.5), 1e-3, n_window=100)
+    wide = threshold_from_static(_static_table(rng, 400_000, colour=2.5), 1e-3)
     assert wide["empirical_k"] > th["empirical_k"] + 0.5
     # too few checks to see P_M: said, not hidden
-    few = threshold_from_static(_static_table(rng, 2_000), 1e-3, n_window=100)
+    few = threshold_from_static(_static_table(rng, 2_000), 1e-3)
     assert not few["empirical_resolved"]
 
 
@@ -118,6 +142,7 @@ def test_bad_targets_and_inputs_are_one_line_errors(tmp_path):
              (["certify", str(tmp_path)], "no flights.parquet: not a dataset made by `flightmode dataset`"),
              (["certify", str(tmp_path), "--k", "0,4"], "--k 0.0: the threshold k sigma^2 needs k > 0"),
              (["certify", str(tmp_path), "--window-s", ""], "--window-s: the grid axis is empty"),
+             (["certify", str(tmp_path), "--k", "4,4"], "--k: a value is given twice"),
              (["sweep", str(tmp_path), str(tmp_path)], "several datasets: give --out"))
     for args, msg in cases:
         r = CliRunner().invoke(app, args)

@@ -62,7 +62,7 @@ def test_a_higher_threshold_never_removes_a_static_check_on_a_real_flight(patter
 
     run, _ = pattern_run
     cols, info = read_samples(run)
-    bench, _ = stream_rest("preset", cols, info)
+    bench, _, _ = stream_rest("preset", cols, info)
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
     prev = None
     for k in (2.0, 4.0, 8.0):
