@@ -1,0 +1,191 @@
+"""Seed 001's Monte Carlo evaluation (section 3.1.2): the threshold sweep against brute force, the
+ROC area of a perfect and of a random detector, the grid search on a case whose best point is known,
+and a tiny study that gives the same numbers twice, in any run order and on Dask."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import os
+
+import numpy as np
+import pytest
+
+from flightmode.detector.activity import montecarlo as mc
+from flightmode.detector.activity.common import decide
+
+FS = 50.0
+
+
+# ---------------------------------------------------------------- sweep, correlation, ROC, AUC
+def test_sweep_equals_the_decision_rule_sample_by_sample():
+    rng = np.random.default_rng(0)
+    truth = rng.random(500) < 0.4
+    merit = np.round(rng.normal(truth * 1.0, 1.0), 1)  # rounded: many ties
+    merit[:7] = np.nan  # a detector's warm-up: active
+    s = mc.sweep(merit, truth)
+    assert np.all(np.diff(s.thresholds) > 0)
+    for k in range(0, s.thresholds.size, 3):
+        marker = decide(merit, s.thresholds[k]).astype(bool)
+        assert s.accuracy[k] == np.mean(marker == truth)  # exact: the same counts
+        r = np.corrcoef(marker, truth)[0, 1] if 0 < marker.sum() < marker.size else 0.0
+        assert s.correlation[k] == pytest.approx(r, abs=1e-12)  # phi == Pearson's r, to rounding
+    # the exact sweep holds every partition: no threshold does better
+    brute = max(np.mean(decide(merit, t).astype(bool) == truth) for t in np.unique(merit[np.isfinite(merit)]))
+    assert s.accuracy.max() >= brute
+
+
+def test_auc_of_a_perfect_detector_is_one_and_of_its_inverse_zero():
+    truth = np.zeros(400, bool)
+    truth[100:250] = True
+    merit = np.where(truth, 5.0, 1.0) + np.linspace(0, 0.1, 400)
+    fpr, tpr = mc.roc_curve(merit, truth)
+    assert mc.auc(fpr, tpr) == 1.0  # exact: the trapezoids' heights are 0 or 1
+    fpr, tpr = mc.roc_curve(-merit, truth)
+    assert mc.auc(fpr, tpr) == 0.0
+
+
+def test_auc_of_a_random_detector_is_one_half_and_equals_mann_whitney():
+    from scipy.stats import mannwhitneyu
+
+    rng = np.random.default_rng(1)
+    truth = rng.random(4000) < 0.5
+    merit = np.round(rng.normal(size=4000), 2)  # ties with the truth's classes mixed
+    fpr, tpr = mc.roc_curve(merit, truth)
+    a = mc.auc(fpr, tpr)
+    p, n = truth.sum(), (~truth).sum()
+    # under the null the AUC (Mann-Whitney U / (P N)) has sd sqrt((P + N + 1) / (12 P N)) ~ 0.0091:
+    # 4 sd
+    assert abs(a - 0.5) < 4 * np.sqrt((p + n + 1) / (12 * p * n))
+    u = mannwhitneyu(merit[truth], merit[~truth]).statistic
+    assert a == pytest.approx(u / (p * n), abs=1e-12)  # trapezoids on the full ROC = U with ties halved
+
+
+def test_roc_on_a_grid_takes_the_top_of_a_vertical_step():
+    fpr = np.array([0.0, 0.0, 0.5, 0.5, 1.0])
+    tpr = np.array([0.0, 0.6, 0.8, 1.0, 1.0])
+    assert np.array_equal(mc.roc_on_grid(fpr, tpr, np.array([0.0, 0.25, 0.5, 1.0])), [0.6, 0.8, 1.0, 1.0])
+
+
+# ---------------------------------------------------------------- the grid search on a known case
+def _known_case(k: int = 7, blocks: int = 3):
+    """|a| along z: still (exactly 1 g) and active blocks alternating 1 +- 0.5 g, each active block
+    with two runs of k samples of 1.25 g (a pause of the alternation; a value neither neighbour has).
+    AMVD (eq. 1, a causal window of w) is then 0 exactly on windows of still samples or of one run,
+    > 0 on any other. Per window w:
+    the w - 1 warm-up samples (NaN: active) and the w - 1 samples after each block are false
+    activity, and the k - w + 1 windows inside each run (w <= k) false inactivity:
+    errors(w) = (w - 1)(blocks + 1) + 2 blocks max(0, k - w + 1); at threshold just above 0."""
+    parts, truth = [np.ones(60)], [np.zeros(60, bool)]
+    for _ in range(blocks):
+        alt = 1.0 + 0.5 * (-1.0) ** np.arange(20)
+        block = np.concatenate([alt, np.full(k, 1.25), alt, np.full(k, 1.25), alt])
+        parts += [block, np.ones(60)]
+        truth += [np.ones(block.size, bool), np.zeros(60, bool)]
+    z = np.concatenate(parts)
+    acc = np.column_stack([np.zeros_like(z), np.zeros_like(z), z])
+    return np.arange(z.size) / FS, acc, np.concatenate(truth), k, blocks
+
+
+def test_grid_search_finds_the_known_best_window_and_accuracy():
+    t, acc, truth, k, blocks = _known_case()
+    n = truth.size
+    windows = (16, 2, 8, 4)  # any order: searched ascending
+    b = mc.grid_search("amvd", None, t, acc, None, truth, [(w, None) for w in sorted(windows)], fs_hz=FS)
+
+    def errors(w):
+        return (w - 1) * (blocks + 1) + 2 * blocks * max(0, k - w + 1)
+
+    # the surface is the formula at every window (exact: counts over n)
+    assert [(w, acc_w) for w, _, acc_w in b.surface] == [(w, 1 - errors(w) / n) for w in sorted(windows)]
+    assert b.window == 8 and b.shift is None  # 40, 36, 28, 60 errors for w = 2, 4, 8, 16
+    assert b.accuracy == 1 - 28 / n
+    # the threshold separates the zero merits from the smallest positive one (midpoint of 0 and it)
+    pos = b.merit[np.isfinite(b.merit) & (b.merit > 0)]
+    assert 0 < b.threshold < pos.min()
+    # and a coarse explicit threshold grid containing a separating value finds the same point
+    c = mc.grid_search("amvd", None, t, acc, None, truth, [(w, None) for w in sorted(windows)], fs_hz=FS,
+                       thresholds=[-1.0, b.threshold, 10.0])
+    assert (c.window, c.accuracy, c.threshold) == (8, b.accuracy, b.threshold)
+
+
+# ---------------------------------------------------------------- a tiny study
+TINY = mc.MonteCarloConfig(
+    duration_s=30.0, bench_s=4.0,
+    grid=mc.Grid(detectors=("shod", "mbgtd"), signals=("acc", "product"), magnitude_windows=(5, 10),
+                 memory_windows=(4, 8)))
+
+
+def _same(a: mc.MonteCarloResult, b: mc.MonteCarloResult) -> bool:
+    # json: NaN-safe (NaN != NaN) and exact (floats written with their shortest round-trip repr)
+    rows_equal = json.dumps(a.rows, default=str) == json.dumps(b.rows, default=str)
+    return rows_equal and a.roc_tpr.keys() == b.roc_tpr.keys() and all(
+        np.array_equal(a.roc_tpr[k], b.roc_tpr[k]) for k in a.roc_tpr)
+
+
+@pytest.fixture(scope="module")
+def tiny():
+    return mc.run_montecarlo(3, seed=5, config=TINY)
+
+
+def test_tiny_study_is_reproducible_in_any_run_order(tiny):
+    assert len(tiny.rows) == 3 * 3  # 3 runs x (SHOD, MBGTD-Acc., MBGTD-Prod)
+    assert [r["run"] for r in tiny.rows] == [0, 0, 0, 1, 1, 1, 2, 2, 2]
+    assert _same(tiny, mc.run_montecarlo(3, seed=5, config=TINY))
+    assert _same(tiny, mc.run_montecarlo(3, seed=5, config=TINY, order=[2, 0, 1]))
+    # a run is regenerated alone (its generator depends on its index only)
+    alone = mc.evaluate_run(1, 5, TINY)["rows"]
+    assert json.dumps(alone, default=str) == json.dumps([r for r in tiny.rows if r["run"] == 1], default=str)
+    other = mc.run_montecarlo(3, seed=6, config=TINY)
+    assert not _same(tiny, other)
+
+
+def test_tiny_study_on_dask_equals_in_process(tiny):
+    from dask.distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        assert _same(tiny, mc.run_montecarlo(3, seed=5, config=TINY, client=client))
+
+
+def test_summary_and_files(tiny, tmp_path):
+    rows = mc.summary(tiny)
+    assert [(r["table"], r["label"]) for r in rows] == [(1, "SHOD"), (4, "MBGTD-Acc."), (4, "MBGTD-Prod")]
+    assert sorted(r["auc_rank"] for r in rows) == [1, 2, 3]
+    shod = rows[0]
+    accs = [r["accuracy"] for r in tiny.rows if r["detector"] == "shod"]
+    assert shod["accuracy_mean"] == pytest.approx(np.mean(accs), rel=1e-15)
+    assert shod["accuracy_std"] == pytest.approx(np.std(accs, ddof=1), rel=1e-12)
+    assert (shod["paper_accuracy_mean"], shod["paper_auc"], shod["paper_auc_rank"]) == (0.9817, 0.9880, 1)
+    text = mc.format_tables(tiny)
+    assert "Table 1" in text and "Table 13" in text and "0.9817 +- 0.0124" in text
+    paths = mc.write_results(tiny, tmp_path)
+    import pyarrow.parquet as pq
+
+    assert pq.read_table(paths["runs"]).num_rows == 9
+    assert pq.read_table(paths["tables"]).num_rows == 3
+    with open(paths["results"]) as f:
+        assert json.load(f)["n_runs"] == 3
+    for name in ("roc_best8", "roc_table1", "roc_table4"):
+        with open(paths[name], "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+    assert not [f for f in os.listdir(tmp_path) if ".tmp-" in f]  # every temporary renamed
+
+
+# ---------------------------------------------------------------- the paper's numbers
+def test_the_papers_tables_cover_every_default_case_and_rank_by_auc():
+    cases = mc.Grid().cases()
+    assert len(cases) == 24 and all(mc.paper_row(*c) is not None for c in cases)
+    by_rank = sorted(mc.PAPER_TABLES, key=lambda p: p.auc_rank)
+    assert [p.auc_rank for p in by_rank] == list(range(1, 25))
+    assert all(a.auc > b.auc for a, b in itertools.pairwise(by_rank))  # Table 13's ranks order its AUCs
+    assert mc.paper_row("shod", None).accuracy == (0.9817, 0.0124)
+
+
+def test_a_bad_grid_fails_loudly():
+    from flightmode.errors import DetectorError
+
+    with pytest.raises(DetectorError, match='did you mean "mbcd"'):
+        mc.run_montecarlo(1, config=mc.MonteCarloConfig(grid=mc.Grid(detectors=("mbcdd",))))
+    with pytest.raises(DetectorError, match="permutation"):
+        mc.run_montecarlo(2, config=TINY, order=[0, 0])
