@@ -325,6 +325,48 @@ def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_thr
     console.print(t)
 
 
+activity_app = typer.Typer(help="Seed 001's (in)activity detectors: the synthesizer and Monte Carlo study.",
+                           no_args_is_help=True)
+app.add_typer(activity_app, name="activity")
+
+
+@activity_app.command("synth")
+def activity_synth_cmd(
+    n: Annotated[int, typer.Option("--n", help="Synthesized runs (the paper: 500).")] = 500,
+    seed: Annotated[int, typer.Option("--seed", help="The study's seed (run i: SeedSequence(seed, spawn_key=(i,))).")] = 0,
+    workers: Annotated[int, typer.Option("--workers", help="Dask worker processes (1: in this process).")] = 2,
+    out: Annotated[Optional[Path], typer.Option("--out", help="Write the tables, runs, ROC curves and figures here.")] = None,
+) -> None:
+    """Seed 001 section 3: N synthesized activity records, every detector and input signal grid-searched
+    for accuracy, ROC/AUC at its best window; Tables 1-6 and 13 printed beside the paper's."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from flightmode.detector.activity import montecarlo as mc
+
+    try:
+        if n < 1:
+            raise ScenarioError(f"--n {n}: the number of runs must be a positive integer")
+        with Progress(TextColumn("runs"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(), console=console) as bar:
+            task = bar.add_task("runs", total=n)
+            if workers <= 1:
+                res = mc.run_montecarlo(n, seed=seed, on_run=lambda i: bar.update(task, advance=1))
+            else:
+                import logging
+
+                from dask.distributed import Client, LocalCluster
+
+                with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                  dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL) as cluster, \
+                        Client(cluster) as client:
+                    res = mc.run_montecarlo(n, seed=seed, client=client, on_run=lambda i: bar.update(task, advance=1))
+        console.print(mc.format_tables(res), highlight=False, soft_wrap=True)
+        if out is not None:
+            written = mc.write_results(res, out)
+            console.print(f"wrote {len(written)} files to {out}", highlight=False)
+    except FlightmodeError as e:
+        _die(e)
+
+
 eobs_app = typer.Typer(help="The e-obs tag toolkit (seed 003): calibration.", no_args_is_help=True)
 app.add_typer(eobs_app, name="eobs")
 

@@ -189,3 +189,17 @@ def test_a_bad_grid_fails_loudly():
         mc.run_montecarlo(1, config=mc.MonteCarloConfig(grid=mc.Grid(detectors=("mbcdd",))))
     with pytest.raises(DetectorError, match="permutation"):
         mc.run_montecarlo(2, config=TINY, order=[0, 0])
+
+
+def test_the_cli_runs_the_study_and_prints_the_paper_beside_it(tmp_path):
+    """`flightmode activity synth`: one run in this process, Table 13 printed with the paper's column,
+    the files written; a run count of 0 is refused in one line."""
+    from typer.testing import CliRunner
+
+    from flightmode.scenarios.cli import app
+
+    r = CliRunner().invoke(app, ["activity", "synth", "--n", "1", "--workers", "1", "--out", str(tmp_path / "mc")])
+    assert r.exit_code == 0, r.output
+    assert "MBCD-Acc." in r.output and (tmp_path / "mc" / "results.json").exists()
+    r = CliRunner().invoke(app, ["activity", "synth", "--n", "0"])
+    assert r.exit_code == 2 and r.output.strip() == "error: --n 0: the number of runs must be a positive integer"
