@@ -1,0 +1,402 @@
+"""Cabin and hold pressure: the pressurisation schedule of a type, the weather at the airports, and
+the pressure a bag feels, as pure functions over a flight's arrays (time, altitude, phase).
+
+Everything is computed in *pressure altitude* (the ISA altitude of a pressure,
+:func:`flightmode.sim.flight.atmosphere.pressure_altitude_m`): flight levels, the certification
+rule's "cabin pressure altitude" and the controllers' schedules are all pressure altitudes.
+
+Chain, per sample (vectorised; the only recursion, the outflow-valve lag, is ``scipy.signal.lfilter``):
+
+1. **Ambient** (:func:`ambient_pressure_pa`): the static pressure at the aircraft's geometric altitude
+   under the airport's QNH and an ISA temperature deviation (:class:`Weather`), the departure airport's
+   weather up to liftoff, the arrival's from touchdown, blended linearly in time in between.
+2. **Schedule** (the controller's target cabin altitude):
+
+   - door open (``gate``, ``parked``) and every other ground phase: ambient;
+   - ``takeoff_roll``: pre-pressurisation, the cabin driven ``prepress_psi`` above field pressure
+     at ``prepress_rate_fpm`` (A320 FCOM, as quoted in FACTS: 0.1 psi at 400 ft/min before rotation);
+   - airborne, climb side: from the pre-pressurised departure field up to the cruise cabin altitude in
+     proportion to the aircraft's progress from the field to the planned cruise level (the
+     proportional auto-schedule of the 737's controller; Airbus's "fixed pre-programmed law");
+   - cruise cabin altitude ``C = min(max_cabin, h(p(FL) + dp_max))``: the cabin as low as the maximum
+     differential allows at the planned level, never above the type's maximum cabin altitude
+     (14 CFR 25.841(a): 8,000 ft; 787: 6,000 ft), never below the lower pre-pressurised field;
+   - airborne, descent side (from the first ``descent``/``approach`` sample): from ``C`` down to the
+     arrival field + ``prepress_psi`` ("the cabin reaches field pressure + 0.1 psi just before
+     landing", Airbus Getting to Grips with the Cockpit/Cabin systems, as quoted in FACTS), again in
+     proportion to the aircraft's altitude;
+   - after touchdown: ambient (the residual 0.1 psi released at ``release_rate_fpm``).
+3. **Rate limits** on the schedule: cabin climb at most ``climb_rate_fpm``, cabin descent at most
+   ``descent_rate_fpm``, raised (up to ``descent_rate_max_fpm``) when the descent is too short for the
+   default rate ("optimised" descent rate). Both are exact closed forms, not loops: a rise limit
+   ``c1[k] = min(s[k], c1[k-1] + r dt)`` unrolls to ``c1 = R + cummin(s - R)`` with ``R`` the
+   cumulative allowed rise; the fall limit is the same recursion run backwards in time, so the cabin
+   starts down early enough to meet the landing target (the controller knows the landing field).
+   The result is the largest cabin altitude at or below the schedule that respects both limits.
+   Then the structural limits: cabin pressure at most ambient + ``dp_max`` (safety valve) and at least
+   ambient (negative-pressure relief).
+4. **Outflow-valve dynamics**: the cabin pressure follows the scheduled pressure through a first-order
+   lag of time constant ``ofv_tau_s`` (``lfilter``, started in steady state). A lag of a rate-limited
+   pressure never exceeds the input's largest pressure rate (its step response is monotone); in
+   altitude the rate can exceed the limit by the density ratio across the lag, a fraction
+   ``r tau / H_rho`` (H_rho ~ 9.8 km, the density scale height): 0.16 % at 300 ft/min and 5 s.
+5. Door open: the cabin *is* ambient (no lag). The hold: ``"pressurised"`` (the cabin's pressure) or
+   ``"unpressurised"`` (ambient): :func:`hold_pressure_pa`. Road legs: :func:`ambient_pressure_pa`.
+
+Figures and their quality (per type in :data:`CABIN_PROFILES`):
+
+- maximum cabin altitude: 14 CFR 25.841(a), 8,000 ft in normal operation; 787: 6,000 ft (Boeing's
+  published figure, FACTS);
+- maximum differential: the 737's three bands 7.45 / 7.80 / 8.35 psid for a selected level up to
+  FL280 / FL280-370 / above FL370 (737 FCOM, FACTS); the other types *derived* so that the cabin is at
+  its maximum altitude at the type's certified ceiling (``AircraftProfile.ceiling_ft``, from the TCDS):
+  A320 8.08 psi (the figure usually quoted is 8.06), Fokker 100 7.46, 787-8 9.43;
+- cabin rates: A320 climb 1,000 ft/min, descent 350 ft/min default, 750 ft/min at most (Airbus,
+  FACTS); the others 500 ft/min up and 300 ft/min down, the usual passenger-comfort figures (SAE
+  ARP1270 "Aircraft Cabin Pressurization Criteria" recommends them: *recalled, not read*), 750 ft/min
+  at most in descent (*assumption*: Airbus's figure);
+- pre-pressurisation 0.1 psi at 400 ft/min (A320 FCOM, FACTS; the 737 "lands slightly pressurised"
+  too); release after touchdown at 500 ft/min (*assumption*; A320 FCOM: released about 55 s after
+  landing, which 0.1 psi at 500 ft/min, about 25 s, satisfies);
+- outflow-valve lag 5 s (*assumption*: no public figure for the controller's closed-loop time constant);
+- weather: QNH ~ N(1013.25, 8 hPa) and ISA deviation ~ N(0, 8 K) (*assumptions*: a typical
+  mid-latitude day-to-day spread of sea-level pressure and temperature, recalled, not read; no
+  climatology was read), truncated to 950-1050 hPa and +-30 K (*assumption*: the ranges nearly all
+  airport observations fall in; the records, 870 and 1084 hPa, lie outside).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from flightmode.sim.flight import atmosphere as isa
+
+from flightmode.errors import AircraftError, InputDataError, ScenarioError, did_you_mean
+from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
+from flightmode.units import FPM_MPS, FT_M, HPA_PA, PSI_PA
+
+# ---------------------------------------------------------------------------------------------
+# per-type pressurisation profiles
+
+
+@dataclass(frozen=True, slots=True)
+class CabinProfile:
+    """One type's pressurisation system (module docstring for the sources of every figure)."""
+
+    model: str  # JSBSim model (the key of aircraft_profiles.PROFILES)
+    max_cabin_alt_ft: float  # 14 CFR 25.841(a) 8,000 ft; 787 6,000 ft
+    # (selected level up to which, max differential psi); () derives one band from the ceiling
+    diff_bands: tuple[tuple[float, float], ...] = ()
+    climb_rate_fpm: float = 500.0
+    descent_rate_fpm: float = 300.0
+    descent_rate_max_fpm: float = 750.0
+    prepress_psi: float = 0.1
+    prepress_rate_fpm: float = 400.0
+    release_rate_fpm: float = 500.0
+    ofv_tau_s: float = 5.0
+
+    def max_diff_pa(self, cruise_alt_m: float) -> float:
+        """Maximum differential (Pa) the controller holds at the selected cruise level."""
+        if self.diff_bands:
+            for upto_ft, psi in self.diff_bands:
+                if cruise_alt_m <= upto_ft * FT_M + 1e-6:
+                    return psi * PSI_PA
+            return self.diff_bands[-1][1] * PSI_PA
+        from flightmode.sim.flight.aircraft_profiles import get_profile
+
+        ceiling_m = get_profile(self.model).ceiling_ft * FT_M
+        return float(isa.pressure_pa(self.max_cabin_alt_ft * FT_M) - isa.pressure_pa(ceiling_m))
+
+    def cruise_cabin_alt_m(self, cruise_alt_m: float) -> float:
+        """The cabin pressure altitude at the planned level, before the field floor: as low as the
+        maximum differential allows, at most the maximum cabin altitude."""
+        p = float(isa.pressure_pa(cruise_alt_m)) + self.max_diff_pa(cruise_alt_m)
+        return min(self.max_cabin_alt_ft * FT_M, float(isa.pressure_altitude_m(p)))
+
+
+CABIN_PROFILES: dict[str, CabinProfile] = {
+    "737": CabinProfile("737", 8000.0, diff_bands=((28_000.0, 7.45), (37_000.0, 7.80), (1e9, 8.35))),
+    "A320": CabinProfile("A320", 8000.0, climb_rate_fpm=1000.0, descent_rate_fpm=350.0),
+    "fokker100": CabinProfile("fokker100", 8000.0),
+    "787-8": CabinProfile("787-8", 6000.0),
+}
+
+
+def get_cabin_profile(model: str) -> CabinProfile:
+    try:
+        return CABIN_PROFILES[model]
+    except KeyError:
+        raise AircraftError(
+            f"no cabin pressure profile for aircraft '{model}'{did_you_mean(model, CABIN_PROFILES)}; "
+            f"profiled: {', '.join(sorted(CABIN_PROFILES))}"
+        ) from None
+
+
+# ---------------------------------------------------------------------------------------------
+# weather
+
+QNH_MEAN_HPA = 1013.25
+QNH_SIGMA_HPA = 8.0  # assumption (module docstring)
+QNH_RANGE_HPA = (950.0, 1050.0)
+ISA_DEV_SIGMA_K = 8.0  # assumption (module docstring)
+ISA_DEV_RANGE_K = (-30.0, 30.0)
+
+
+@dataclass(frozen=True, slots=True)
+class Weather:
+    """The pressure field at one airport: its QNH and the ISA temperature deviation above it."""
+
+    qnh_hpa: float = QNH_MEAN_HPA
+    isa_dev_k: float = 0.0
+
+    def as_dict(self) -> dict:
+        return {"qnh_hpa": self.qnh_hpa, "isa_dev_k": self.isa_dev_k}
+
+
+def draw_weather(rng: np.random.Generator, qnh_sigma_hpa: float = QNH_SIGMA_HPA,
+                 isa_dev_sigma_k: float = ISA_DEV_SIGMA_K) -> Weather:
+    """One airport's weather: QNH ~ N(1013.25 hPa, sigma) and ISA deviation ~ N(0, sigma), each
+    truncated to its range by redrawing (two normals per attempt, in that order)."""
+    if qnh_sigma_hpa < 0 or isa_dev_sigma_k < 0:
+        raise ScenarioError(f"weather spreads must be >= 0 (QNH sigma {qnh_sigma_hpa} hPa, "
+                            f"ISA sigma {isa_dev_sigma_k} K)")
+    while True:
+        q = QNH_MEAN_HPA + qnh_sigma_hpa * rng.standard_normal()
+        d = isa_dev_sigma_k * rng.standard_normal()
+        if QNH_RANGE_HPA[0] <= q <= QNH_RANGE_HPA[1] and ISA_DEV_RANGE_K[0] <= d <= ISA_DEV_RANGE_K[1]:
+            return Weather(float(q), float(d))
+
+
+def _g_integral(h_m):
+    """G(h) = integral of dh / T_std(h): the temperature correction's kernel (ISA layers)."""
+    h = np.asarray(h_m, float)
+    tropo = np.log(np.maximum(isa.T0_K + isa.LAPSE_KPM * h, 1.0)) / isa.LAPSE_KPM
+    g11 = math.log(isa.T_TROPO_K) / isa.LAPSE_KPM
+    return np.where(h < isa.H_TROPO_M, tropo, g11 + (h - isa.H_TROPO_M) / isa.T_TROPO_K)
+
+
+def ambient_pressure_pa(alt_m, qnh_hpa=QNH_MEAN_HPA, isa_dev_k=0.0, datum_m=0.0) -> np.ndarray:
+    """Static pressure (Pa) at geometric altitude ``alt_m`` (above mean sea level).
+
+    ``qnh_hpa``: the altimeter setting that reads the elevation ``datum_m`` (the airport) on the
+    ground: the station pressure there is the ISA law started from QNH (its definition), exact
+    whatever the temperature. Above the datum the air is ``isa_dev_k`` warmer than ISA at every
+    pressure level, so a geometric layer is ``(T_std + dT) / T_std`` times thicker than its
+    pressure-altitude layer (hypsometric equation): z - datum = (h_p - h_d) + dT (G(h_p) - G(h_d)),
+    solved for h_p by Newton's method (five steps: quadratic convergence, far below a millimetre).
+    Every argument broadcasts (a weather blended along a flight is an array).
+    """
+    z = np.asarray(alt_m, float)
+    q = np.asarray(qnh_hpa, float) * HPA_PA
+    dt = np.asarray(isa_dev_k, float)
+    zd = np.asarray(datum_m, float)
+    # station pressure at the datum from QNH under the ISA law: p = QNH (T(zd) / T0)^exp
+    p_d = q * (np.maximum(isa.T0_K + isa.LAPSE_KPM * zd, 1.0) / isa.T0_K) ** isa._EXP
+    h_d = isa.pressure_altitude_m(p_d)
+    target = z - zd
+    g_d = _g_integral(h_d)
+    h = h_d + target * isa.T0_K / (isa.T0_K + dt)
+    for _ in range(5):
+        f = (h - h_d) + dt * (_g_integral(h) - g_d) - target
+        h = h - f / (1.0 + dt / isa.temperature_k(h))
+    return isa.pressure_pa(h)
+
+
+# ---------------------------------------------------------------------------------------------
+# the schedule
+
+HOLD_OPTIONS = ("pressurised", "unpressurised")
+DOOR_OPEN_PHASES = ("gate", "parked")  # boarding and deplaning: the cabin door is open
+_DESCENT_SIDE = ("descent", "approach", "flare", "rollout", "taxi_in", "shutdown", "parked")
+
+
+@dataclass(frozen=True, slots=True)
+class CabinTruth:
+    """Pressure truth per sample (N,), SI. ``schedule_altitude_m`` is the controller's rate-limited
+    target before the outflow-valve lag; ``descent_rate_fpm`` the cabin descent rate it used."""
+
+    ambient_pressure_pa: np.ndarray
+    cabin_pressure_pa: np.ndarray
+    cabin_altitude_m: np.ndarray  # ISA pressure altitude of the cabin pressure
+    hold_pressure_pa: np.ndarray
+    schedule_altitude_m: np.ndarray
+    cruise_cabin_altitude_m: float
+    descent_rate_fpm: float
+    hold: str
+
+
+def _phase_codes(phase, n: int) -> np.ndarray:
+    ph = np.asarray(phase)
+    if ph.shape != (n,):
+        raise InputDataError(f"cabin pressure: phase has shape {ph.shape}, need ({n},) like t_s")
+    if ph.dtype.kind in "iu":
+        if ph.size and (ph.min() < 0 or ph.max() >= len(PHASES)):
+            raise InputDataError(f"cabin pressure: phase codes must be in 0..{len(PHASES) - 1} "
+                                 "(flightmode.labels.PHASES)")
+        return ph.astype(np.intp)
+    names, inv = np.unique(ph.astype(str), return_inverse=True)
+    for name in names:
+        if name not in PHASE_CODE:
+            raise InputDataError(f"cabin pressure: unknown phase '{name}'{did_you_mean(name, PHASES)}")
+    return np.array([PHASE_CODE[s] for s in names], np.intp)[inv]
+
+
+def _check_series(t_s, alt_m) -> tuple[np.ndarray, np.ndarray, float]:
+    t = np.asarray(t_s, float)
+    h = np.asarray(alt_m, float)
+    if t.ndim != 1 or h.shape != t.shape or t.size < 2:
+        raise InputDataError(f"cabin pressure: need t_s and alt_m as 1-D arrays of one length >= 2, "
+                             f"got {t.shape} and {h.shape}")
+    for name, x in (("t_s", t), ("alt_m", h)):
+        if not np.isfinite(x).all():
+            i = int(np.flatnonzero(~np.isfinite(x))[0])
+            raise InputDataError(f"cabin pressure: {name} is NaN or inf at sample {i}")
+    dt = np.diff(t)
+    step = float(np.median(dt))
+    bad = np.flatnonzero(np.abs(dt - step) > 1e-6 * step + 1e-9)
+    if not step > 0 or bad.size:
+        i = int(bad[0]) if bad.size else 0
+        raise InputDataError(
+            f"cabin pressure: t_s must be uniformly sampled and increasing (step {step:g} s); "
+            f"at sample {i + 1} (t = {t[i + 1]:.3f} s) the step is {dt[i]:g} s"
+        )
+    return t, h, step
+
+
+def cabin_pressure(
+    t_s,
+    alt_m,
+    phase,
+    cruise_alt_m: float,
+    aircraft: str | CabinProfile,
+    *,
+    weather: Weather = Weather(),
+    arrival_weather: Weather | None = None,
+    departure_elev_m: float | None = None,
+    arrival_elev_m: float | None = None,
+    hold: str = "pressurised",
+) -> CabinTruth:
+    """Cabin (and hold) pressure of one flight (module docstring).
+
+    ``t_s`` (N,) uniformly sampled; ``alt_m`` (N,) geometric altitude above MSL of the aircraft;
+    ``phase`` (N,) codes into :data:`flightmode.labels.PHASES` or names; ``cruise_alt_m`` the planned
+    cruise level as a pressure altitude (FL350 = 35,000 ft); ``aircraft`` a JSBSim model with a
+    :data:`CABIN_PROFILES` entry, or a profile. ``weather`` / ``arrival_weather`` (default the same) the
+    airports' :class:`Weather`; ``departure_elev_m`` / ``arrival_elev_m`` their elevations (default:
+    ``alt_m`` at the first and last sample, the aircraft on the ground there).
+    """
+    prof = aircraft if isinstance(aircraft, CabinProfile) else get_cabin_profile(aircraft)
+    t, z, dt = _check_series(t_s, alt_m)
+    n = t.shape[0]
+    code = _phase_codes(phase, n)
+    if hold not in HOLD_OPTIONS:
+        raise ScenarioError(f"hold '{hold}'{did_you_mean(hold, HOLD_OPTIONS)}: allowed {', '.join(HOLD_OPTIONS)}")
+    if not (np.isfinite(cruise_alt_m) and cruise_alt_m > 0):
+        raise InputDataError(f"cabin pressure: cruise_alt_m {cruise_alt_m!r} must be a positive pressure altitude")
+    arr_w = weather if arrival_weather is None else arrival_weather
+    e_dep = float(z[0]) if departure_elev_m is None else float(departure_elev_m)
+    e_arr = float(z[-1]) if arrival_elev_m is None else float(arrival_elev_m)
+
+    def in_set(names) -> np.ndarray:
+        return np.isin(code, [PHASE_CODE[p] for p in names])
+
+    airborne = in_set(AIRBORNE_PHASES)
+    air_idx = np.flatnonzero(airborne)
+    # weather blend: the departure's up to liftoff, the arrival's from touchdown, linear in between
+    if air_idx.size:
+        t_off, t_td = t[air_idx[0]], t[min(air_idx[-1] + 1, n - 1)]
+        w = np.clip((t - t_off) / max(t_td - t_off, dt), 0.0, 1.0)
+    else:
+        w = np.zeros(n)
+    qnh = weather.qnh_hpa + w * (arr_w.qnh_hpa - weather.qnh_hpa)
+    dev = weather.isa_dev_k + w * (arr_w.isa_dev_k - weather.isa_dev_k)
+    p_amb = ambient_pressure_pa(z, qnh, dev, e_dep + w * (e_arr - e_dep))
+    h_amb = isa.pressure_altitude_m(p_amb)
+
+    # fields (pressure altitudes), pre-pressurised fields, cruise cabin
+    pre = prof.prepress_psi * PSI_PA
+    p_dep = float(ambient_pressure_pa(e_dep, weather.qnh_hpa, weather.isa_dev_k, e_dep))
+    p_arr = float(ambient_pressure_pa(e_arr, arr_w.qnh_hpa, arr_w.isa_dev_k, e_arr))
+    h_dep, h_arr = float(isa.pressure_altitude_m(p_dep)), float(isa.pressure_altitude_m(p_arr))
+    a_dep, a_arr = float(isa.pressure_altitude_m(p_dep + pre)), float(isa.pressure_altitude_m(p_arr + pre))
+    cruise_cab = max(prof.cruise_cabin_alt_m(cruise_alt_m), min(a_dep, a_arr))
+    dp_max = prof.max_diff_pa(cruise_alt_m)
+
+    # the schedule s: ground -> ambient; takeoff roll -> ramp to the pre-pressurised field;
+    # airborne -> proportional to the aircraft's progress between field and cruise level
+    descent_side = np.maximum.accumulate(in_set(_DESCENT_SIDE))
+    def frac(h0: float) -> np.ndarray:  # progress from the field to the cruise level
+        return np.clip((h_amb - h0) / (cruise_alt_m - h0), 0.0, 1.0) if cruise_alt_m > h0 else np.ones(n)
+
+    s = h_amb.copy()
+    climb_side = airborne & ~descent_side
+    s[climb_side] = (a_dep + (cruise_cab - a_dep) * frac(h_dep))[climb_side]
+    desc_air = airborne & descent_side
+    s[desc_air] = (a_arr + (cruise_cab - a_arr) * frac(h_arr))[desc_air]
+    roll = code == PHASE_CODE["takeoff_roll"]
+    if roll.any():
+        t_roll = t[np.flatnonzero(roll)[0]]
+        ramp = np.maximum(isa.pressure_altitude_m(p_amb + pre), h_amb - prof.prepress_rate_fpm * FPM_MPS * (t - t_roll))
+        s[roll] = ramp[roll]
+
+    # rate limits per interval (k-1 -> k), by the phase of sample k (the first entry is unused)
+    up = np.where(airborne, prof.climb_rate_fpm, prof.release_rate_fpm) * FPM_MPS
+    r_up = np.concatenate([[0.0], np.cumsum(up[1:] * dt)])
+    c1 = r_up + np.minimum.accumulate(s - r_up)  # cabin rise limited
+    rate_dn = prof.descent_rate_fpm
+    if air_idx.size:
+        # the steepest average descent the cabin needs from its peak: no earlier start than the peak
+        seg = slice(air_idx[0], air_idx[-1] + 1)
+        ca, ta = c1[seg], t[seg]
+        k = ca.size - 1 - int(np.argmax(ca[::-1]))
+        if k < ca.size - 1:
+            need_mps = float(np.max((ca[k] - ca[k + 1:]) / (ta[k + 1:] - ta[k])))
+            rate_dn = min(max(rate_dn, need_mps / FPM_MPS), prof.descent_rate_max_fpm)
+    dn = np.where(airborne, rate_dn, prof.prepress_rate_fpm) * FPM_MPS
+    r_dn = np.concatenate([[0.0], np.cumsum(dn[1:] * dt)])
+    c2 = np.minimum.accumulate((c1 + r_dn)[::-1])[::-1] - r_dn  # cabin descent limited (backwards)
+    # structural limits: differential at most dp_max (safety valve), never negative (relief valve)
+    c2 = np.clip(c2, isa.pressure_altitude_m(p_amb + dp_max), h_amb)
+
+    # outflow-valve dynamics: first-order lag on pressure, started in steady state
+    from scipy.signal import lfilter
+
+    p_sched = isa.pressure_pa(c2)
+    a = math.exp(-dt / prof.ofv_tau_s)
+    p_cab, _ = lfilter([1.0 - a], [1.0, -a], p_sched, zi=[a * p_sched[0]])
+    door_open = in_set(DOOR_OPEN_PHASES)
+    p_cab = np.where(door_open, p_amb, p_cab)
+    return CabinTruth(
+        ambient_pressure_pa=p_amb,
+        cabin_pressure_pa=p_cab,
+        cabin_altitude_m=isa.pressure_altitude_m(p_cab),
+        hold_pressure_pa=hold_pressure_pa(p_cab, p_amb, hold),
+        schedule_altitude_m=c2,
+        cruise_cabin_altitude_m=float(cruise_cab),
+        descent_rate_fpm=float(rate_dn),
+        hold=hold,
+    )
+
+
+def hold_pressure_pa(cabin_pressure_pa, ambient_pressure_pa, hold: str) -> np.ndarray:
+    """The cargo hold's pressure: the cabin's when pressurised (one pressure vessel), ambient when not."""
+    if hold not in HOLD_OPTIONS:
+        raise ScenarioError(f"hold '{hold}'{did_you_mean(hold, HOLD_OPTIONS)}: allowed {', '.join(HOLD_OPTIONS)}")
+    return np.asarray(cabin_pressure_pa if hold == "pressurised" else ambient_pressure_pa, float).copy()
+
+
+__all__ = [
+    "CABIN_PROFILES",
+    "DOOR_OPEN_PHASES",
+    "HOLD_OPTIONS",
+    "CabinProfile",
+    "CabinTruth",
+    "Weather",
+    "ambient_pressure_pa",
+    "cabin_pressure",
+    "draw_weather",
+    "get_cabin_profile",
+    "hold_pressure_pa",
+]
