@@ -133,6 +133,21 @@ def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng:
 SIGMA2_SOURCES = ("preset", "rest")
 
 
+def _bench_sensor(source: str, info: dict | None) -> dict | None:
+    """run.json's sensor summary for ``--sigma2-from preset`` (None for ``rest``); a DetectorError for
+    an unknown source, or ``preset`` without the run.json."""
+    from flightmode.errors import DetectorError
+
+    if source not in SIGMA2_SOURCES:
+        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}{did_you_mean(source, SIGMA2_SOURCES)}")
+    if source == "rest":
+        return None
+    if info is None or "sensor" not in info:
+        raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
+                            "use --sigma2-from rest for a bare samples file")
+    return info["sensor"]
+
+
 def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarray, np.ndarray | None, str]:
     """A static recording of the unit at the stream's rate for the detectors that calibrate on one
     (seed 001's, :mod:`flightmode.detector.activity.flight`): (acc in g, the gyroscope in deg/s or
@@ -140,16 +155,10 @@ def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarr
     (needs run.json; the bench models no gyroscope); ``rest``: the longest run of truly static
     samples before the flight (with the recording's gyroscope, if it has one)."""
     from flightmode.detector.evaluation import longest_static_run
-    from flightmode.errors import DetectorError
     from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
 
-    if source not in SIGMA2_SOURCES:
-        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}{did_you_mean(source, SIGMA2_SOURCES)}")
-    if source == "preset":
-        if info is None or "sensor" not in info:
-            raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
-                                "use --sigma2-from rest for a bare samples file")
-        s = info["sensor"]
+    s = _bench_sensor(source, info)
+    if s is not None:
         p = dataclasses.replace(get_preset(s["preset"]), odr_hz=float(s["odr_hz"]))
         m = bench_static(p, UnitDraw.from_dict(s.get("unit")), streams_of(int(info["seed"])).rng("detector/bench"))
         return m.acc_g, None, f"bench recording of this {s['preset']} unit (60 s static)"
@@ -170,13 +179,8 @@ def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) ->
     from flightmode.errors import DetectorError
     from flightmode.sim.sensor.accelerometer import get_preset
 
-    if source not in SIGMA2_SOURCES:
-        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}{did_you_mean(source, SIGMA2_SOURCES)}")
-    if source == "preset":
-        if info is None or "sensor" not in info:
-            raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
-                                "use --sigma2-from rest for a bare samples file")
-        s = info["sensor"]
+    s = _bench_sensor(source, info)
+    if s is not None:
         s2 = unit_sigma2(s["preset"], float(s["odr_hz"]), s.get("unit"), window,
                          streams_of(int(info["seed"])).rng("detector/bench"))
         return s2, f"bench calibration of this {s['preset']} unit (60 s static, quantisation floor)"
