@@ -271,17 +271,13 @@ def threshold_from_static(static, pm: float, method: str = "nmv", weight: float 
 def worst_flight(points, phases, point: dict) -> dict | None:
     """The flight closest to trouble at ``point``: the most false-static seconds; on a tie (none),
     the most in-window checks under ``k sigma^2`` on all axes (eq. 7's temporary statics)."""
-    import pyarrow.compute as pc
-
-    from flightmode.scenarios.sweep import at_point
+    from flightmode.scenarios.sweep import at_point, where
 
     rows = at_point(points, point)
     if not rows:
         return None
     under: dict[tuple, int] = {}
-    m = pc.and_(pc.and_(pc.equal(phases["method"], point["method"]), pc.equal(phases["weight"], point["weight"])),
-                pc.and_(pc.equal(phases["window_s"], point["window_s"]), pc.equal(phases["k"], point["k"])))
-    for r in phases.filter(m).select(["dataset", "flight_id", "sensor_preset", "under_all"]).to_pylist():
+    for r in where(phases, {k: point[k] for k in ("method", "weight", "window_s", "k")}).select(["dataset", "flight_id", "sensor_preset", "under_all"]).to_pylist():
         key = (r["dataset"], r["flight_id"], r["sensor_preset"])
         under[key] = under.get(key, 0) + r["under_all"]
 
@@ -398,7 +394,7 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
     """Seed 000 section 5.1.1's last step: the P_FA at the grid's k nearest below the threshold found,
     as the in-window fraction of checks under it on all axes (P_FA^t, joint) and the false-static rate
     bound at T_th 4 s (seed 000's) or the nearest."""
-    import pyarrow.compute as pc
+    from flightmode.scenarios.sweep import where
 
     ks = sorted({r["k"] for r in summary if (r["method"], r["weight"], r["window_s"]) == (*method, window_s)})
     if not math.isfinite(k):
@@ -407,9 +403,7 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
     if not below:
         return None
     kg = below[-1]
-    m = pc.and_(pc.and_(pc.equal(phases["method"], method[0]), pc.equal(phases["weight"], method[1])),
-                pc.and_(pc.equal(phases["window_s"], window_s), pc.equal(phases["k"], kg)))
-    d = phases.filter(m).select(["checks", "under_all"]).to_pydict()
+    d = where(phases, {"method": method[0], "weight": method[1], "window_s": window_s, "k": kg}).select(["checks", "under_all"]).to_pydict()
     checks, under = int(sum(d["checks"])), int(sum(d["under_all"]))
     rows = [r for r in summary if (r["method"], r["weight"], r["window_s"], r["k"]) == (*method, window_s, kg)]
     tths = sorted(r["time_threshold_s"] for r in rows)

@@ -308,21 +308,16 @@ def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_thr
                             "flight instead: --sigma2-from rest")
     rest = rest_figures(p, bench, bench_gyr)
     e = evaluate_activity(cols["t_s"], cols["acc_g"], cols.get("gyro_dps"), labels, p, rest)
+    from flightmode.scenarios import detector_report as dr
+
     d = registry.get(name)
-    t = Table(title=f"{d.title} ({d.equations}) with seed 000's decision rule: W_s {window_s:g} s, "
-                    f"threshold {k:g} x the rest level, T_th {time_threshold_s:g} s", show_header=False)
-    t.add_column("quantity")
-    t.add_column("value", justify="right")
-    t.add_row("rest level of the merit (median)", f"{rest['merit_median']:.4g} {d.merit_unit}")
-    t.add_row("threshold", f"{rest['threshold']:.4g} {d.merit_unit}")
-    t.add_row("rest from", bench_source)
-    t.add_row("checks (in the in-flight window)", f"{e.checks.t_s.shape[0]:,} ({e.in_flight_checks:,})")
-    t.add_row("false-static events in flight", f"{e.false_static_count} ({e.false_static_s:g} s in all)")
-    t.add_row("response after the flight", "never" if e.response_s is None else f"{e.response_s:.1f} s")
-    t.add_row("static time missed outside the window", f"{e.missed_static_s:g} s")
-    t.add_row("accuracy / correlation vs sensor_static", f"{e.accuracy:.4f} / {e.correlation:.4f}")
     console.print(Text(f"{source}", style="bold"), highlight=False)
-    console.print(t)
+    dr.print_evaluation(console, e, bench_source,
+                        title=f"{d.title} ({d.equations}) with seed 000's decision rule: W_s {window_s:g} s, "
+                              f"threshold {k:g} x the rest level, T_th {time_threshold_s:g} s",
+                        calibration=[("rest level of the merit (median)", f"{rest['merit_median']:.4g} {d.merit_unit}"),
+                                     ("threshold", f"{rest['threshold']:.4g} {d.merit_unit}"),
+                                     ("rest from", bench_source)])
 
 
 activity_app = typer.Typer(help="Seed 001's (in)activity detectors: the synthesizer and Monte Carlo study.",

@@ -22,16 +22,21 @@ def _e(x) -> str:
     return "0" if x == 0 else f"{x:.1e}"
 
 
-def print_evaluation(console: Console, e: ev.Evaluation, source: str, max_events: int = 15) -> None:
+def print_evaluation(console: Console, e: ev.Evaluation, source: str, max_events: int = 15,
+                     title: str | None = None, calibration: list[tuple[str, str]] | None = None) -> None:
+    """The evaluation as a table, then its false-static events. ``title`` and ``calibration`` (the
+    rows saying what the threshold is and where it came from) default to the moving variance's."""
     p = e.params
-    t = Table(title=f"flight-mode detector: {p.method.upper()}"
-              + (f" weight {p.weight:g}" if p.method == "emv" else "")
-              + f", W_s {p.window_s:g} s, T_sigma {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s",
-              show_header=False)
+    if title is None:
+        title = (f"flight-mode detector: {p.method.upper()}" + (f" weight {p.weight:g}" if p.method == "emv" else "")
+                 + f", W_s {p.window_s:g} s, T_sigma {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s")
+    if calibration is None:
+        calibration = [("sigma^2 per axis", ", ".join(f"{v:.2e}" for v in e.sigma2) + " g^2"), ("sigma^2 from", source)]
+    t = Table(title=title, show_header=False)
     t.add_column("quantity")
     t.add_column("value", justify="right")
-    t.add_row("sigma^2 per axis", ", ".join(f"{v:.2e}" for v in e.sigma2) + " g^2")
-    t.add_row("sigma^2 from", source)
+    for row in calibration:
+        t.add_row(*row)
     t.add_row("checks (in the in-flight window)", f"{e.checks.t_s.shape[0]:,} ({e.in_flight_checks:,})")
     t.add_row("false-static events in flight", f"{e.false_static_count} ({e.false_static_s:g} s in all)")
     t.add_row("response after the flight", "never" if e.response_s is None else f"{e.response_s:.1f} s")

@@ -451,16 +451,22 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
     return out
 
 
-def at_point(table, point: dict) -> list[dict]:
-    """The rows of one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``,
-    and ``sensor_preset`` if the point names one)."""
+def where(table, values: dict):
+    """The rows of a sweep table (points, phases or static) whose columns equal ``values``."""
     import pyarrow.compute as pc
 
     mask = None
-    for k in POINT_KEYS + (("sensor_preset",) if "sensor_preset" in point else ()):
-        m = pc.equal(table[k], point[k])
+    for k, v in values.items():
+        m = pc.equal(table[k], v)
         mask = m if mask is None else pc.and_(mask, m)
-    return table.filter(mask).to_pylist()
+    return table if mask is None else table.filter(mask)
+
+
+def at_point(table, point: dict) -> list[dict]:
+    """The rows of one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``,
+    and ``sensor_preset`` if the point names one)."""
+    keys = POINT_KEYS + (("sensor_preset",) if "sensor_preset" in point else ())
+    return where(table, {k: point[k] for k in keys}).to_pylist()
 
 
 def breakdown(table, point: dict, phases=None) -> list[dict]:
@@ -481,15 +487,10 @@ def breakdown(table, point: dict, phases=None) -> list[dict]:
                         "false_static_s": float(sum(r["false_static_s"] for r in sel)),
                         "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan})
     if phases is not None:
-        import pyarrow.compute as pc
-
-        m = None
-        for k in ("method", "weight", "window_s", "k") + (("sensor_preset",) if "sensor_preset" in point else ()):
-            e = pc.equal(phases[k], point[k])
-            m = e if m is None else pc.and_(m, e)
+        keys = ("method", "weight", "window_s", "k") + (("sensor_preset",) if "sensor_preset" in point else ())
         hours: dict[str, float] = {}
         flights: dict[str, set] = {}
-        for r in phases.filter(m).select(["phase", "checks", "dataset", "flight_id"]).to_pylist():
+        for r in where(phases, {k: point[k] for k in keys}).select(["phase", "checks", "dataset", "flight_id"]).to_pylist():
             hours[r["phase"]] = hours.get(r["phase"], 0.0) + r["checks"] * point["window_s"] / 3600.0
             flights.setdefault(r["phase"], set()).add((r["dataset"], r["flight_id"]))
         events: dict[str, int] = {}
@@ -502,5 +503,5 @@ def breakdown(table, point: dict, phases=None) -> list[dict]:
     return out
 
 
-__all__ = ["sweep", "check_request", "sweep_flight", "write_sweep", "read_sweep", "summarise", "breakdown", "at_point",
+__all__ = ["sweep", "check_request", "where", "sweep_flight", "write_sweep", "read_sweep", "summarise", "breakdown", "at_point",
            "manifest_digest", "SweepResult", "CONDITIONS", "POINT_KEYS", "STATIC_EDGES"]

@@ -117,15 +117,12 @@ def fig_response_cdf(points, cert, path: Path) -> None:
 
 
 def fig_phase_heatmap(phases, cert, path: Path) -> None:
-    import pyarrow.compute as pc
-
     from flightmode.labels import PHASES
+    from flightmode.scenarios.sweep import where
 
     plt = _plt()
     p = cert.recommendation["point"]
-    m = pc.and_(pc.and_(pc.equal(phases["method"], p["method"]), pc.equal(phases["weight"], p["weight"])),
-                pc.equal(phases["window_s"], p["window_s"]))
-    d = phases.filter(m).select(["phase", "k", "checks", "under_all"]).to_pydict()
+    d = where(phases, {k: p[k] for k in ("method", "weight", "window_s")}).select(["phase", "k", "checks", "under_all"]).to_pydict()
     ks = sorted(set(d["k"]))
     names = [ph for ph in PHASES if ph in set(d["phase"])] + sorted(set(d["phase"]) - set(PHASES))
     checks = np.zeros((len(names), len(ks)))
