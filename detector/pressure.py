@@ -508,8 +508,79 @@ def evaluate_sources(checks: RedundantChecks, t_pushback_s: float, cruise_window
     return SourceEvaluation(first, first_source, int(win.sum()), held, by_p, resume)
 
 
+@dataclass(frozen=True, slots=True)
+class RedundantEvaluation:
+    """The accelerometer alone and the redundant rule over one labelled recording, scored alike
+    (:func:`flightmode.detector.evaluation.score`: false statics in the in-flight window, missed
+    static, response at the gate), with each source's states and who suspended / held / resumed."""
+
+    accel: object  # detector.evaluation.Evaluation: seed 000's detector alone
+    combined: object  # Evaluation of the same checks with final static = the rule's "allowed"
+    pressure: PressureChecks
+    checks: RedundantChecks
+    sources: SourceEvaluation
+    pressure_params: PressureParams
+
+    def summary(self) -> dict:
+        a, c, s = self.accel, self.combined, self.sources
+        return {
+            "pressure_params": {f.name: getattr(self.pressure_params, f.name) for f in fields(PressureParams)},
+            "accel_false_static_count": a.false_static_count, "accel_false_static_s": a.false_static_s,
+            "combined_false_static_count": c.false_static_count, "combined_false_static_s": c.false_static_s,
+            "combined_false_static_events": c.false_static_events,
+            "accel_response_s": a.response_s, "combined_response_s": c.response_s,
+            "accel_missed_static_s": a.missed_static_s, "combined_missed_static_s": c.missed_static_s,
+            "first_suspend_s": s.first_suspend_s, "first_source": s.first_source,
+            "cruise_checks": s.cruise_checks, "held_by": s.held_by, "held_by_pressure": s.held_by_pressure,
+            "resume_s": s.resume_s,
+        }
+
+
+def evaluate_redundant(t_s, acc_g, t_baro_s, baro_pa, labels: dict, accel_params: DetectorParams, sigma2,
+                       pressure_params: PressureParams | None = None, t_pushback_s: float | None = None
+                       ) -> RedundantEvaluation:
+    """Seed 000's detector, the pressure detector and the redundant rule over one labelled recording
+    (``labels``: ``in_flight_window``, ``sensor_static``, ``phase`` per accelerometer sample; the
+    pressure stream at its own rate, ``pressure_params.fs_hz`` defaulting to it). The rule's checks are
+    the accelerometer's, so the accelerometer alone and the rule are scored on the same checks.
+    ``t_pushback_s`` (default: the window's first sample) starts "which suspended first"; the calm
+    cruise windows are the runs of ``phase == "cruise"``; the gate response counts from the first
+    truly static sample after the window."""
+    import dataclasses
+
+    from flightmode.detector.evaluation import _check_labels, _runs, score
+    from flightmode.detector.flight_mode import detect
+
+    _check_labels(t_s, acc_g, labels)
+    tb = np.asarray(t_baro_s, float)
+    if pressure_params is None:
+        if tb.shape[0] < 3:
+            raise DetectorError("redundant rule: the pressure stream has fewer than 3 samples")
+        pressure_params = PressureParams(fs_hz=round(1.0 / float(np.median(np.diff(tb))), 6))
+    acc_checks = detect(t_s, acc_g, accel_params, sigma2)
+    pc = detect_pressure(tb, baro_pa, pressure_params)
+    rule = RedundantRule()
+    rc = _cat_redundant([rule.push(acc_checks, pc), rule.finish()])
+    accel = score(acc_checks, t_s, labels, accel_params, sigma2)
+    combined = score(dataclasses.replace(acc_checks, final_static=rc.allowed), t_s, labels, accel_params, sigma2)
+    window = np.asarray(labels["in_flight_window"], bool)
+    t = np.asarray(t_s, float)
+    win_idx = np.flatnonzero(window)
+    t_push = t_pushback_s if t_pushback_s is not None else (float(t[win_idx[0]]) if win_idx.size else float(t[0]))
+    cruise = np.asarray(labels["phase"], dtype=object) == "cruise"
+    cruise_windows = [(float(t[a]), float(t[b - 1])) for a, b in _runs(cruise)]
+    t_end = None
+    if win_idx.size:
+        after = np.flatnonzero(np.asarray(labels["sensor_static"], bool)[win_idx[-1]:])
+        t_end = float(t[win_idx[-1] + after[0]]) if after.size else None
+    sources = evaluate_sources(rc, t_push, cruise_windows, t_end)
+    return RedundantEvaluation(accel, combined, pc, rc, sources, pressure_params)
+
+
 __all__ = [
     "PressureChecks",
+    "RedundantEvaluation",
+    "evaluate_redundant",
     "PressureDetector",
     "PressureParams",
     "RedundantChecks",

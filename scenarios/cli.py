@@ -28,7 +28,7 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from flightmode.errors import FlightmodeError, ScenarioError
+from flightmode.errors import DetectorError, FlightmodeError, ScenarioError
 
 DEFAULT_SCENARIO = "gva-lhr-a320"  # the same as flightmode.scenarios.scenario.DEFAULT_SCENARIO (tested)
 
@@ -112,6 +112,7 @@ def fly_cmd(
     ),
     sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset (default: the scenario's).")] = None,
     gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
+    baro: Annotated[Optional[str], typer.Option("--baro", help="Fit a barometer (bmp581, bmp581-osrN, lps22hh, ideal): samples gain baro_pa, and the redundant rule runs.")] = None,
     rrd: Annotated[bool, typer.Option("--rrd/--no-rrd", help="Write recording.rrd (Rerun) beside the Parquet files.")] = True,
     origin: Annotated[Optional[str], typer.Option("--from", help="Fly from this airport (ICAO) instead of a scenario; needs --to and --aircraft.")] = None,
     destination: Annotated[Optional[str], typer.Option("--to", help="Destination airport (ICAO), with --from.")] = None,
@@ -140,6 +141,8 @@ def fly_cmd(
             sc = Scenario.resolve(DEFAULT_SCENARIO if scenario is None else scenario)
             if seed is not None:
                 sc = sc.replace(seed=seed)
+        if baro is not None:
+            sc = sc.replace(sensor={"baro": baro})
         console.print(Text.assemble((sc.name, "bold"), f" seed {sc.seed}: {sc.description}"), highlight=False)
         total = _estimate_duration_s(sc.plan)
         with Progress(
@@ -167,6 +170,13 @@ def fly_cmd(
         _print_summary(sc.plan, result.track, result.metrics, result.wall_s["fly"])
         _print_sensor(result.recording)
         _print_detector_line(result.detection)
+        if result.redundant is not None:
+            r = result.redundant
+            console.print(f"with the barometer ({result.recording.baro['preset']}): accelerometer OR pressure to suspend, "
+                          f"AND to resume: {r.combined.false_static_count} false-static events in flight (accelerometer "
+                          f"alone {r.accel.false_static_count}); response after the flight "
+                          f"{'never came back' if r.combined.response_s is None else f'{r.combined.response_s:.1f} s'}",
+                          highlight=False)
         _print_path_lines(result.path)
         rid = Path(out) / result.run_id
         files = ", ".join(p.name for p in result.written.values())
@@ -210,7 +220,7 @@ def _print_detector_line(e) -> None:
 @app.command("detect")
 def detect_cmd(
     source: Annotated[Path, typer.Argument(help="A run folder, or a samples.parquet file.")],
-    method: Annotated[str, typer.Option("--method", help="nmv or emv (seed 000's moving variance), or one of seed 001's detectors: amvd, amd, ared, shod, frd, ltsd, fsd, mbgtd, mbcd.")] = "nmv",
+    method: Annotated[str, typer.Option("--method", help="nmv or emv (seed 000's moving variance), nmv+baro or emv+baro (the redundant rule with the samples' barometer), or one of seed 001's detectors: amvd, amd, ared, shod, frd, ltsd, fsd, mbgtd, mbcd.")] = "nmv",
     window_s: Annotated[float, typer.Option("--window-s", help="Window W_s and check period, s.")] = 1.0,
     k: Annotated[float, typer.Option("--k", help="Amplitude threshold T_sigma = k sigma^2 (seed 001's detectors: k times the merit at rest).")] = 4.0,
     signal: Annotated[str, typer.Option("--signal", help="Seed 001's flexible input: acc, gyr, sum or product.")] = "acc",
@@ -221,6 +231,9 @@ def detect_cmd(
     bursts: Annotated[int, typer.Option("--bursts", help="Movebank e-obs file: final static after this many quiet bursts in a row.")] = 2,
     tag_number: Annotated[Optional[int], typer.Option("--tag-number", help="Movebank e-obs file: the tag's number (sets the nominal slope; a Movebank id is not one).")] = None,
     calibration: Annotated[Optional[Path], typer.Option("--calibration", help="Movebank e-obs file: a calibration TOML from `flightmode eobs calibrate`.")] = None,
+    baro_rate_pa_s: Annotated[float, typer.Option("--baro-rate-pa-s", help="+baro: the pressure rate bound, Pa/s.")] = 5.0,
+    baro_margin_hpa: Annotated[float, typer.Option("--baro-margin-hpa", help="+baro: the level margin below the ground reference, hPa (0: no level bound).")] = 25.0,
+    baro_hold_s: Annotated[float, typer.Option("--baro-hold-s", help="+baro: the pressure source's hold time, s.")] = 120.0,
 ) -> None:
     """Run the flight-mode detector over a recording (a run folder or samples.parquet) and print how
     it did against the truth; or, on a Movebank e-obs CSV, the duty-cycled detector per burst."""
@@ -244,6 +257,22 @@ def detect_cmd(
         else:
             fs = 1.0 / float(np.median(np.diff(t[: min(len(t), 10_000)])))
         labels = labels_of(cols)
+        base, _, extra = method.lower().partition("+")
+        if extra:
+            if base not in ("nmv", "emv") or extra != "baro":
+                raise DetectorError(f"--method {method!r}: the redundant rule is nmv+baro or emv+baro")
+            pp = _pressure_params(cols, info, source, baro_rate_pa_s, baro_margin_hpa, baro_hold_s)
+            p = DetectorParams(fs_hz=fs, window_s=window_s, k_sigma=k, time_threshold_s=time_threshold_s,
+                               method=base, weight=weight)
+            p.validate()
+            s2, s2_source = stream_sigma2(sigma2_from, cols, info, p.window)
+            from flightmode.detector.pressure import evaluate_redundant
+
+            new = cols["baro_new"]
+            red = evaluate_redundant(t, a, t[new], cols["baro_pa"][new], labels, p, s2, pp)
+            console.print(Text(f"{source}: accelerometer and barometer", style="bold"), highlight=False)
+            dr.print_redundant(console, red, s2_source)
+            return
         if method.lower() not in ("nmv", "emv"):
             _detect_activity(source, cols, info, labels, fs, method.lower(), window_s, k, time_threshold_s, signal,
                              sigma2_from)
@@ -260,6 +289,30 @@ def detect_cmd(
             dr.print_tables(console, t, a, labels, p, s2)
     except FlightmodeError as e:
         _die(e)
+
+
+def _pressure_params(cols: dict, info: dict | None, source, rate_pa_s: float, margin_hpa: float, hold_s: float):
+    """The pressure detector's parameters for a samples file's barometer (its rate from run.json, or
+    from the spacing of its readings)."""
+    import numpy as np
+
+    from flightmode.detector.pressure import PressureParams
+
+    if "baro_pa" not in cols or "baro_new" not in cols:
+        raise DetectorError(f"{source}: the samples have no barometer (baro_pa): fly with [sensor].baro = "
+                            "\"bmp581\" (or `flightmode fly --baro bmp581`)")
+    baro = ((info or {}).get("sensor") or {}).get("baro")
+    if baro:
+        fs = float(baro["odr_hz"])
+    else:
+        tb = cols["t_s"][cols["baro_new"]]
+        fs = round(1.0 / float(np.median(np.diff(tb))), 3) if tb.shape[0] > 2 else math.nan
+    if margin_hpa < 0:
+        raise DetectorError(f"--baro-margin-hpa {margin_hpa:g}: must be >= 0 (0: no level bound)")
+    pp = PressureParams(fs_hz=fs, rate_threshold_pa_s=rate_pa_s, level_margin_pa=margin_hpa * 100.0 if margin_hpa > 0 else None,
+                        hold_s=hold_s)
+    pp.validate()
+    return pp
 
 
 def _detect_movebank(source: Path, k: float, m: int, tag_number: int | None, calibration: Path | None) -> None:
@@ -433,6 +486,60 @@ def path_cmd(
             typer.echo(json.dumps(rows, indent=1))
         else:
             print_rows(console, rows, f"{info['run_id']}: path errors against the truth (bag seat position)")
+    except FlightmodeError as e:
+        _die(e)
+
+
+@app.command("cabin")
+def cabin_cmd(
+    run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`.")],
+    png: Annotated[Optional[Path], typer.Option("--png", help="Also draw the cabin beside the aircraft altitude to this PNG.")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the figures as JSON.")] = False,
+) -> None:
+    """The flight's cabin pressure: cruise cabin altitude and pressure, cabin climb and descent rates
+    and differential, beside the type's pressurisation schedule."""
+    from flightmode.scenarios import run_io
+    from flightmode.sim.flight.cabin import cabin_figures, get_cabin_profile
+
+    try:
+        track, info = run_io.read_track(run_dir)
+        if track.cabin_pressure_pa is None:
+            raise ScenarioError(f"{run_dir}: truth.parquet has no cabin pressure (written by an older flightmode); "
+                                "fly the scenario again")
+        f = cabin_figures(track.t_s, track.alt_m, track.cabin_altitude_m, track.cabin_pressure_pa,
+                          track.ambient_pressure_pa, track.phase_code)
+        prof = get_cabin_profile(track.aircraft)
+        limits = {"max_cabin_alt_ft": prof.max_cabin_alt_ft, "climb_rate_fpm": prof.climb_rate_fpm,
+                  "descent_rate_fpm": prof.descent_rate_fpm, "descent_rate_max_fpm": prof.descent_rate_max_fpm,
+                  "hold": track.conditions.get("hold", "pressurised")}
+        if png is not None:
+            from flightmode.viz.cabin_plot import cabin_png
+
+            cabin_png(track, f, limits, png, f"{info['run_id']}: {track.aircraft}, cabin and aircraft altitude")
+        if as_json:
+            import json
+
+            typer.echo(json.dumps({"figures": f, "schedule": limits}, indent=1))
+            return
+        t = Table("figure", "this flight", "the type's schedule", title=f"{info['run_id']}: cabin pressure ({track.aircraft})",
+                  title_justify="left")
+        t.add_row("highest aircraft altitude", f"{f['max_altitude_ft']:,.0f} ft", "")
+        t.add_row("cruise cabin altitude", f"{f['cruise_cabin_altitude_ft']:,.0f} ft",
+                  f"at most {prof.max_cabin_alt_ft:,.0f} ft")
+        t.add_row("cruise cabin pressure", f"{f['cruise_cabin_pressure_hpa']:.1f} hPa", "")
+        t.add_row("highest cabin altitude", f"{f['max_cabin_altitude_ft']:,.0f} ft", f"at most {prof.max_cabin_alt_ft:,.0f} ft")
+        t.add_row("fastest cabin climb in the air (10 s)", f"{f['max_cabin_climb_airborne_fpm']:.0f} ft/min",
+                  f"{prof.climb_rate_fpm:.0f} ft/min")
+        used = track.conditions.get("cabin_descent_rate_fpm", prof.descent_rate_fpm)
+        t.add_row("fastest cabin descent in the air (10 s)", f"{f['max_cabin_descent_airborne_fpm']:.0f} ft/min",
+                  f"{prof.descent_rate_fpm:.0f} ft/min, up to {prof.descent_rate_max_fpm:.0f} (this flight: {used:.0f})")
+        t.add_row("fastest on the runway (10 s)", f"{f['max_cabin_descent_fpm']:.0f} down, {f['max_cabin_climb_fpm']:.0f} up ft/min",
+                  f"{prof.prepress_rate_fpm:.0f} down (pre-pressurising), {prof.release_rate_fpm:.0f} up (release)")
+        t.add_row("largest differential", f"{f['max_differential_psi']:.2f} psi", "")
+        t.add_row("hold", limits["hold"], "")
+        console.print(t)
+        if png is not None:
+            console.print(Text.assemble("wrote ", (str(png), "bold")), highlight=False)
     except FlightmodeError as e:
         _die(e)
 

@@ -107,3 +107,36 @@ def print_tables(console: Console, t_s, acc_g, labels: dict, p: DetectorParams, 
         t.add_row(name, fmt(r["mv_below_threshold_s"]), fmt(r["first_temporary_static_s"]), fmt(r["response_s"]))
     console.print(t)
     return out
+
+
+def _s(x) -> str:
+    return "never" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.1f} s"
+
+
+def print_redundant(console: Console, r, sigma2_source: str) -> None:
+    """The redundant rule beside the accelerometer alone (:class:`flightmode.detector.pressure.RedundantEvaluation`)."""
+    a, c, s, pp = r.accel, r.combined, r.sources, r.pressure_params
+    p = a.params
+    t = Table("", "accelerometer alone", "accelerometer OR pressure (suspend), AND (resume)",
+              title=f"{p.method.upper()} W_s {p.window_s:g} s, {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s "
+                    f"(sigma^2: {sigma2_source}); pressure at {pp.fs_hz:g} Hz: |rate| <= {pp.rate_threshold_pa_s:g} Pa/s over "
+                    f"{pp.window_s:g} s, level within "
+                    + ("no margin" if pp.level_margin_pa is None else f"{pp.level_margin_pa / 100:g} hPa")
+                    + f" of the ground reference, for {pp.hold_s:g} s",
+              title_justify="left")
+    t.add_row("false statics in the in-flight window", str(a.false_static_count), str(c.false_static_count))
+    t.add_row("false static time", f"{a.false_static_s:g} s", f"{c.false_static_s:g} s")
+    t.add_row("missed static outside the window", f"{a.missed_static_s:g} s", f"{c.missed_static_s:g} s")
+    t.add_row("response at the gate", _s(a.response_s), _s(c.response_s))
+    console.print(t)
+    fs = s.first_suspend_s
+    console.print(f"after pushback, first to suspend: {s.first_source} (accelerometer {_s(fs['accelerometer'])}, "
+                  f"pressure {_s(fs['pressure'])} after t = 0)", highlight=False)
+    h, hp = s.held_by, s.held_by_pressure
+    console.print(f"cruise, {s.cruise_checks} checks: suspension held by the accelerometer only {h['accelerometer_only']}, "
+                  f"the pressure only {h['pressure_only']} (rate {hp['rate']}, level {hp['level']}, hold {hp['hold']}), "
+                  f"both {h['both']}, neither {h['neither']}", highlight=False)
+    if s.resume_s["combined"] is not None:
+        rs = s.resume_s
+        console.print(f"at the gate, from the bag at rest: accelerometer static after {_s(rs['accelerometer'])}, "
+                      f"pressure after {_s(rs['pressure'])}, transmission after {_s(rs['combined'])}", highlight=False)

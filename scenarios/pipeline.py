@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     import numpy as np
 
     from flightmode.detector.evaluation import Evaluation
+    from flightmode.detector.pressure import RedundantEvaluation
     from flightmode.sim.flight.track import FlightTrack
     from flightmode.sim.sensor.accelerometer import AccelerometerPreset
     from flightmode.sim.sensor.carrier import CarrierSpec
@@ -64,6 +65,7 @@ class RunResult:
     recording: Recording | None = None
     detection: Evaluation | None = None
     path: PathResult | None = None
+    redundant: RedundantEvaluation | None = None  # the redundant rule, when a barometer is fitted
     written: dict[str, Path] = field(default_factory=dict)  # file role -> path ({} when nothing was written)
     wall_s: dict[str, float] = field(default_factory=dict)  # stage -> wall-clock seconds
 
@@ -107,14 +109,25 @@ def fly(scenario: Scenario, streams: Streams, *, progress: Callable[[float, str]
     return _fly(scenario.plan, streams, workdir=workdir, progress=progress, stop_after_s=stop_after_s)
 
 
+def baro_preset(sensor: SensorChoice | str | AccelerometerPreset | None):
+    """The barometer a ``[sensor]`` choice fits (None: none, or not a SensorChoice)."""
+    if not isinstance(sensor, SensorChoice) or sensor.baro is None:
+        return None
+    from flightmode.sim.sensor.barometer import get_preset, with_odr
+
+    p = get_preset(sensor.baro)
+    return p if sensor.baro_odr_hz is None else with_odr(p, sensor.baro_odr_hz)
+
+
 def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str | AccelerometerPreset,
           streams: Streams | np.random.Generator | int, *, gyro: GyroSpec | None = None) -> Recording:
-    """What the bag's sensor records of ``track`` (``streams``: the run's sensor streams)."""
+    """What the bag's sensors record of ``track`` (``streams``: the run's sensor streams): the
+    accelerometer, and the barometer when the ``[sensor]`` choice fits one."""
     from flightmode.sim.sensor.sensing import sense as _sense
 
     level = getattr(sensor, "vibration_level", None)
     return _sense(track, carrier, sensor_preset(sensor), streams, gyro=gyro,
-                  vibration_level=1.0 if level is None else float(level))
+                  vibration_level=1.0 if level is None else float(level), baro=baro_preset(sensor))
 
 
 def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng: np.random.Generator) -> np.ndarray:
@@ -202,6 +215,19 @@ def detect(recording: Recording, rng: np.random.Generator) -> Evaluation:
     labels = {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
               "phase": recording.phase}
     return evaluate_recommended(recording.t_s, recording.acc_g, labels, recording.odr_hz, s2)
+
+
+def detect_redundant(recording: Recording, detection: Evaluation) -> RedundantEvaluation:
+    """The redundant rule (:func:`flightmode.detector.pressure.evaluate_redundant`) on a recording with
+    a barometer: seed 000's recommended detector (``detection``'s parameters and sigma^2) OR the
+    pressure detector at the barometer's rate (its default thresholds) to suspend, both to resume."""
+    from flightmode.detector.pressure import PressureParams, evaluate_redundant
+
+    tb, pb = recording.baro_stream
+    labels = {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
+              "phase": recording.phase}
+    return evaluate_redundant(recording.t_s, recording.acc_g, tb, pb, labels, detection.params, detection.sigma2,
+                              PressureParams(fs_hz=float(recording.baro["odr_hz"])))
 
 
 def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
@@ -407,12 +433,15 @@ def run(
         wall["fly"] = time.perf_counter() - t0
         if writer is not None:
             writer.submit("truth", "truth.parquet", run_io.write_truth, track)
-        rec = det = path = rrd_part = None
+        rec = det = path = rrd_part = red = None
         if "sense" in stages:
             tell("sense")
             t0 = time.perf_counter()
             g = gyro if isinstance(gyro, GyroSpec) else (GyroSpec() if gyro else None)
-            rec = sense(track, sc.carrier, sc.sensor if sensor is None else sensor, root.child("sensor"), gyro=g)
+            choice = sc.sensor if sensor is None else sensor
+            if not isinstance(choice, SensorChoice) and sc.sensor.baro is not None:  # another accelerometer, the same barometer
+                choice = dataclasses.replace(sc.sensor, preset=sensor_preset(choice).name, odr_hz=sensor_preset(choice).odr_hz)
+            rec = sense(track, sc.carrier, choice, root.child("sensor"), gyro=g)
             wall["sense"] = time.perf_counter() - t0
             if writer is not None:
                 writer.submit("samples", "samples.parquet", run_io.write_samples, rec)
@@ -420,16 +449,17 @@ def run(
             tell("detect")
             t0 = time.perf_counter()
             det = detect(rec, root.rng("detector/bench"))
+            red = detect_redundant(rec, det) if rec.baro_pa is not None else None
             wall["detect"] = time.perf_counter() - t0
             if writer is not None:
-                partial = RunResult(sc, sc.seed, track, metrics, rec, det, None, {}, wall)
+                partial = RunResult(sc, sc.seed, track, metrics, rec, det, None, red, {}, wall)
                 rrd_part = _rrd_after_detect(writer, partial, rrd)
         if "path" in stages:
             tell("path")
             t0 = time.perf_counter()
             path = estimate_path(track, rec)
             wall["path"] = time.perf_counter() - t0
-        result = RunResult(sc, sc.seed, track, metrics, rec, det, path, {}, wall)
+        result = RunResult(sc, sc.seed, track, metrics, rec, det, path, red, {}, wall)
         if writer is not None:
             tell("write")
             t0 = time.perf_counter()
@@ -441,5 +471,5 @@ def run(
     return result
 
 
-__all__ = ["run", "fly", "sense", "detect", "estimate_path", "write", "RunWriter", "RunResult", "PathResult", "STAGES",
+__all__ = ["run", "fly", "sense", "detect", "detect_redundant", "baro_preset", "estimate_path", "write", "RunWriter", "RunResult", "PathResult", "STAGES",
            "unit_sigma2", "stream_sigma2", "sensor_preset", "scenario_of", "streams_of"]

@@ -84,6 +84,9 @@ def track_table(track: FlightTrack):
     cols["in_flight_window"] = track.in_flight_window
     cols["airborne"] = track.airborne
     cols["turbulence_severity"] = _dict_column(track.turbulence_code, SEVERITIES)
+    for name in PRESSURE_COLUMNS:
+        if getattr(track, name) is not None:
+            cols[name] = getattr(track, name)
     out = {}
     for k, v in cols.items():
         if isinstance(v, np.ndarray) and v.dtype == np.float64 and k not in FLOAT64_COLUMNS:
@@ -92,8 +95,12 @@ def track_table(track: FlightTrack):
     return pa.table(out)
 
 
-# time and position keep double precision (float32 would quantise a 5000 km position to 0.5 m)
-FLOAT64_COLUMNS = frozenset({"t_s", "lat_deg", "lon_deg", "alt_m", "pos_n_m", "pos_e_m", "pos_d_m"})
+# time and position keep double precision (float32 would quantise a 5000 km position to 0.5 m), and so do
+# the pressures (float32 near 100 kPa steps by 0.008 Pa: below any barometer's noise, but an ideal
+# barometer read from the file would then differ from one read from the flight)
+FLOAT64_COLUMNS = frozenset({"t_s", "lat_deg", "lon_deg", "alt_m", "pos_n_m", "pos_e_m", "pos_d_m",
+                             "ambient_pressure_pa", "cabin_pressure_pa", "hold_pressure_pa"})
+PRESSURE_COLUMNS = ("ambient_pressure_pa", "cabin_pressure_pa", "cabin_altitude_m", "hold_pressure_pa")
 
 
 def recording_table(rec):
@@ -117,6 +124,10 @@ def recording_table(rec):
     cols["turbulence_severity"] = _dict_column(rec.turbulence_code, SEVERITIES)
     cols["sensor_static"] = pa.array(rec.sensor_static)
     cols["bag_state"] = _dict_column(rec.bag_state_code, BAG_STATES)
+    if rec.baro_pa is not None:  # the barometer, read at the accelerometer's rows, and the truth it measured
+        cols["baro_pa"] = pa.array(rec.baro_pa)
+        cols["baro_new"] = pa.array(rec.baro_new)
+        cols["pressure_pa"] = pa.array(rec.pressure_pa)
     return pa.table(cols)
 
 
@@ -157,7 +168,10 @@ def read_samples(path: Path) -> tuple[dict, dict | None]:
         out["gyro_dps"] = np.stack([np.asarray(col(f"gyro_{a}_dps"), float) for a in "xyz"], axis=1)
     if "raw_x" in t.column_names:
         out["counts"] = np.stack([np.asarray(col(f"raw_{a}"), np.int32) for a in "xyz"], axis=1)
-    for name in ("in_flight_window", "airborne", "sensor_static", "clipped"):
+    for name in ("baro_pa", "pressure_pa"):
+        if name in t.column_names:
+            out[name] = np.asarray(col(name), float)
+    for name in ("in_flight_window", "airborne", "sensor_static", "clipped", "baro_new"):
         if name in t.column_names:
             out[name] = np.asarray(col(name), bool)
     for name in ("phase", "bag_state", "turbulence_severity"):
@@ -263,6 +277,7 @@ def track_from_table(t, info: dict) -> FlightTrack:
         turbulence_code=_codes(turb, SEVERITIES),
         events=tuple(Event(e["t_s"], e["name"], e["detail"]) for e in info["events"]),
         conditions=info.get("conditions", {}),
+        **{k: np.asarray(c[k], float) if k in c else None for k in PRESSURE_COLUMNS},
     )
 
 
@@ -349,6 +364,8 @@ def run_info(result) -> dict:
         info["sensor"] = result.recording.summary()
     if result.detection is not None:
         info["detector"] = result.detection.summary() | {"sigma2_from": "bench calibration of the unit"}
+    if result.redundant is not None:
+        info["redundant"] = result.redundant.summary()
     if result.path is not None:
         info["path"] = result.path.rows
         info["path_laws_m"] = {"random_walk": result.path.random_walk_m, "offset": result.path.offset_drift_m,

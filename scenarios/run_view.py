@@ -44,6 +44,15 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
         "n1_pct": (ta, track.n1_pct[k], [f"N1 engine {i + 1}" for i in range(ne)]),
         "load_factor_g": (ta, -track.specific_force_body_mps2[k, 2] / G0_MPS2, ["n_z"]),
     }
+    if track.cabin_pressure_pa is not None:  # the pressure truth (sim.flight.cabin), and the bag's barometer
+        aircraft["cabin_altitude_m"] = (ta, np.column_stack([track.alt_m[k], track.cabin_altitude_m[k]]),
+                                        ["aircraft altitude MSL", "cabin pressure altitude"])
+        hpa = [track.ambient_pressure_pa[k] / 100.0, track.cabin_pressure_pa[k] / 100.0]
+        names = ["ambient", "cabin"]
+        if rec.baro_pa is not None:
+            hpa.append(np.interp(ta, rec.t_s[rec.baro_new], rec.baro_pa[rec.baro_new]) / 100.0)
+            names.append(f"barometer ({rec.baro['preset']})")
+        aircraft["pressure_hpa"] = (ta, np.column_stack(hpa), names)
     # 3D pose at 2 Hz: position NED -> ENU, attitude body -> NED -> ENU
     kp = every(2.0)
     pos = track.pos_ned_m[kp] @ NED_TO_ENU.T

@@ -37,6 +37,8 @@ class SensorChoice:
     preset: str = "lis302dl-logged16"
     odr_hz: float | None = None
     vibration_level: float | None = None  # the floor vibration's multiplier (None: 1, as drawn)
+    baro: str | None = None  # a barometer preset fitted beside the accelerometer (None: none)
+    baro_odr_hz: float | None = None  # its output data rate (None: the preset's)
 
 
 @dataclass(frozen=True, slots=True)
@@ -89,9 +91,14 @@ class Scenario:
             touchdown_sink_mps=v["landing"]["sink_mps"],
             surface_wind_mps=v["atmosphere"]["surface_wind_mps"],
             background_edr=v["atmosphere"]["background_edr"],
+            departure_qnh_hpa=v["atmosphere"]["departure_qnh_hpa"],
+            arrival_qnh_hpa=v["atmosphere"]["arrival_qnh_hpa"],
+            isa_dev_k=v["atmosphere"]["isa_dev_k"],
+            hold=v["cabin"]["hold"],
         )
-        sensor = SensorChoice(v["sensor"]["preset"], v["sensor"]["odr_hz"], v["sensor"]["vibration_level"])
-        check_scenario(source, plan, sensor.preset, sensor.odr_hz)
+        sen = v["sensor"]
+        sensor = SensorChoice(sen["preset"], sen["odr_hz"], sen["vibration_level"], sen["baro"], sen["baro_odr_hz"])
+        check_scenario(source, plan, sensor.preset, sensor.odr_hz, sensor.baro, sensor.baro_odr_hz)
         return cls(s["description"], s["seed"], plan, CarrierSpec(**v["carrier"]), sensor, source)
 
     @classmethod
@@ -154,11 +161,15 @@ class Scenario:
                                     "landing_flaps_norm": p.landing_flaps_norm}),
             "landing": _drop_none({"autobrake_decel_mps2": p.autobrake_decel_mps2, "quality": p.landing_quality,
                                    "sink_mps": p.touchdown_sink_mps}),
-            "atmosphere": _drop_none({"surface_wind_mps": p.surface_wind_mps, "background_edr": p.background_edr}),
+            "atmosphere": _drop_none({"surface_wind_mps": p.surface_wind_mps, "background_edr": p.background_edr,
+                                      "departure_qnh_hpa": p.departure_qnh_hpa, "arrival_qnh_hpa": p.arrival_qnh_hpa,
+                                      "isa_dev_k": p.isa_dev_k}),
+            "cabin": {"hold": p.hold},
             "shutdown": {"post_shutdown_s": p.post_shutdown_s},
             "carrier": _drop_none(dataclasses.asdict(c)),
             "sensor": _drop_none({"preset": self.sensor.preset, "odr_hz": self.sensor.odr_hz,
-                                  "vibration_level": self.sensor.vibration_level}),
+                                  "vibration_level": self.sensor.vibration_level, "baro": self.sensor.baro,
+                                  "baro_odr_hz": self.sensor.baro_odr_hz}),
         }
         if p.turbulence:
             doc["turbulence"] = [_drop_none({"start_s": t.start_s, "duration_s": t.duration_s, "severity": t.severity,

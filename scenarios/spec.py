@@ -16,7 +16,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from flightmode.sim.flight.cabin import HOLD_OPTIONS, ISA_DEV_RANGE_K, QNH_RANGE_HPA
 from flightmode.sim.sensor.accelerometer import PRESETS as SENSOR_PRESETS
+from flightmode.sim.sensor.barometer import PRESETS as BARO_PRESETS
 from flightmode.sim.flight.aircraft_profiles import PROFILES
 from flightmode.sim.sensor.carrier import KINDS as CARRIER_KINDS
 from flightmode.sim.sensor.carrier import CABIN_ROWS, PACKINGS, PLACEMENTS, CarrierSpec
@@ -101,6 +103,16 @@ SPEC: dict[str, dict[str, Key]] = {
                                 optional=True, lo=0, hi=30),
         "background_edr": Key(float, "background turbulence above 2000 ft, EDR m^2/3 s^-1; absent: drawn",
                               optional=True, lo=0.001, hi=0.1),
+        "departure_qnh_hpa": Key(float, "the departure airport's QNH (sea-level pressure setting); absent: drawn",
+                                 optional=True, lo=QNH_RANGE_HPA[0], hi=QNH_RANGE_HPA[1]),
+        "arrival_qnh_hpa": Key(float, "the arrival airport's QNH; absent: drawn", optional=True,
+                               lo=QNH_RANGE_HPA[0], hi=QNH_RANGE_HPA[1]),
+        "isa_dev_k": Key(float, "temperature deviation from the ISA at both airports, K; absent: drawn per airport",
+                         optional=True, lo=ISA_DEV_RANGE_K[0], hi=ISA_DEV_RANGE_K[1]),
+    },
+    "cabin": {
+        "hold": Key(str, "the cargo hold: pressurised (the cabin's pressure, as on every profiled type) or "
+                         "unpressurised (ambient: some cargo aircraft's holds)", "pressurised", choices=HOLD_OPTIONS),
     },
     "descent": {
         "angle_deg": Key(float, "descent path angle from cruise to the glideslope", 2.8, lo=1.5, hi=4.0),
@@ -159,11 +171,15 @@ SPEC: dict[str, dict[str, Key]] = {
         "odr_hz": Key(float, "output data rate; absent: the preset's", optional=True, lo=0.5, hi=1000),
         "vibration_level": Key(float, "multiplier of the floor vibration drawn for the flight (a population's "
                                       "spread of levels); absent: 1", optional=True, lo=0.05, hi=20),
+        "baro": Key(str, "barometer preset fitted beside the accelerometer (samples gain baro_pa); absent: none",
+                    optional=True, choices=tuple(BARO_PRESETS)),
+        "baro_odr_hz": Key(float, "the barometer's output data rate; absent: the preset's", optional=True,
+                           lo=0.1, hi=500),
     },
 }
 ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables
-OPTIONAL_SECTIONS = {"takeoff", "route", "turbulence", "atmosphere", "descent", "approach", "landing", "shutdown",
-                     "carrier", "sensor"}
+OPTIONAL_SECTIONS = {"takeoff", "route", "turbulence", "atmosphere", "cabin", "descent", "approach", "landing",
+                     "shutdown", "carrier", "sensor"}
 
 
 def _fail(source: str, path: str, value: Any, allowed: str, hint: str = "") -> ScenarioError:
@@ -260,14 +276,22 @@ def validate_doc(doc: dict[str, Any], source: str = "<scenario>") -> dict[str, A
     return v
 
 
-def check_scenario(source: str, plan: FlightPlan, sensor_preset: str, sensor_odr_hz: float | None) -> None:
-    """The checks across keys: the route is long enough for the cruise asked, the sensor part has the
-    output data rate asked."""
+def check_scenario(source: str, plan: FlightPlan, sensor_preset: str, sensor_odr_hz: float | None,
+                   baro: str | None = None, baro_odr_hz: float | None = None) -> None:
+    """The checks across keys: the route is long enough for the cruise asked, the sensor parts have the
+    output data rates asked."""
     _check_distance(source, plan)
     allowed = SENSOR_PRESETS[sensor_preset].allowed_odr_hz
     if sensor_odr_hz is not None and sensor_odr_hz not in allowed:
         raise _fail(source, "[sensor].odr_hz", sensor_odr_hz,
                     f"the {sensor_preset} part has only {', '.join(f'{f:g}' for f in allowed)} Hz")
+    if baro_odr_hz is not None:
+        if baro is None:
+            raise _fail(source, "[sensor].baro_odr_hz", baro_odr_hz, "needs [sensor].baro (the barometer preset)")
+        allowed = BARO_PRESETS[baro].allowed_odr_hz
+        if baro_odr_hz not in allowed:
+            raise _fail(source, "[sensor].baro_odr_hz", baro_odr_hz,
+                        f"the {baro} part has only {', '.join(f'{f:g}' for f in allowed)} Hz")
 
 
 CLIMB_GRADIENT = 0.06  # a typical airliner climb gradient (6 %, about 1800 ft/min at 300 kt)

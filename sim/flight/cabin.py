@@ -387,8 +387,41 @@ def hold_pressure_pa(cabin_pressure_pa, ambient_pressure_pa, hold: str) -> np.nd
     return np.asarray(cabin_pressure_pa if hold == "pressurised" else ambient_pressure_pa, float).copy()
 
 
+def cabin_figures(t_s, alt_m, cabin_altitude_m, cabin_pressure_pa, ambient_pressure_pa, phase_code,
+                  rate_window_s: float = 10.0) -> dict:
+    """A flight's cabin in the figures a pressurisation schedule is specified by: the cruise cabin
+    altitude and pressure (medians over the cruise phase), the largest cabin climb and descent rates
+    (ft/min, differences over ``rate_window_s``: the controller's rate limits are per minute, and the
+    outflow valve's lag smooths anything shorter), over the whole flight and airborne only (on the
+    runway the cabin is pre-pressurised and released at their own rates), the largest differential
+    (psi) and the aircraft's highest altitude."""
+    t = np.asarray(t_s, float)
+    h = np.asarray(cabin_altitude_m, float)
+    code = np.asarray(phase_code)
+    step = max(1, int(round(rate_window_s / float(np.median(np.diff(t))))))
+    rate_fpm = (h[step:] - h[:-step]) / (t[step:] - t[:-step]) / FPM_MPS
+    air = np.isin(code, [PHASE_CODE[p] for p in AIRBORNE_PHASES])
+    air_rate = rate_fpm[air[step:] & air[:-step]]  # both ends airborne (the runway's pre-pressurisation excluded)
+    cruise = code == PHASE_CODE["cruise"]
+    diff = np.asarray(cabin_pressure_pa, float) - np.asarray(ambient_pressure_pa, float)
+    return {
+        "max_altitude_ft": float(np.max(alt_m)) / FT_M,
+        "cruise_cabin_altitude_ft": float(np.median(h[cruise])) / FT_M if cruise.any() else math.nan,
+        "cruise_cabin_pressure_hpa": float(np.median(np.asarray(cabin_pressure_pa)[cruise])) / HPA_PA
+        if cruise.any() else math.nan,
+        "max_cabin_altitude_ft": float(np.max(h)) / FT_M,
+        "max_cabin_climb_fpm": float(max(rate_fpm.max(), 0.0)) if rate_fpm.size else math.nan,
+        "max_cabin_descent_fpm": float(max(-rate_fpm.min(), 0.0)) if rate_fpm.size else math.nan,
+        "max_cabin_climb_airborne_fpm": float(max(air_rate.max(), 0.0)) if air_rate.size else math.nan,
+        "max_cabin_descent_airborne_fpm": float(max(-air_rate.min(), 0.0)) if air_rate.size else math.nan,
+        "max_differential_psi": float(diff.max()) / PSI_PA,
+        "min_differential_psi": float(diff.min()) / PSI_PA,
+    }
+
+
 __all__ = [
     "CABIN_PROFILES",
+    "cabin_figures",
     "DOOR_OPEN_PHASES",
     "HOLD_OPTIONS",
     "CabinProfile",

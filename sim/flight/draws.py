@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flightmode.sim.flight.aircraft_profiles import AircraftProfile
+from flightmode.sim.flight.cabin import Weather, draw_weather
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.turbulence import Atmosphere, draw_atmosphere
 from flightmode.units import FPS_MPS
@@ -38,12 +39,15 @@ class FlightDraws:
     climb_vs_mps: tuple[float, float, float]  # below the CAS crossover, constant CAS, constant Mach
     touchdown_sink_mps: float  # what the flare aims at
     atmosphere: Atmosphere
+    departure_weather: Weather  # the airports' QNH and ISA deviation (sim.flight.cabin)
+    arrival_weather: Weather
 
     def as_dict(self) -> dict:
         a = self.atmosphere
         return {"climb_vs_mps": list(self.climb_vs_mps), "touchdown_sink_target_mps": self.touchdown_sink_mps,
                 "surface_wind_mps": a.w20_mps, "background_edr_mid": a.edr_mid, "background_edr_upper": a.edr_upper,
-                "patch_edr": list(a.patch_edr)}
+                "patch_edr": list(a.patch_edr), "departure_weather": self.departure_weather.as_dict(),
+                "arrival_weather": self.arrival_weather.as_dict()}
 
 
 def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
@@ -55,7 +59,8 @@ def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
 
 
 def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDraws:
-    """One flight's draws from its ``flight`` streams (named: ``climb``, ``landing``, ``turbulence/atmosphere``)."""
+    """One flight's draws from its ``flight`` streams (named: ``climb``, ``landing``, ``turbulence/atmosphere``,
+    ``weather/departure``, ``weather/arrival``); the plan's fixed values replace the draws."""
     c = profile.climb
     r = streams.rng("climb")
     climb = (c.vs_pre_cas.draw(r), c.vs_cas.draw(r), c.vs_mach.draw(r))
@@ -64,4 +69,15 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
         sink = plan.touchdown_sink_mps
     atm = draw_atmosphere(streams.rng("turbulence/atmosphere"), plan.turbulence, w20_mps=plan.surface_wind_mps,
                           background_edr=plan.background_edr)
-    return FlightDraws(climb, float(sink), atm)
+    dep = _weather(plan, plan.departure_qnh_hpa, streams.rng("weather/departure"))
+    arr = _weather(plan, plan.arrival_qnh_hpa, streams.rng("weather/arrival"))
+    if plan.origin.icao == plan.destination.icao and plan.arrival_qnh_hpa is None:
+        arr = dep  # back where it started (a pattern): one airport, one weather (a flight's hour moves QNH ~1 hPa)
+    return FlightDraws(climb, float(sink), atm, dep, arr)
+
+
+def _weather(plan: FlightPlan, qnh_hpa: float | None, rng: np.random.Generator) -> Weather:
+    """One airport's weather: drawn (sim.flight.cabin.draw_weather), then the plan's fixed values."""
+    w = draw_weather(rng)
+    return Weather(w.qnh_hpa if qnh_hpa is None else float(qnh_hpa),
+                   w.isa_dev_k if plan.isa_dev_k is None else float(plan.isa_dev_k))

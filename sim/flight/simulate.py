@@ -237,8 +237,23 @@ def fly(
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
     track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
     fuel = {"fuel_planned_kg": fuel_kg, "fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
+    cab = pressure_truth(track, plan, draws)
     return dataclasses.replace(track, conditions=draws.as_dict() | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m}
-                               | fuel)
+                               | fuel | {"cruise_cabin_altitude_m": cab.cruise_cabin_altitude_m,
+                                         "cabin_descent_rate_fpm": cab.descent_rate_fpm, "hold": cab.hold},
+                               ambient_pressure_pa=cab.ambient_pressure_pa, cabin_pressure_pa=cab.cabin_pressure_pa,
+                               cabin_altitude_m=cab.cabin_altitude_m, hold_pressure_pa=cab.hold_pressure_pa)
+
+
+def pressure_truth(track: FlightTrack, plan: FlightPlan, draws):
+    """The flight's pressure truth (:func:`flightmode.sim.flight.cabin.cabin_pressure`): the type's
+    schedule to the plan's cruise level, under the drawn (or fixed) weather at both airports."""
+    from flightmode.sim.flight.cabin import cabin_pressure
+
+    return cabin_pressure(track.t_s, track.alt_m, track.phase_code, plan.cruise_alt_m, plan.aircraft,
+                          weather=draws.departure_weather, arrival_weather=draws.arrival_weather,
+                          departure_elev_m=plan.origin.elevation_m, arrival_elev_m=plan.destination.elevation_m,
+                          hold=plan.hold)
 
 
 def _gather(raw: np.ndarray, scales: np.ndarray, groups: dict[str, list[int]], block: int = 8192) -> dict[str, np.ndarray]:

@@ -62,6 +62,11 @@ class FlightTrack:
     turbulence_code: np.ndarray  # uint8 into flightmode.labels.SEVERITIES
     events: tuple[Event, ...]
     conditions: dict = field(default_factory=dict)  # the flight's draws (sim.flight.draws.FlightDraws.as_dict)
+    # pressure truth (sim.flight.cabin.cabin_pressure; None on a track read from an older file)
+    ambient_pressure_pa: np.ndarray | None = None  # static pressure outside, under the airports' weather
+    cabin_pressure_pa: np.ndarray | None = None  # the pressurised cabin (ambient while the door is open)
+    cabin_altitude_m: np.ndarray | None = None  # its ISA pressure altitude
+    hold_pressure_pa: np.ndarray | None = None  # the cargo hold (the cabin's, or ambient when unpressurised)
 
     @property
     def n(self) -> int:

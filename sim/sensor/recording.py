@@ -32,6 +32,22 @@ class Recording:
     bag_state_code: np.ndarray
     sensor_static: np.ndarray
     gyro_dps: np.ndarray | None = None  # (M, 3) optional gyroscope, deg/s, sensor axes
+    # the pressure at the bag (truth: the cabin's, the hold's, or ambient off board; None: a track
+    # without pressure truth) and an optional barometer read at the accelerometer's rows: baro_pa is
+    # the latest reading (held), baro_new marks the rows where a new one arrived (sensing.read_barometer)
+    pressure_pa: np.ndarray | None = None
+    baro_pa: np.ndarray | None = None
+    baro_new: np.ndarray | None = None
+    baro: dict | None = None  # {"preset", "odr_hz", "unit": {...}} of the fitted barometer
+
+    @property
+    def baro_stream(self) -> tuple[np.ndarray, np.ndarray]:
+        """The barometer's own stream (t_s, baro_pa): the rows where a new reading arrived."""
+        if self.baro_pa is None:
+            from flightmode.errors import SensorError
+
+            raise SensorError("the recording has no barometer: fit one ([sensor].baro or --baro PRESET)")
+        return self.t_s[self.baro_new], self.baro_pa[self.baro_new]
 
     @property
     def n(self) -> int:
@@ -59,7 +75,7 @@ class Recording:
             "carrier": asdict(self.carrier),
             "static_fraction": float(self.sensor_static.mean()),
             "clipped_samples": int(self.clipped.any(axis=1).sum()),
-        }
+        } | ({"baro": self.baro} if self.baro is not None else {})
 
     def digest(self) -> str:
         """Equal digests mean bit-identical recordings (:func:`flightmode.digest.digest`)."""

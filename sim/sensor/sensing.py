@@ -32,6 +32,7 @@ from flightmode.sim.sensor import carrier as car
 from flightmode.sim.sensor import mount as mnt
 from flightmode.errors import SensorError
 from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, UnitDraw, draw_unit
+from flightmode.sim.sensor.barometer import BarometerPreset
 from flightmode.sim.flight import atmosphere
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.labels import PHASE_CODE
@@ -82,6 +83,7 @@ def sense(
     gyro: GyroSpec | None = None,
     mount: mnt.MountDraw | None = None,
     vibration_level: float = 1.0,
+    baro: BarometerPreset | None = None,
 ) -> Recording:
     """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``.
 
@@ -96,6 +98,9 @@ def sense(
     and ``floor``): ``mount`` imposes the mount (on every placement), ``vibration`` the floor's
     vibration model as it is (no type, location or flight factor applied); ``vibration_level``
     multiplies the floor's amplitudes (1: as drawn).
+
+    ``baro``: a barometer fitted beside the accelerometer (:func:`read_barometer`, streams
+    ``baro/unit`` and ``baro/noise``); it needs a track with pressure truth.
     """
     _check_track(track)
     preset.validate()
@@ -193,11 +198,61 @@ def sense(
         t_out, counts, acc, clipped = t_out[keep], counts[keep], acc[keep], clipped[keep]
     gyro_dps = None if gyro is None else _gyro(t_out, segs, track, gyro, streams.rng("gyro"))
     labels = _labels(t_out, segs, track, events)
+    pressure = None if track.cabin_pressure_pa is None else bag_pressure_pa(t_out, segs, track)
+    baro_cols = {}
+    if baro is not None:
+        if pressure is None:
+            raise SensorError("a barometer needs the track's pressure truth: this track has none "
+                              "(read from an older file); fly the scenario again")
+        baro_cols = read_barometer(t_out, segs, track, baro, streams)
     return Recording(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
         preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft,
-        segments=tuple(segs), gyro_dps=gyro_dps, **labels,
+        segments=tuple(segs), gyro_dps=gyro_dps, pressure_pa=pressure, **labels, **baro_cols,
     )
+
+
+def _in_hold(seg: car.Segment) -> bool:
+    return seg.on_board and (seg.state == "in_hold" or seg.placement == "hold")
+
+
+def bag_pressure_pa(t: np.ndarray, segs, track: FlightTrack) -> np.ndarray:
+    """The true pressure at the bag at times ``t``: the cabin's while on board in the cabin, the
+    hold's in the hold, ambient off board (the terminal, the truck: the airport's, the track's ends
+    held; a road leg's elevation change is not modelled)."""
+    seg_t0 = np.array([s.t0_s for s in segs])
+    si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
+    rows = np.vstack([track.ambient_pressure_pa, track.cabin_pressure_pa, track.hold_pressure_pa])
+    amb, cab, hold = _track_rows_at(rows, track, t)
+    where = np.array([2 if _in_hold(s) else 1 if s.on_board else 0 for s in segs], np.intp)[si]
+    return np.choose(where, (amb, cab, hold))
+
+
+def read_barometer(t_rows: np.ndarray, segs, track: FlightTrack, preset: BarometerPreset,
+                   streams: Streams) -> dict:
+    """A barometer beside the accelerometer: it converts on its own grid ``t_rows[0] + k / ODR``
+    (:func:`flightmode.sim.sensor.barometer.measure`: the unit from stream ``baro/unit``, the noise
+    from ``baro/noise``) and the tracker reads it at its accelerometer rows: each row holds the
+    latest reading, ``baro_new`` marks the rows where a new one arrived (the first row at or after
+    each conversion; conversions falling in a gap between rows, e.g. between bursts, are lost but
+    the last). The barometer's stream is ``t_rows[baro_new]``, ``baro_pa[baro_new]``: time-stamped
+    when the firmware reads it, at most one accelerometer period after the conversion."""
+    from flightmode.sim.sensor.barometer import draw_unit as draw_baro_unit
+    from flightmode.sim.sensor.barometer import measure, sample_times
+
+    preset.validate()
+    ticks = sample_times(t_rows, preset.odr_hz)
+    if ticks.shape[0] < 2:
+        raise SensorError(f"barometer at {preset.odr_hz:g} Hz: the recording is shorter than two readings")
+    unit = draw_baro_unit(preset, streams.rng("baro/unit"))
+    p_true = bag_pressure_pa(ticks, segs, track)
+    _, y = measure(ticks, p_true, preset, streams.rng("baro/noise"), unit=unit, t0_s=float(ticks[0]))
+    k = np.searchsorted(ticks, t_rows, side="right") - 1  # the latest conversion at or before each row
+    new = np.empty(t_rows.shape[0], bool)
+    new[0] = True
+    new[1:] = k[1:] != k[:-1]
+    return {"baro_pa": y[k], "baro_new": new,
+            "baro": {"preset": preset.name, "odr_hz": preset.odr_hz, "unit": unit.as_dict()}}
 
 
 def draw_path(aircraft: str, spec: car.CarrierSpec, streams: Streams) -> tuple[FloorDraw, dict[str, mnt.MountDraw]]:
