@@ -23,6 +23,7 @@ from flightmode.detector.flight_mode import DetectorParams, detect, final_static
 from flightmode.detector.moving_variance import DetectorError
 
 METHODS = ("nmv", "emv")
+REDUNDANT = ("nmv+baro", "emv+baro")  # the moving variance AND the pressure source (detector.pressure)
 
 
 @dataclass(frozen=True, slots=True)
@@ -55,12 +56,12 @@ class Grid:
         from flightmode.detector.activity import registry
 
         for method, weight in self.methods:
-            if method not in METHODS:
+            if method not in METHODS and method not in REDUNDANT:
                 if method not in registry.NAMES:
                     from flightmode.errors import did_you_mean
 
-                    names = METHODS + registry.NAMES
-                    raise DetectorError(f"--method {method!r}: use nmv, emv or one of seed 001's detectors "
+                    names = METHODS + REDUNDANT + registry.NAMES
+                    raise DetectorError(f"--method {method!r}: use nmv, emv, nmv+baro, emv+baro or one of seed 001's detectors "
                                         f"({', '.join(registry.NAMES)}){did_you_mean(method, names)}")
                 d = registry.get(method)
                 if d.needs_gyro:
@@ -84,9 +85,12 @@ class Grid:
 
 
 def evaluate_grid(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, grid: Grid, fs_hz: float,
-                  sigma2_of: Callable[[int], np.ndarray]) -> Iterator[tuple[DetectorParams, Evaluation]]:
+                  sigma2_of: Callable[[int], np.ndarray], gate: Callable[[np.ndarray], np.ndarray] | None = None,
+                  ) -> Iterator[tuple[DetectorParams, Evaluation]]:
     """(parameters, evaluation) for every point of ``grid`` over one stream. ``sigma2_of(window)``:
-    sigma^2 per axis for a window of that many samples (a calibration depends on the window)."""
+    sigma^2 per axis for a window of that many samples (a calibration depends on the window).
+    ``gate(check_times)``: another source's "at rest" per check, ANDed with the final static (the
+    redundant rule: :func:`flightmode.detector.pressure.static_at`)."""
     grid.validate(fs_hz)
     sigma2_by_window: dict[int, np.ndarray] = {}  # a calibration depends on the window, not the method
     for (method, weight), w in itertools.product(grid.methods, grid.windows_s):
@@ -96,13 +100,16 @@ def evaluate_grid(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, grid: Grid, 
             sigma2_by_window[base.window] = np.asarray(sigma2_of(base.window), float)
         sigma2 = sigma2_by_window[base.window]
         checks = detect(t_s, acc_g, base, sigma2)  # the moving variance, once
+        allowed = None if gate is None else np.asarray(gate(checks.t_s), bool)
         for k in grid.ks:
             temp = np.all(checks.mv < k * sigma2, axis=1)  # eq. 7 (as FlightModeDetector: k_sigma * sigma2)
             for tth in grid.time_thresholds_s:
                 p = dataclasses.replace(base, k_sigma=k, time_threshold_s=tth)
                 fin = final_static(temp, checks.after_reset, p.checks_needed)  # eq. 8
+                if allowed is not None:
+                    fin = fin & allowed
                 c = dataclasses.replace(checks, temporary_static=temp, final_static=fin)
                 yield p, score(c, t_s, labels, p, sigma2)
 
 
-__all__ = ["Grid", "evaluate_grid", "METHODS"]
+__all__ = ["Grid", "evaluate_grid", "METHODS", "REDUNDANT"]

@@ -20,10 +20,15 @@ time as T_th. The reference ``p_ref`` is the first window's mean (the stream sta
 the ground) and then follows the window mean at every static check, so slow weather and road
 elevation changes at rest are tracked; while suspended it is frozen at the departure ground pressure.
 
-*Known limitation of the level bound*: an arrival field more than the margin above the last ground
-reference (e.g. 1,300 ft higher: London to Geneva) leaves the level bound out after landing, so the
-pressure source holds the suspension until something re-references it (a known destination, a
-descent-ended rule); :func:`evaluate_sources` shows it as ``held`` by ``pressure_level``.
+*The arrival field*: an arrival field more than the margin above the departure's (e.g. 1,330 ft
+higher: London to Geneva) would leave the level bound out after landing for ever. The pressure alone
+cannot tell that ground from a level-off in the descent, so the detector takes the destination's
+expected ground pressure when it is known (``arrival_ground_pa``: a shipment's tracker is told its
+route; flightmode uses the ISA pressure at the destination's elevation, the day's QNH being within
+the margin): the level bound also holds within the margin of it. The cost: a holding pattern whose
+cabin is within the margin of the arrival field's pressure (a low hold near the destination) is
+quiet to the pressure source after the hold time, and the accelerometer alone guards it. Without a
+known destination :func:`evaluate_sources` shows such a flight ``held`` by ``pressure_level``.
 
 **Thresholds from the noise (seed 000 section 5.1.1 style).** With white noise sigma_p per sample,
 the slope has sigma_r = sigma_p sqrt(12 / (N (N^2 - 1))) fs (:func:`rate_sigma_pa_s`) and the mean
@@ -86,6 +91,10 @@ class PressureParams:
     level_margin_pa: float | None = 2500.0  # None: no level bound (rate only)
     hold_s: float = 120.0
     max_gap_periods: float = 1.5  # consecutive samples further apart than this many periods: a gap
+    # the destination's expected ground pressure (a shipment's tracker knows its route): the level bound
+    # also holds within the margin of it, so an arrival field higher than the departure's by more than the
+    # margin does not hold the suspension for ever; None: the departure reference only
+    arrival_ground_pa: float | None = None
 
     @property
     def window(self) -> int:
@@ -117,6 +126,8 @@ class PressureParams:
             raise DetectorError(f"pressure detector: hold time {self.hold_s} s must be > 0")
         if not self.max_gap_periods > 1:
             raise DetectorError(f"pressure detector: max_gap_periods {self.max_gap_periods} must be > 1")
+        if self.arrival_ground_pa is not None and not (math.isfinite(self.arrival_ground_pa) and self.arrival_ground_pa > 0):
+            raise DetectorError(f"pressure detector: arrival_ground_pa {self.arrival_ground_pa} must be a pressure > 0 Pa")
 
 
 def slope_weights(n: int, fs_hz: float) -> np.ndarray:
@@ -329,7 +340,8 @@ class PressureDetector:
                 self._ref = float(mean[k])
             ref[k] = self._ref
             if p.level_margin_pa is not None:
-                level_ok[k] = mean[k] >= self._ref - p.level_margin_pa
+                level_ok[k] = mean[k] >= self._ref - p.level_margin_pa or (
+                    p.arrival_ground_pa is not None and abs(mean[k] - p.arrival_ground_pa) <= p.level_margin_pa)
             quiet[k] = rate_ok[k] and level_ok[k]
             self._run = self._run + 1 if quiet[k] else 0
             static[k] = self._run >= need
@@ -346,6 +358,14 @@ class PressureDetector:
 def detect_pressure(t_s, baro_pa, params: PressureParams = PressureParams()) -> PressureChecks:
     """Batch front end: every pressure check of a whole stream."""
     return PressureDetector(params).push(t_s, baro_pa)
+
+
+def static_at(checks: PressureChecks, t_s) -> np.ndarray:
+    """The pressure source's state as of each time (its last check at or before it; not static before
+    its first check): what the redundant rule ANDs with the accelerometer's final static."""
+    t = np.asarray(t_s, float)
+    j = np.searchsorted(checks.t_s, t, side="right") - 1
+    return np.where(j >= 0, checks.static[np.maximum(j, 0)], False) if checks.t_s.size else np.zeros(t.shape, bool)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -592,6 +612,7 @@ __all__ = [
     "detect_pressure",
     "detect_redundant",
     "evaluate_sources",
+    "static_at",
     "lagged_ramp_response_s",
     "mean_sigma_pa",
     "pfa_level",

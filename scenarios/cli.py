@@ -309,8 +309,14 @@ def _pressure_params(cols: dict, info: dict | None, source, rate_pa_s: float, ma
         fs = round(1.0 / float(np.median(np.diff(tb))), 3) if tb.shape[0] > 2 else math.nan
     if margin_hpa < 0:
         raise DetectorError(f"--baro-margin-hpa {margin_hpa:g}: must be >= 0 (0: no level bound)")
-    pp = PressureParams(fs_hz=fs, rate_threshold_pa_s=rate_pa_s, level_margin_pa=margin_hpa * 100.0 if margin_hpa > 0 else None,
-                        hold_s=hold_s)
+    changes = {"rate_threshold_pa_s": rate_pa_s, "level_margin_pa": margin_hpa * 100.0 if margin_hpa > 0 else None,
+               "hold_s": hold_s}
+    if info is not None and "scenario_toml" in info:  # the destination known (the run's scenario)
+        from flightmode.scenarios.pipeline import pressure_params
+        from flightmode.scenarios.run_io import run_scenario
+
+        return pressure_params(run_scenario(info, str(source)), fs, **changes)
+    pp = PressureParams(fs_hz=fs, **changes)
     pp.validate()
     return pp
 
@@ -645,7 +651,7 @@ def _grid(method: str, weight: str, window_s: str, k: str, time_threshold_s: str
 
     methods = [m.strip() for m in method.split(",") if m.strip()]
     weights = _axis(weight, "--weight")
-    pairs = tuple((m, w) for m in methods for w in (weights if m == "emv" else (1.0,)))
+    pairs = tuple((m, w) for m in methods for w in (weights if m in ("emv", "emv+baro") else (1.0,)))
     return Grid(pairs, _axis(window_s, "--window-s"), _axis(k, "--k"), _axis(time_threshold_s, "--time-threshold-s"))
 
 
@@ -688,7 +694,7 @@ def _excluded(failed: list[dict]) -> None:
 # the default grid of sweep and certify: NMV and EMV (weight 5), three windows, 13 k, 8 time thresholds
 # (624 points); each moving variance is computed once, so the grid costs little more than one point
 GRID_HELP = {
-    "method": "nmv, emv (seed 000) and seed 001's accelerometer detectors amvd, amd, frd, ltsd, fsd, mbgtd, mbcd "
+    "method": "nmv, emv (seed 000), nmv+baro, emv+baro (the redundant rule with the samples' barometer) and seed 001's accelerometer detectors amvd, amd, frd, ltsd, fsd, mbgtd, mbcd "
               "(threshold k x the merit at rest; the memory detectors cost O(N^2), O(N^3) per sample: short windows).", "weight": "EMV weighting factors, e.g. 1,5,10.",
     "window_s": "Windows W_s, s (list or start:stop:step).", "k": "Amplitude thresholds T_sigma = k sigma^2.",
     "time_threshold_s": "Time thresholds T_th, s.",

@@ -122,7 +122,9 @@ def print_redundant(console: Console, r, sigma2_source: str) -> None:
                     f"(sigma^2: {sigma2_source}); pressure at {pp.fs_hz:g} Hz: |rate| <= {pp.rate_threshold_pa_s:g} Pa/s over "
                     f"{pp.window_s:g} s, level within "
                     + ("no margin" if pp.level_margin_pa is None else f"{pp.level_margin_pa / 100:g} hPa")
-                    + f" of the ground reference, for {pp.hold_s:g} s",
+                    + " of the ground reference"
+                    + ("" if pp.arrival_ground_pa is None else f" or of the destination's ({pp.arrival_ground_pa / 100:.0f} hPa)")
+                    + f", for {pp.hold_s:g} s",
               title_justify="left")
     t.add_row("false statics in the in-flight window", str(a.false_static_count), str(c.false_static_count))
     t.add_row("false static time", f"{a.false_static_s:g} s", f"{c.false_static_s:g} s")

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     import numpy as np
 
     from flightmode.detector.evaluation import Evaluation
-    from flightmode.detector.pressure import RedundantEvaluation
+    from flightmode.detector.pressure import PressureParams, RedundantEvaluation
     from flightmode.sim.flight.track import FlightTrack
     from flightmode.sim.sensor.accelerometer import AccelerometerPreset
     from flightmode.sim.sensor.carrier import CarrierSpec
@@ -217,17 +217,31 @@ def detect(recording: Recording, rng: np.random.Generator) -> Evaluation:
     return evaluate_recommended(recording.t_s, recording.acc_g, labels, recording.odr_hz, s2)
 
 
-def detect_redundant(recording: Recording, detection: Evaluation) -> RedundantEvaluation:
+def pressure_params(scenario: Scenario, baro_odr_hz: float, **changes) -> PressureParams:
+    """The pressure detector's parameters for a scenario's barometer: its default thresholds at the
+    barometer's rate, the destination's expected ground pressure (the ISA pressure at its elevation)
+    known, as a shipment's tracker knows its route; ``changes`` override."""
+    from flightmode.detector.pressure import PressureParams
+    from flightmode.sim.flight.cabin import ambient_pressure_pa
+
+    e = scenario.plan.destination.elevation_m
+    p = PressureParams(fs_hz=float(baro_odr_hz), arrival_ground_pa=float(ambient_pressure_pa(e, datum_m=e)))
+    p = dataclasses.replace(p, **changes)
+    p.validate()
+    return p
+
+
+def detect_redundant(recording: Recording, detection: Evaluation, params: PressureParams) -> RedundantEvaluation:
     """The redundant rule (:func:`flightmode.detector.pressure.evaluate_redundant`) on a recording with
     a barometer: seed 000's recommended detector (``detection``'s parameters and sigma^2) OR the
-    pressure detector at the barometer's rate (its default thresholds) to suspend, both to resume."""
-    from flightmode.detector.pressure import PressureParams, evaluate_redundant
+    pressure detector (``params``, e.g. :func:`pressure_params`) to suspend, both to resume."""
+    from flightmode.detector.pressure import evaluate_redundant
 
     tb, pb = recording.baro_stream
     labels = {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
               "phase": recording.phase}
     return evaluate_redundant(recording.t_s, recording.acc_g, tb, pb, labels, detection.params, detection.sigma2,
-                              PressureParams(fs_hz=float(recording.baro["odr_hz"])))
+                              params)
 
 
 def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
@@ -449,7 +463,8 @@ def run(
             tell("detect")
             t0 = time.perf_counter()
             det = detect(rec, root.rng("detector/bench"))
-            red = detect_redundant(rec, det) if rec.baro_pa is not None else None
+            red = (detect_redundant(rec, det, pressure_params(sc, rec.baro["odr_hz"])) if rec.baro_pa is not None
+                   else None)
             wall["detect"] = time.perf_counter() - t0
             if writer is not None:
                 partial = RunResult(sc, sc.seed, track, metrics, rec, det, None, red, {}, wall)
@@ -471,5 +486,5 @@ def run(
     return result
 
 
-__all__ = ["run", "fly", "sense", "detect", "detect_redundant", "baro_preset", "estimate_path", "write", "RunWriter", "RunResult", "PathResult", "STAGES",
+__all__ = ["run", "fly", "sense", "detect", "detect_redundant", "pressure_params", "baro_preset", "estimate_path", "write", "RunWriter", "RunResult", "PathResult", "STAGES",
            "unit_sigma2", "stream_sigma2", "sensor_preset", "scenario_of", "streams_of"]

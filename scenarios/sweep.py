@@ -131,8 +131,11 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
     for preset in sensors:
         sc2 = sc.replace(sensor={"preset": preset, "odr_hz": None})
         rec = pipeline.sense(track, sc2.carrier, sc2.sensor, pipeline.streams_of(sc2.seed).child("sensor"))
-        yield preset, {"t_s": rec.t_s, "acc_g": rec.acc_g, "in_flight_window": rec.in_flight_window,
-                       "sensor_static": rec.sensor_static, "phase": rec.phase}, sc2.to_toml()
+        cols = {"t_s": rec.t_s, "acc_g": rec.acc_g, "in_flight_window": rec.in_flight_window,
+                "sensor_static": rec.sensor_static, "phase": rec.phase}
+        if rec.baro_pa is not None:
+            cols |= {"baro_pa": rec.baro_pa, "baro_new": rec.baro_new}
+        yield preset, cols, sc2.to_toml()
 
 
 def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", family: str = "",
@@ -149,25 +152,54 @@ def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", fam
 
 
 def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
-    """Every point of the grid: the moving variance's (:func:`~flightmode.detector.grid.
-    evaluate_grid`) and seed 001's detectors' (:func:`~flightmode.detector.activity.flight.
-    evaluate_activity_grid`, calibrated on the same rest recording as sigma^2)."""
+    """(method name, parameters, evaluation) for every point of the grid: the moving variance's
+    (:func:`~flightmode.detector.grid.evaluate_grid`), the moving variance AND the pressure source's
+    (``nmv+baro``, ``emv+baro``: the redundant rule, :func:`_pressure_gate`) and seed 001's detectors'
+    (:func:`~flightmode.detector.activity.flight.evaluate_activity_grid`, calibrated on the same rest
+    recording as sigma^2)."""
     import dataclasses
 
-    from flightmode.detector.grid import evaluate_grid
+    from flightmode.detector.grid import REDUNDANT, evaluate_grid
 
     mv = tuple(m for m in grid.methods if m[0] in MV_METHODS)
     if mv:
-        yield from evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=mv), fs,
-                                 _sigma2_of(sigma2_from, row, cols))
-    others = [m for m, _ in grid.methods if m not in MV_METHODS]
+        for p, e in evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=mv), fs,
+                                  _sigma2_of(sigma2_from, row, cols)):
+            yield p.method, p, e
+    red = tuple((m.partition("+")[0], w) for m, w in grid.methods if m in REDUNDANT)
+    if red:
+        gate = _pressure_gate(row, cols)
+        for p, e in evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=red), fs,
+                                  _sigma2_of(sigma2_from, row, cols), gate=gate):
+            yield f"{p.method}+baro", p, e
+    others = [m for m, _ in grid.methods if m not in MV_METHODS and m not in REDUNDANT]
     if others:
         from flightmode.detector.activity.flight import evaluate_activity_grid
 
         bench = _rest_of(sigma2_from, row, cols, fs)
         for name in others:
-            yield from evaluate_activity_grid(t, acc, gyr, labels, name, grid.windows_s, grid.ks,
-                                              grid.time_thresholds_s, fs, bench)
+            for p, e in evaluate_activity_grid(t, acc, gyr, labels, name, grid.windows_s, grid.ks,
+                                               grid.time_thresholds_s, fs, bench):
+                yield p.method, p, e
+
+
+def _pressure_gate(row: dict, cols: dict):
+    """The pressure source's "at rest" as of any time, from the flight's barometer (its default
+    thresholds, the destination known: :func:`flightmode.scenarios.pipeline.pressure_params`)."""
+    from flightmode.detector.pressure import detect_pressure, static_at
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.scenario import Scenario
+
+    if "baro_pa" not in cols or "baro_new" not in cols:
+        raise InputDataError(f"flight {row['flight_id']}: --method ...+baro needs a barometer in the samples; make "
+                             "the dataset from a family with [sensor].baro (e.g. isolated-parcel)")
+    sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
+    baro = pipeline.baro_preset(sc.sensor)
+    if baro is None:
+        raise InputDataError(f"flight {row['flight_id']}: its scenario fits no barometer ([sensor].baro)")
+    new = np.asarray(cols["baro_new"], bool)
+    checks = detect_pressure(cols["t_s"][new], cols["baro_pa"][new], pipeline.pressure_params(sc, baro.odr_hz))
+    return lambda t_checks: static_at(checks, t_checks)
 
 
 def _rest_of(source: str, row: dict, cols: dict, fs: float) -> np.ndarray:
@@ -205,11 +237,11 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
     cond = {k: row.get(k) for k in CONDITIONS if k not in ("family", "sensor_preset")}
     points, phases, statics = [], [], []
     seen: set[tuple] = set()
-    for p, e in _evaluate(t, acc, cols.get("gyro_dps"), labels, grid, fs, sigma2_from, row, cols):
+    for method, p, e in _evaluate(t, acc, cols.get("gyro_dps"), labels, grid, fs, sigma2_from, row, cols):
         c = e.checks
-        base = (p.method, p.weight, p.window_s)
+        base = (method, p.weight, p.window_s)
         mv_method = p.method in MV_METHODS
-        bk = {**key, "method": p.method, "weight": p.weight, "window_s": p.window_s}
+        bk = {**key, "method": method, "weight": p.weight, "window_s": p.window_s}
         in_w = window[c.index]
         codes = phase_code[c.index][in_w]
         if (*base, p.k_sigma) not in seen:  # once per (detector run, k): per-phase checks under k
@@ -237,7 +269,7 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
         events = e.false_static_events
         points.append({
             **key, **cond,
-            "method": p.method, "weight": p.weight, "window_s": p.window_s, "k": p.k_sigma,
+            "method": method, "weight": p.weight, "window_s": p.window_s, "k": p.k_sigma,
             "time_threshold_s": p.time_threshold_s,
             "in_window_h": in_window_h, "in_flight_checks": e.in_flight_checks,
             "false_static_count": e.false_static_count, "false_static_s": e.false_static_s,

@@ -40,6 +40,10 @@ Chain, per sample (vectorised; the only recursion, the outflow-valve lag, is ``s
    pressure never exceeds the input's largest pressure rate (its step response is monotone); in
    altitude the rate can exceed the limit by the density ratio across the lag, a fraction
    ``r tau / H_rho`` (H_rho ~ 9.8 km, the density scale height): 0.16 % at 300 ft/min and 5 s.
+   A lagged schedule at the maximum differential overshoots it by ~0.01 psi while the aircraft
+   climbs (the A320's default flight: 0.007 psi), far below the differential at which the safety
+   valves open (the A320's: 8.6 psi against its 8.06 psi normal maximum, FCOM as usually quoted;
+   *recalled, not read*); the valves are therefore not modelled after the lag.
 5. Door open: the cabin *is* ambient (no lag). The hold: ``"pressurised"`` (the cabin's pressure) or
    ``"unpressurised"`` (ambient): :func:`hold_pressure_pa`. Road legs: :func:`ambient_pressure_pa`.
 

@@ -270,7 +270,7 @@ def test_the_rule_uses_the_pressure_state_as_of_each_check_and_waits_for_it():
     assert r2.finish().pressure_static.tolist() == [True]
 
 
-def test_known_limitation_an_arrival_well_above_the_origin_keeps_the_level_bound_out():
+def test_an_arrival_well_above_the_origin_needs_the_destination_known():
     # London (83 ft) to Geneva (1,411 ft): the arrival ground is 47 hPa below the departure reference
     t, ph, _, tb, pb = _pressure_flight(field_m=83 * FT_M, arrival_m=1411 * FT_M)
     pc = detect_pressure(tb, pb)
@@ -282,6 +282,16 @@ def test_known_limitation_an_arrival_well_above_the_origin_keeps_the_level_bound
     assert rate_only.static[after].any()
     c0, c1 = _span(t, ph, "cruise")
     assert rate_only.static[(rate_only.t_s > c0 + P.hold_s + 30) & (rate_only.t_s < c1)].all()
+    # the destination known (its ISA ground pressure; this flight's QNH is the standard one): the level
+    # bound holds near it too, so the source resumes within the hold (+ a window and a check) of the
+    # cabin coming to rest, and still holds the whole cruise (the cabin is ~6,000 ft above Geneva)
+    from flightmode.sim.flight.cabin import ambient_pressure_pa
+
+    known = dataclasses.replace(P, arrival_ground_pa=float(ambient_pressure_pa(1411 * FT_M, datum_m=1411 * FT_M)))
+    pk = detect_pressure(tb, pb, known)
+    first = pk.t_s[after & pk.static]
+    assert first.size and first[0] - t_off <= P.hold_s + P.window_s + P.check_s
+    assert not pk.static[(pk.t_s > c0) & (pk.t_s < c1)].any()
 
 
 # -- bad input ---------------------------------------------------------------------------------
