@@ -39,22 +39,29 @@ sigma_m = sigma_p / sqrt(N). Per check (H1: at rest on the ground; H0: cabin mov
 - P_M (level) = P(m - p_ref < -margin | at ref) = Q(margin / (sqrt 2 sigma_m)) (both means noisy);
 - P_FA (level) = P(m - p_ref >= -margin | depth d) = Q((d - margin) / (sqrt 2 sigma_m)).
 
-The defaults, BMP581 at x16 (0.21 Pa) and 25 Hz, 4 s windows: sigma_r = 0.018 Pa/s. The slowest cabin
-rate the schedule uses is the 300 ft/min descent; at the 8,000 ft maximum cabin altitude (the thinnest
-cabin air) that is 14.4 Pa/s (:func:`cabin_rate_pa_s`). ``T_rate = 5 Pa/s`` is a third of it: T /
-sigma_r = 275 (P_M per check ~ 0; it stays below 1e-6 for any sensor up to sigma_p = 11.8 Pa) and
-(rho - T) / sigma_r = 520 at 300 ft/min (P_FA ~ 0). The threshold is therefore set by the physics,
-not the sensor: a third of the slowest scheduled cabin rate, large against the ambient disturbances
-of a building (doors, HVAC: a few Pa), small against any cabin movement. Things that do exceed it on
-the ground (a lift at 1-2 m/s, a hilly road, gusts on an open apron) cost only missed transmissions
-(P_M), never a false static. The level margin of 25 hPa (about 700 ft of cabin altitude near sea
-level) is above a day's typical weather change while suspended (*assumption*: a few hPa; 25 hPa is a
-deep storm) and holds a calm cruise whenever the cruise cabin is more than about 700 ft above the
-departure field: at FL350 the cabin is at 3,600 ft (787-8), 6,550 (A320), 7,190 (737) and 8,000 ft
-(Fokker 100) (:mod:`flightmode.sim.flight.cabin`). From a higher field, or on a short low flight, only
-the rate bound and the accelerometer remain. The hold of 120 s is shorter than any taxi-in, so it
-costs no response time at the gate in the normal case (the accelerometer's own T_th dominates), and it
-rides through level-offs shorter than 2 min below the margin (*assumption*).
+The defaults, BMP581 at x16 (0.21 Pa) and 25 Hz, 30 s windows: sigma_r = 8.9e-4 Pa/s. The schedule's
+rate limits (300-1,000 ft/min) are not the slowest cabin rates a flight shows: the proportional
+schedule moves the cabin from the field to its cruise altitude over the whole climb, so a low cruise
+moves it slowly (an A320 from Liege at FL240: about 1,200 ft of cabin in 15 min, 80 ft/min, 4.8 Pa/s;
+the first design, 5 Pa/s over 4 s, missed it, declared the climb quiet and let the ground reference
+creep up with the cabin). ``T_rate = 1 Pa/s`` (17 ft/min at sea level, 21 ft/min at 8,000 ft) is a
+third of a 60 ft/min cabin at 8,000 ft (2.9 Pa/s, :func:`cabin_rate_pa_s`, the design's slowest rate):
+T / sigma_r = 1,130 (P_M per check ~ 0; below 1e-6 for any sensor up to sigma_p = 48 Pa), and
+(rho - T) / sigma_r = 2,100 at 60 ft/min (P_FA ~ 0). It is far above the weather's pressure changes at
+rest (a deep low deepens by 1-2 hPa/h: 0.06 Pa/s, *recalled, not read*). What exceeds it on the
+ground (a lift at 1-2 m/s, a hilly road, gusts on an open apron) costs only missed transmissions
+(P_M), never a false static; the 30 s window makes a second's door slam or gust a small slope. A
+300 ft/min cabin is flagged 4.6 s after it starts (:func:`ramp_response_s`). A cabin that does not
+move at all (a hop whose cruise cabin stays at the field's pressure) gives the pressure source
+nothing to see: there only the accelerometer can suspend. The level margin of 25 hPa (about 700 ft of
+cabin altitude near sea level) is above a day's typical weather change while suspended
+(*assumption*: a few hPa; 25 hPa is a deep storm) and holds a calm cruise whenever the cruise cabin is
+more than about 700 ft above the departure field: at FL350 the cabin is at 3,600 ft (787-8), 6,550
+(A320), 7,190 (737) and 8,000 ft (Fokker 100) (:mod:`flightmode.sim.flight.cabin`). From a higher
+field, or on a short low flight, only the rate bound and the accelerometer remain. The hold of 120 s
+is shorter than any taxi-in, so it costs no response time at the gate in the normal case (the
+accelerometer's own T_th dominates), and it rides through level-offs shorter than 2 min below the
+margin (*assumption*).
 
 **Redundant rule.** Per accelerometer check (every W_s), transmission is allowed when the
 accelerometer is final static (eq. 8) AND the pressure source is static as of that time (its last
@@ -85,9 +92,9 @@ class PressureParams:
     """Pressure detector parameters (module docstring for the justification of the defaults)."""
 
     fs_hz: float = 25.0
-    window_s: float = 4.0
+    window_s: float = 30.0
     check_s: float = 1.0
-    rate_threshold_pa_s: float = 5.0
+    rate_threshold_pa_s: float = 1.0
     level_margin_pa: float | None = 2500.0  # None: no level bound (rate only)
     hold_s: float = 120.0
     max_gap_periods: float = 1.5  # consecutive samples further apart than this many periods: a gap
@@ -211,7 +218,7 @@ def lagged_ramp_response_s(rate_pa_s: float, threshold_pa_s: float, window_s: fl
     return float(min(-tau_s * math.log(1.0 - qi) + ramp_response_s(qi * r, threshold_pa_s, window_s) for qi in q))
 
 
-def design(noise_pa: float, params: PressureParams = PressureParams(), slowest_cabin_rate_fpm: float = 300.0,
+def design(noise_pa: float, params: PressureParams = PressureParams(), slowest_cabin_rate_fpm: float = 60.0,
            cabin_alt_ft: float = 8000.0, cruise_depth_pa: float | None = None) -> dict:
     """The thresholds' statistics for a sensor noise (module docstring): sigma_r, sigma_m, T / sigma_r,
     per-check P_M and P_FA of both bounds, and the ramp response at the slowest cabin rate."""

@@ -90,7 +90,7 @@ def test_the_rate_is_the_least_squares_slope():
 
 def test_rate_noise_matches_its_formula():
     # disjoint 4 s windows of white 0.21 Pa noise: the rates are independent N(0, sigma_r)
-    p = PressureParams(check_s=4.0)
+    p = PressureParams(window_s=4.0, check_s=4.0)
     n = 25 * 4 * 3000
     rng = np.random.default_rng(2)
     c = detect_pressure(np.arange(n) / 25.0, 1e5 + rng.normal(0.0, 0.21, n), p)
@@ -102,22 +102,23 @@ def test_rate_noise_matches_its_formula():
 
 @pytest.mark.parametrize("rate", [6.0, 12.0, 40.0])
 def test_ramp_response_formula(rate):
-    # every sample a check: the first rate above T is within a sample of the smoothstep formula
+    # every sample a check: the first rate above T is within a sample of the smoothstep formula (the
+    # ramp starts after the first whole window)
     p = PressureParams(check_s=0.04)
-    t = np.arange(0.0, 40.0, 0.04)
-    y = 1e5 - rate * np.maximum(t - 10.0, 0.0)
+    t = np.arange(0.0, 100.0, 0.04)
+    y = 1e5 - rate * np.maximum(t - 40.0, 0.0)
     c = detect_pressure(t, y, p)
     first = c.t_s[np.flatnonzero(~c.rate_ok)[0]]
-    assert first - 10.0 == pytest.approx(ramp_response_s(rate, P.rate_threshold_pa_s, P.window_s), abs=0.04 + 1e-9)
+    assert first - 40.0 == pytest.approx(ramp_response_s(rate, P.rate_threshold_pa_s, P.window_s), abs=0.04 + 1e-9)
 
 
 def test_the_default_thresholds_statistics():
     d = design(get_preset("bmp581").noise_pa)
-    # 300 ft/min at 8,000 ft (the thinnest cabin air): 14.4 Pa/s, three times T
-    assert d["slowest_cabin_rate_pa_s"] == pytest.approx(14.39, abs=0.01)
-    assert d["threshold_over_sigma"] > 250 and d["pm_rate"] < 1e-300 and d["pfa_rate"] < 1e-300
-    # the rate bound keeps P_M per check below 1e-6 up to 11.8 Pa of sensor noise
-    assert design(11.7)["pm_rate"] < 1e-6 < design(11.9)["pm_rate"]
+    # 60 ft/min at 8,000 ft (the thinnest cabin air): 2.88 Pa/s, about three times T
+    assert d["slowest_cabin_rate_pa_s"] == pytest.approx(2.878, abs=0.01)
+    assert d["threshold_over_sigma"] > 1000 and d["pm_rate"] < 1e-300 and d["pfa_rate"] < 1e-300
+    # the rate bound keeps P_M per check below 1e-6 up to 48 Pa of sensor noise (T / sigma_r >= 4.89)
+    assert design(48.0)["pm_rate"] < 1e-6 < design(49.0)["pm_rate"]
     assert cabin_rate_pa_s(300.0, 8000 * FT_M) == pytest.approx(
         300 * FPM_MPS * float(isa.density_kgpm3(8000 * FT_M)) * 9.80665)
 
@@ -143,7 +144,7 @@ def test_flags_the_takeoff_roll_holds_cruise_and_resumes_after_the_hold():
     assert not pc.static[flight].any()
     # in calm cruise the rate is quiet: the level bound holds it (cabin ~6,550 ft, 200 hPa below)
     c0, c1 = _span(t, ph, "cruise")
-    cruise = (pc.t_s >= c0 + 30) & (pc.t_s <= c1)
+    cruise = (pc.t_s >= c0 + P.window_s + 30) & (pc.t_s <= c1)  # the window clear of the climb
     assert pc.rate_ok[cruise].all() and not pc.level_ok[cruise].any()
     assert (pc.reference_pa[cruise] - pc.mean_pa[cruise]).min() > 190e2
     # after touchdown: the residual 0.1 psi released at 500 ft/min, the lag's tail below T after
@@ -205,7 +206,8 @@ def test_the_combined_rule_has_no_false_static_where_the_accelerometer_alone_has
     assert not both.allowed[window].any()  # the combined rule: no false static at all
     # OR to suspend, AND to resume, per check
     assert np.array_equal(both.allowed, both.accel_static & both.pressure_static)
-    ev = evaluate_sources(both, t_push, [_span(t, ph, "cruise")], t_end_s=t_off)
+    c0, c1 = _span(t, ph, "cruise")
+    ev = evaluate_sources(both, t_push, [(c0 + P.window_s + 30, c1)], t_end_s=t_off)  # the window clear of the climb
     assert ev.first_source == "accelerometer"  # the pushback's motion, long before the takeoff roll
     assert ev.first_suspend_s["pressure"] > _span(t, ph, "takeoff_roll")[0]
     assert ev.held_by["pressure_only"] == ev.cruise_checks and ev.held_by["neither"] == 0
@@ -281,7 +283,7 @@ def test_an_arrival_well_above_the_origin_needs_the_destination_known():
     rate_only = detect_pressure(tb, pb, dataclasses.replace(P, level_margin_pa=None))
     assert rate_only.static[after].any()
     c0, c1 = _span(t, ph, "cruise")
-    assert rate_only.static[(rate_only.t_s > c0 + P.hold_s + 30) & (rate_only.t_s < c1)].all()
+    assert rate_only.static[(rate_only.t_s > c0 + P.window_s + P.hold_s + 30) & (rate_only.t_s < c1)].all()
     # the destination known (its ISA ground pressure; this flight's QNH is the standard one): the level
     # bound holds near it too, so the source resumes within the hold (+ a window and a check) of the
     # cabin coming to rest, and still holds the whole cruise (the cabin is ~6,000 ft above Geneva)
