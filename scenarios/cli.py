@@ -231,9 +231,9 @@ def detect_cmd(
     bursts: Annotated[int, typer.Option("--bursts", help="Movebank e-obs file: final static after this many quiet bursts in a row.")] = 2,
     tag_number: Annotated[Optional[int], typer.Option("--tag-number", help="Movebank e-obs file: the tag's number (sets the nominal slope; a Movebank id is not one).")] = None,
     calibration: Annotated[Optional[Path], typer.Option("--calibration", help="Movebank e-obs file: a calibration TOML from `flightmode eobs calibrate`.")] = None,
-    baro_rate_pa_s: Annotated[float, typer.Option("--baro-rate-pa-s", help="+baro: the pressure rate bound, Pa/s.")] = 5.0,
-    baro_margin_hpa: Annotated[float, typer.Option("--baro-margin-hpa", help="+baro: the level margin below the ground reference, hPa (0: no level bound).")] = 25.0,
-    baro_hold_s: Annotated[float, typer.Option("--baro-hold-s", help="+baro: the pressure source's hold time, s.")] = 120.0,
+    baro_rate_pa_s: Annotated[Optional[float], typer.Option("--baro-rate-pa-s", help="+baro: the pressure rate bound, Pa/s (default: the detector's, 1).")] = None,
+    baro_margin_hpa: Annotated[Optional[float], typer.Option("--baro-margin-hpa", help="+baro: the level margin below the ground reference, hPa (0: no level bound; default 25).")] = None,
+    baro_hold_s: Annotated[Optional[float], typer.Option("--baro-hold-s", help="+baro: the pressure source's hold time, s (default 120).")] = None,
 ) -> None:
     """Run the flight-mode detector over a recording (a run folder or samples.parquet) and print how
     it did against the truth; or, on a Movebank e-obs CSV, the duty-cycled detector per burst."""
@@ -291,7 +291,8 @@ def detect_cmd(
         _die(e)
 
 
-def _pressure_params(cols: dict, info: dict | None, source, rate_pa_s: float, margin_hpa: float, hold_s: float):
+def _pressure_params(cols: dict, info: dict | None, source, rate_pa_s: float | None, margin_hpa: float | None,
+                     hold_s: float | None):
     """The pressure detector's parameters for a samples file's barometer (its rate from run.json, or
     from the spacing of its readings)."""
     import numpy as np
@@ -307,10 +308,15 @@ def _pressure_params(cols: dict, info: dict | None, source, rate_pa_s: float, ma
     else:
         tb = cols["t_s"][cols["baro_new"]]
         fs = round(1.0 / float(np.median(np.diff(tb))), 3) if tb.shape[0] > 2 else math.nan
-    if margin_hpa < 0:
-        raise DetectorError(f"--baro-margin-hpa {margin_hpa:g}: must be >= 0 (0: no level bound)")
-    changes = {"rate_threshold_pa_s": rate_pa_s, "level_margin_pa": margin_hpa * 100.0 if margin_hpa > 0 else None,
-               "hold_s": hold_s}
+    changes: dict = {}
+    if margin_hpa is not None:
+        if margin_hpa < 0:
+            raise DetectorError(f"--baro-margin-hpa {margin_hpa:g}: must be >= 0 (0: no level bound)")
+        changes["level_margin_pa"] = margin_hpa * 100.0 if margin_hpa > 0 else None
+    if rate_pa_s is not None:
+        changes["rate_threshold_pa_s"] = rate_pa_s
+    if hold_s is not None:
+        changes["hold_s"] = hold_s
     if info is not None and "scenario_toml" in info:  # the destination known (the run's scenario)
         from flightmode.scenarios.pipeline import pressure_params
         from flightmode.scenarios.run_io import run_scenario
