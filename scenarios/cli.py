@@ -545,7 +545,7 @@ def cabin_cmd(
         used = track.conditions.get("cabin_descent_rate_fpm", prof.descent_rate_fpm)
         t.add_row("fastest cabin descent in the air (10 s)", f"{f['max_cabin_descent_airborne_fpm']:.0f} ft/min",
                   f"{prof.descent_rate_fpm:.0f} ft/min, up to {prof.descent_rate_max_fpm:.0f} (this flight: {used:.0f})")
-        t.add_row("fastest on the runway (10 s)", f"{f['max_cabin_descent_fpm']:.0f} down, {f['max_cabin_climb_fpm']:.0f} up ft/min",
+        t.add_row("fastest over the whole flight (10 s)", f"{f['max_cabin_descent_fpm']:.0f} down, {f['max_cabin_climb_fpm']:.0f} up ft/min",
                   f"{prof.prepress_rate_fpm:.0f} down (pre-pressurising), {prof.release_rate_fpm:.0f} up (release)")
         t.add_row("largest differential", f"{f['max_differential_psi']:.2f} psi", "")
         t.add_row("hold", limits["hold"], "")
