@@ -14,6 +14,9 @@ LABELS = {
     "bag_state": "carried, resting, stowed, in_hold or handled",
     "turbulence_severity": "the turbulence category the aircraft is in: none, light, moderate, severe (ICAO Annex 3 EDR bands)",
     "clipped": "True where an axis hit the sensor's range",
+    "pressure_pa": "the true pressure at the bag, Pa (the cabin's, the hold's, or ambient off board)",
+    "baro_pa": "the barometer's latest reading at this row, Pa (its own rate: see baro_new)",
+    "baro_new": "True on the rows where a new barometer reading arrived (its stream: baro_pa where baro_new)",
 }
 
 LOADERS = {
