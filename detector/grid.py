@@ -57,16 +57,18 @@ class Grid:
 
         for method, weight in self.methods:
             if method not in METHODS and method not in REDUNDANT:
-                if method not in registry.NAMES:
+                name, _, signal = method.partition(":")
+                if name not in registry.NAMES:
                     from flightmode.errors import did_you_mean
 
                     names = METHODS + REDUNDANT + registry.NAMES
                     raise DetectorError(f"--method {method!r}: use nmv, emv, nmv+baro, emv+baro or one of seed 001's detectors "
-                                        f"({', '.join(registry.NAMES)}){did_you_mean(method, names)}")
-                d = registry.get(method)
-                if d.needs_gyro:
-                    raise DetectorError(f"--method {method}: {d.title} needs a gyroscope, which the datasets' "
-                                        "samples do not carry; sweep it on accelerometer methods")
+                                        f"({', '.join(registry.NAMES)}, a flexible one with :acc, :gyr, :sum or "
+                                        f":product){did_you_mean(name, names)}")
+                d = registry.get(name)
+                if signal and signal not in d.signals:
+                    raise DetectorError(f"--method {method!r}: {d.title} takes no input choice" if not d.signals else
+                                        f"--method {method!r}: {name} takes {', '.join(d.signals)}")
             if not weight > 0:
                 raise DetectorError(f"--weight {weight!r}: an EMV weighting factor must be > 0")
         for w in self.windows_s:

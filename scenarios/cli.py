@@ -111,7 +111,7 @@ def fly_cmd(
         "runs"
     ),
     sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset (default: the scenario's).")] = None,
-    gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
+    gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel (a Bosch BMI270).")] = False,
     baro: Annotated[Optional[str], typer.Option("--baro", help="Fit a barometer (bmp581, bmp581-osrN, lps22hh, ideal): samples gain baro_pa, and the redundant rule runs.")] = None,
     rrd: Annotated[bool, typer.Option("--rrd/--no-rrd", help="Write recording.rrd (Rerun) beside the Parquet files.")] = True,
     origin: Annotated[Optional[str], typer.Option("--from", help="Fly from this airport (ICAO) instead of a scenario; needs --to and --aircraft.")] = None,
@@ -700,7 +700,7 @@ def _excluded(failed: list[dict]) -> None:
 # the default grid of sweep and certify: NMV and EMV (weight 5), three windows, 13 k, 8 time thresholds
 # (624 points); each moving variance is computed once, so the grid costs little more than one point
 GRID_HELP = {
-    "method": "nmv, emv (seed 000), nmv+baro, emv+baro (the redundant rule with the samples' barometer) and seed 001's accelerometer detectors amvd, amd, frd, ltsd, fsd, mbgtd, mbcd "
+    "method": "nmv, emv (seed 000), nmv+baro, emv+baro (the redundant rule with the samples' barometer) and seed 001's detectors amvd, amd, ared, shod, frd, ltsd, fsd, mbgtd, mbcd (ared and shod read the gyroscope; the flexible ones take :acc, :gyr, :sum or :product, e.g. fsd:sum) "
               "(threshold k x the merit at rest; the memory detectors cost O(N^2), O(N^3) per sample: short windows).", "weight": "EMV weighting factors, e.g. 1,5,10.",
     "window_s": "Windows W_s, s (list or start:stop:step).", "k": "Amplitude thresholds T_sigma = k sigma^2.",
     "time_threshold_s": "Time thresholds T_th, s.",
@@ -772,6 +772,17 @@ def sweep_cmd(
             b.add_row(r["condition"], r["value"], str(r["flights"]), f"{r['in_window_h']:.1f}", str(r["false_statics"]),
                       "" if r["response_p95_s"] != r["response_p95_s"] else f"{r['response_p95_s']:.1f}")
         console.print(b)
+        if len({m for m, _ in grid.methods}) > 1:  # the detectors side by side, each at its best point
+            from flightmode.scenarios.sweep import compare_methods
+
+            c = Table("method", "W_s", "k", "T_th s", "false statics /h", f"{confidence:.0%} bound /h", "response p95 s",
+                      "availability", "accuracy", "AUC", title="each method at its best point (AUC: k swept there)")
+            for r in compare_methods(table, confidence):
+                c.add_row(r["method"] + (f" w{r['weight']:g}" if r["method"].startswith("emv") else ""),
+                          f"{r['window_s']:g}", f"{r['k']:g}", f"{r['time_threshold_s']:g}", f"{r['rate_per_h']:.3g}",
+                          f"{r['rate_upper_per_h']:.3g}", f"{r['response_p95_s']:.1f}", f"{r['availability']:.3f}",
+                          f"{r['accuracy']:.3f}", "" if r["auc"] != r["auc"] else f"{r['auc']:.3f}")
+            console.print(c)
         flights = len(set(zip(table["dataset"].to_pylist(), table["flight_id"].to_pylist())))
         console.print(f"{table.num_rows:,} rows ({len(grid)} grid points x {flights} flights"
                       + (f" x {len(sensors)} sensors" if sensors else "") + f") written to {out}",
@@ -952,11 +963,11 @@ def sense_cmd(
     sensor: Annotated[Optional[str], typer.Option("--sensor", help="Accelerometer preset.")] = None,
     carrier: Annotated[Optional[list[str]], typer.Option("--carrier", help="KEY=VALUE carrier setting, e.g. placement=hold (repeatable).")] = None,
     out: Annotated[Optional[Path], typer.Option("--out", help="Output folder (default: beside RUN_DIR).")] = None,
-    gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel.")] = False,
+    gyro: Annotated[bool, typer.Option("--gyro", help="Also record a gyroscope channel (a Bosch BMI270).")] = False,
 ) -> None:
     """Re-sense an existing flight with another sensor or carrier into a new run folder."""
     from flightmode.scenarios import pipeline, run_io
-    from flightmode.sim.sensor.sensing import GyroSpec
+    from flightmode.sim.sensor.gyroscope import get_preset as gyro_preset
 
     try:
         track, info = run_io.read_track(run_dir)
@@ -970,7 +981,7 @@ def sense_cmd(
         # the run's own sensor streams: the same preset and carrier give its samples.parquet again
         # (labels exactly, counts to one step: truth.parquet stores the forces in float32)
         rec = pipeline.sense(track, sc.carrier, sc.sensor, pipeline.streams_of(sc.seed).child("sensor"),
-                             gyro=GyroSpec() if gyro else None)
+                             gyro=gyro_preset("bmi270") if gyro else None)
         wall = time.perf_counter() - t0
         tag = "-".join([rec.preset] + [f"{k}-{v}" for k, v in sorted(changes.items())])
         rid = f"{info['run_id']}-{tag}"

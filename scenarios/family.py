@@ -42,6 +42,7 @@ another choice's numbers. A family file (``flightmode family FILE --show 5``):
     preset = { lis302dl-logged16 = 1 }
     vibration_level = [0.7, 1.4]    # optional: the floor vibration's multiplier, log-uniform
     baro = "bmp581"                 # optional: a barometer fitted to every member (absent: none)
+    gyro = "bmi270"                 # optional: a gyroscope beside every accelerometer (absent: none)
 
 A type is only given routes it can fly (range, runway length); every member is validated as strictly
 as a scenario file. Everything but ``[family]``, ``[aircraft]`` and ``[routes]`` is optional.
@@ -67,7 +68,7 @@ SECTIONS = {
     "turbulence": {"patch_probability", "severity", "patch_s"},
     "landing": {"quality"},
     "carrier": {"kind", "placement", "handled_in_cruise", "truck_s", "terminal_walk_s", "gate_walk_s", "gate_rest_s"},
-    "sensor": {"preset", "vibration_level", "baro"},
+    "sensor": {"preset", "vibration_level", "baro", "gyro"},
 }
 EN_ROUTE_CLIMB_MPS = 10.0  # the estimate of the top of climb and descent for placing a patch (WRAP: 5-13 m/s)
 EN_ROUTE_SPEED_MPS = 200.0  # mean ground speed airborne (390 kt)
@@ -133,6 +134,7 @@ class Family:
     sensor: Weighted
     vibration_level: tuple[float, float] | None
     baro: str | None
+    gyro: str | None
     text: str  # the file's text (what the dataset stores)
     source: str = "<family>"
 
@@ -236,6 +238,7 @@ class Family:
             vibration_level=(_range(source, "[sensor].vibration_level", sen["vibration_level"], 0.05, 20)
                              if "vibration_level" in sen else None),
             baro=_baro(source, sen.get("baro")),
+            gyro=_gyro(source, sen.get("gyro")),
             text=text, source=source,
         )
         for t in out.aircraft.choices:  # every type with a positive weight needs a route it can fly
@@ -313,6 +316,8 @@ class Family:
             changes["sensor"]["vibration_level"] = round(float(math.exp(r.uniform(math.log(lo), math.log(hi)))), 4)
         if self.baro is not None:  # fixed, no draw: fitting one moves no other member's numbers
             changes["sensor"]["baro"] = self.baro
+        if self.gyro is not None:
+            changes["sensor"]["gyro"] = self.gyro
         return sc.replace(**changes)
 
     def members(self, n: int, start: int = 0) -> Iterator:
@@ -327,6 +332,17 @@ def _baro(source: str, name: Any) -> str | None:
 
     if not isinstance(name, str) or name not in PRESETS:
         raise ScenarioError(f"{source}: [sensor].baro = {name!r}: a barometer preset, one of {', '.join(PRESETS)}"
+                            f"{did_you_mean(str(name), PRESETS)}")
+    return name
+
+
+def _gyro(source: str, name: Any) -> str | None:
+    if name is None:
+        return None
+    from flightmode.sim.sensor.gyroscope import PRESETS
+
+    if not isinstance(name, str) or name not in PRESETS:
+        raise ScenarioError(f"{source}: [sensor].gyro = {name!r}: a gyroscope preset, one of {', '.join(PRESETS)}"
                             f"{did_you_mean(str(name), PRESETS)}")
     return name
 

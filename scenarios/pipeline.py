@@ -38,7 +38,7 @@ if TYPE_CHECKING:
     from flightmode.sim.sensor.accelerometer import AccelerometerPreset
     from flightmode.sim.sensor.carrier import CarrierSpec
     from flightmode.sim.sensor.recording import Recording
-    from flightmode.sim.sensor.sensing import GyroSpec
+    from flightmode.sim.sensor.gyroscope import GyroSpec
 
 STAGES = ("fly", "sense", "detect", "path", "write")
 
@@ -122,8 +122,14 @@ def baro_preset(sensor: SensorChoice | str | AccelerometerPreset | None):
 def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str | AccelerometerPreset,
           streams: Streams | np.random.Generator | int, *, gyro: GyroSpec | None = None) -> Recording:
     """What the bag's sensors record of ``track`` (``streams``: the run's sensor streams): the
-    accelerometer, and the barometer when the ``[sensor]`` choice fits one."""
+    accelerometer, and the barometer and gyroscope when the ``[sensor]`` choice fits them (``gyro``:
+    a gyroscope instead of the choice's)."""
     from flightmode.sim.sensor.sensing import sense as _sense
+
+    if gyro is None and isinstance(sensor, SensorChoice) and sensor.gyro is not None:
+        from flightmode.sim.sensor.gyroscope import get_preset
+
+        gyro = get_preset(sensor.gyro)
 
     level = getattr(sensor, "vibration_level", None)
     return _sense(track, carrier, sensor_preset(sensor), streams, gyro=gyro,
@@ -407,14 +413,15 @@ def run(
     a :class:`SensorChoice` or an ``AccelerometerPreset`` instead of the scenario's; ``out``: where
     to write the run folder (nothing is written when None); ``stages``: which of fly, sense, detect,
     path, write to run (each needs the ones before it, but ``path`` is optional for ``write``);
-    ``gyro``: also record a gyroscope (True, or a ``GyroSpec``); ``rrd``: write recording.rrd too;
+    ``gyro``: also record a gyroscope (True: the BMI270 preset, or a ``GyroSpec``; the scenario's
+    ``[sensor].gyro`` fits one too); ``rrd``: write recording.rrd too;
     ``progress(t_s, phase)``: called about once per simulated minute while flying; ``on_stage(name)``:
     called as each stage starts; ``track``: the scenario's flight flown before (by :func:`fly` with
     this run's ``flight`` streams), to skip flying it again.
     """
     from flightmode.scenarios import run_io
     from flightmode.sim.flight.flight_metrics import flight_metrics
-    from flightmode.sim.sensor.sensing import GyroSpec
+    from flightmode.sim.sensor.gyroscope import GyroSpec, get_preset
 
     sc = scenario_of(scenario)
     if seed is not None:
@@ -451,9 +458,9 @@ def run(
         if "sense" in stages:
             tell("sense")
             t0 = time.perf_counter()
-            g = gyro if isinstance(gyro, GyroSpec) else (GyroSpec() if gyro else None)
+            g = gyro if isinstance(gyro, GyroSpec) else (get_preset("bmi270") if gyro else None)
             choice = sc.sensor if sensor is None else sensor
-            if not isinstance(choice, SensorChoice) and sc.sensor.baro is not None:  # another accelerometer, the same barometer
+            if not isinstance(choice, SensorChoice) and (sc.sensor.baro or sc.sensor.gyro):  # another accelerometer, the rest the same
                 choice = dataclasses.replace(sc.sensor, preset=sensor_preset(choice).name, odr_hz=sensor_preset(choice).odr_hz)
             rec = sense(track, sc.carrier, choice, root.child("sensor"), gyro=g)
             wall["sense"] = time.perf_counter() - t0

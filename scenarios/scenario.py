@@ -39,6 +39,7 @@ class SensorChoice:
     vibration_level: float | None = None  # the floor vibration's multiplier (None: 1, as drawn)
     baro: str | None = None  # a barometer preset fitted beside the accelerometer (None: none)
     baro_odr_hz: float | None = None  # its output data rate (None: the preset's)
+    gyro: str | None = None  # a gyroscope preset sampled with the accelerometer (None: none)
 
 
 @dataclass(frozen=True, slots=True)
@@ -97,7 +98,8 @@ class Scenario:
             hold=v["cabin"]["hold"],
         )
         sen = v["sensor"]
-        sensor = SensorChoice(sen["preset"], sen["odr_hz"], sen["vibration_level"], sen["baro"], sen["baro_odr_hz"])
+        sensor = SensorChoice(sen["preset"], sen["odr_hz"], sen["vibration_level"], sen["baro"], sen["baro_odr_hz"],
+                              sen["gyro"])
         check_scenario(source, plan, sensor.preset, sensor.odr_hz, sensor.baro, sensor.baro_odr_hz)
         return cls(s["description"], s["seed"], plan, CarrierSpec(**v["carrier"]), sensor, source)
 
@@ -169,7 +171,7 @@ class Scenario:
             "carrier": _drop_none(dataclasses.asdict(c)),
             "sensor": _drop_none({"preset": self.sensor.preset, "odr_hz": self.sensor.odr_hz,
                                   "vibration_level": self.sensor.vibration_level, "baro": self.sensor.baro,
-                                  "baro_odr_hz": self.sensor.baro_odr_hz}),
+                                  "baro_odr_hz": self.sensor.baro_odr_hz, "gyro": self.sensor.gyro}),
         }
         if p.turbulence:
             doc["turbulence"] = [_drop_none({"start_s": t.start_s, "duration_s": t.duration_s, "severity": t.severity,

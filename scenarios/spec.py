@@ -19,6 +19,7 @@ from typing import Any
 from flightmode.sim.flight.cabin import HOLD_OPTIONS, ISA_DEV_RANGE_K, QNH_RANGE_HPA
 from flightmode.sim.sensor.accelerometer import PRESETS as SENSOR_PRESETS
 from flightmode.sim.sensor.barometer import PRESETS as BARO_PRESETS
+from flightmode.sim.sensor.gyroscope import PRESETS as GYRO_PRESETS
 from flightmode.sim.flight.aircraft_profiles import PROFILES
 from flightmode.sim.sensor.carrier import KINDS as CARRIER_KINDS
 from flightmode.sim.sensor.carrier import CABIN_ROWS, PACKINGS, PLACEMENTS, CarrierSpec
@@ -175,6 +176,8 @@ SPEC: dict[str, dict[str, Key]] = {
                     optional=True, choices=tuple(BARO_PRESETS)),
         "baro_odr_hz": Key(float, "the barometer's output data rate; absent: the preset's", optional=True,
                            lo=0.1, hi=500),
+        "gyro": Key(str, "gyroscope preset sampled with the accelerometer (samples gain gyro_*_dps); absent: none",
+                    optional=True, choices=tuple(GYRO_PRESETS)),
     },
 }
 ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables

@@ -135,6 +135,8 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
                 "sensor_static": rec.sensor_static, "phase": rec.phase}
         if rec.baro_pa is not None:
             cols |= {"baro_pa": rec.baro_pa, "baro_new": rec.baro_new}
+        if rec.gyro_dps is not None:
+            cols["gyro_dps"] = rec.gyro_dps
         yield preset, cols, sc2.to_toml()
 
 
@@ -174,13 +176,33 @@ def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
             yield f"{p.method}+baro", p, e
     others = [m for m, _ in grid.methods if m not in MV_METHODS and m not in REDUNDANT]
     if others:
+        from flightmode.detector.activity import registry
         from flightmode.detector.activity.flight import evaluate_activity_grid
 
-        bench = _rest_of(sigma2_from, row, cols, fs)
-        for name in others:
+        bench = None
+        for method in others:
+            name, _, signal = method.partition(":")
+            if registry.get(name).needs_gyro or signal not in ("", "acc"):
+                bench_acc, bench_gyr = _gyro_rest(row, cols)
+            else:
+                bench = _rest_of(sigma2_from, row, cols, fs) if bench is None else bench
+                bench_acc, bench_gyr = bench, None
             for p, e in evaluate_activity_grid(t, acc, gyr, labels, name, grid.windows_s, grid.ks,
-                                               grid.time_thresholds_s, fs, bench):
-                yield p.method, p, e
+                                               grid.time_thresholds_s, fs, bench_acc, signal or "acc", bench_gyr):
+                yield method, p, e
+
+
+def _gyro_rest(row: dict, cols: dict) -> tuple[np.ndarray, np.ndarray]:
+    """The rest recording of the detectors that read the gyroscope: the truly static samples before the
+    flight, both sensors (the bench recording models no gyroscope; a tracker zeroes its gyroscope at
+    rest after power-on)."""
+    from flightmode.scenarios import pipeline
+
+    if cols.get("gyro_dps") is None:
+        raise InputDataError(f"flight {row['flight_id']}: a gyroscope method needs gyro_*_dps in the samples; make the "
+                             "dataset from a family with [sensor].gyro (e.g. gyro = \"bmi270\")")
+    acc, gyr, _ = pipeline.stream_rest("rest", cols, None)
+    return acc, gyr
 
 
 def _pressure_gate(row: dict, cols: dict):
@@ -278,6 +300,7 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
             "suspend_s": float(c.t_s[after[0]] - w_start) if after.size else math.nan,
             "response_s": e.response_s if e.response_s is not None else (math.inf if rest_after else math.nan),
             "static_s": static_s, "missed_static_s": e.missed_static_s,
+            "checks": int(c.t_s.shape[0]), "accuracy": e.accuracy,
             "availability": (static_s - e.missed_static_s) / static_s if static_s > 0 else math.nan,
         })
     return {"points": points, "phases": phases, "static": statics}
@@ -481,6 +504,47 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
             row["hours_short"] = max(0.0, row["hours_needed"] - hours)
         out.append(row)
     return out
+
+
+def compare_methods(table, confidence: float = 0.95) -> list[dict]:
+    """Each method at its best grid point (among the points that answer at the gate, the lowest upper
+    bound on false statics per flight-hour, then the fastest response p95; :func:`summarise`'s row), with its accuracy (per check, weighted by the
+    flights' checks) and the area under its ROC curve: the threshold k swept at that point's window and
+    time threshold (seed 001's "ROC at the best window"), false-positive rate = the in-window checks
+    declared static, true-positive rate = the truly static time reported static (availability), the
+    curve closed at (0, 0) and (1, 1). Sorted as the points are chosen."""
+    rows = summarise(table, confidence)
+    d = table.select(["method", "weight", "window_s", "k", "time_threshold_s", "in_flight_checks",
+                      "false_static_s", "static_s", "missed_static_s", "checks", "accuracy"]).to_pydict()
+    n = len(d["k"])
+    out = []
+    for method in dict.fromkeys(r["method"] for r in rows):
+        mine = [r for r in rows if r["method"] == method]
+        # a point that leaves some flight's bag unanswered at the gate (p95 inf) is no candidate while another answers
+        best = min(mine, key=lambda r: (not math.isfinite(r["response_p95_s"]), r["rate_upper_per_h"],
+                                        r["response_p95_s"], r["k"]))
+        key = (method, best["weight"], best["window_s"], best["time_threshold_s"])
+        fpr: dict[float, list[float]] = {}
+        acc_num = acc_den = 0.0
+        for i in range(n):
+            if (d["method"][i], d["weight"][i], d["window_s"][i], d["time_threshold_s"][i]) != key:
+                continue
+            k = d["k"][i]
+            f = fpr.setdefault(k, [0.0, 0.0, 0.0, 0.0])
+            f[0] += d["false_static_s"][i]
+            f[1] += d["in_flight_checks"][i] * d["window_s"][i]
+            f[2] += d["static_s"][i] - d["missed_static_s"][i]
+            f[3] += d["static_s"][i]
+            if k == best["k"] and d["checks"][i] and not math.isnan(d["accuracy"][i]):
+                acc_num += d["accuracy"][i] * d["checks"][i]
+                acc_den += d["checks"][i]
+        pts = sorted((f[0] / f[1] if f[1] else math.nan, f[2] / f[3] if f[3] else math.nan) for f in fpr.values())
+        pts = [(0.0, 0.0)] + [p for p in pts if not any(map(math.isnan, p))] + [(1.0, 1.0)]
+        x, y = np.array(pts).T
+        auc = float(np.trapezoid(y, x)) if len(pts) > 3 else math.nan  # two or more thresholds swept
+        out.append(best | {"accuracy": acc_num / acc_den if acc_den else math.nan, "auc": auc,
+                           "roc_points": len(pts) - 2})
+    return sorted(out, key=lambda r: (not math.isfinite(r["response_p95_s"]), r["rate_upper_per_h"], r["response_p95_s"]))
 
 
 def where(table, values: dict):

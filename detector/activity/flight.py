@@ -163,7 +163,8 @@ def _checks(t_s, marker, merit, periods, index, after_reset, need: int) -> Check
 
 
 def evaluate_activity_grid(t_s, acc_g, gyr_dps, labels: dict, name: str, windows_s, ks, time_thresholds_s,
-                           fs_hz: float, bench_acc_g: np.ndarray, signal: str = "acc"):
+                           fs_hz: float, bench_acc_g: np.ndarray, signal: str = "acc",
+                           bench_gyr_dps: np.ndarray | None = None):
     """(parameters, evaluation) for every (window, k, T_th) of one detector over one stream, the
     detector run once per window: its figure of merit does not depend on the threshold, so each k is
     one comparison (seed 001's step IV) and each T_th one run-length pass (seed 000's eq. 8), as the
@@ -180,7 +181,7 @@ def evaluate_activity_grid(t_s, acc_g, gyr_dps, labels: dict, name: str, windows
     for w in windows_s:
         base = ActivityParams(name, fs_hz=fs_hz, window_s=w, k=ks[0], time_threshold_s=time_thresholds_s[0],
                               signal=signal)
-        rest = rest_figures(base, bench_acc_g)
+        rest = rest_figures(base, bench_acc_g, bench_gyr_dps)
         merit = d.detect(t_s, acc_g, gyr_dps, threshold=rest["threshold"], **_kwargs(base, rest)).merit
         periods, index, after_reset = _periods(merit.shape[0], base.window)
         for k in ks:

@@ -23,8 +23,6 @@ with the engines stopped (before engine start, after engines off), and not withi
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from scipy.signal import sosfilt, sosfilt_zi
 
@@ -33,6 +31,7 @@ from flightmode.sim.sensor import mount as mnt
 from flightmode.errors import SensorError
 from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, UnitDraw, draw_unit
 from flightmode.sim.sensor.barometer import BarometerPreset
+from flightmode.sim.sensor.gyroscope import GyroSpec
 from flightmode.sim.flight import atmosphere
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.labels import PHASE_CODE
@@ -46,21 +45,6 @@ FS_INTERNAL_HZ = 800.0
 CHUNK_S = 60.0
 SETTLE_S = 2.0
 BAG_STATE_CODE = {s: i for i, s in enumerate(car.BAG_STATES)}
-
-
-@dataclass(frozen=True, slots=True)
-class GyroSpec:
-    """An optional MEMS gyroscope sampled with the accelerometer (for the comparative detectors of
-    seed 001). Rates: the aircraft's body rates while on board, plus the bag's own rotation (sway
-    while carried, hand motion while handled, modelled as band-limited random rates); a per-unit
-    bias drawn within +-bias_tol_dps and white noise. Earth rotation (0.004 deg/s) is neglected."""
-
-    noise_dps: float = 0.05
-    bias_tol_dps: float = 0.5
-    range_dps: float = 2000.0
-    sway_dps: float = 20.0  # RMS rotation rate of a carried bag
-    handling_dps: float = 30.0  # RMS rotation rate of a handled bag
-
 
 
 def _check_track(track: FlightTrack) -> None:
@@ -344,8 +328,9 @@ def _gyro(t: np.ndarray, segs, track: FlightTrack, spec: GyroSpec, rng: np.rando
             rate = rate + car.band_noise(n, fs, (0.3, 3.0), rms, rng)
         out[sel] = rate @ seg.orientation  # sensor <- frame
     bias = rng.uniform(-spec.bias_tol_dps, spec.bias_tol_dps, 3)
-    out += bias + rng.normal(0.0, spec.noise_dps, out.shape)
-    return np.clip(out, -spec.range_dps, spec.range_dps)
+    out += bias + rng.normal(0.0, spec.noise_rms_dps(fs), out.shape)
+    out = np.clip(out, -spec.range_dps, spec.range_dps)
+    return out if spec.lsb_dps is None else np.rint(out / spec.lsb_dps) * spec.lsb_dps
 
 
 def _labels(t: np.ndarray, segs: list[car.Segment], track: FlightTrack, events: dict[str, float]) -> dict:

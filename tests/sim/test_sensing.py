@@ -406,7 +406,7 @@ def test_cli_sense_writes_a_new_run_folder(tmp_path, pattern_run):
 
 
 def test_optional_gyroscope_sees_the_aircraft_turn_in_sensor_axes(fly_cached):
-    from flightmode.sim.sensor.sensing import GyroSpec
+    from flightmode.sim.sensor.gyroscope import GyroSpec
 
     _, tr = fly_cached("pattern")
     spec = GyroSpec(noise_dps=0.0, bias_tol_dps=0.0)
