@@ -427,8 +427,59 @@ def activity_synth_cmd(
         _die(e)
 
 
-eobs_app = typer.Typer(help="The e-obs tag toolkit (seed 003): calibration.", no_args_is_help=True)
+eobs_app = typer.Typer(help="The e-obs tag toolkit (seed 003): calibration, the battery trade-off on flights.",
+                       no_args_is_help=True)
 app.add_typer(eobs_app, name="eobs")
+
+
+@eobs_app.command("tradeoff")
+def eobs_tradeoff_cmd(
+    datasets: Annotated[list[Path], typer.Argument(help="Dataset folders made by `flightmode dataset ... --truth full`.")],
+    interval_s: Annotated[str, typer.Option("--interval-s", help="ACC intervals, s (the tag's burst period).")] = "10,30,60,120",
+    byte_count: Annotated[int, typer.Option("--byte-count", help="Bytes per burst (seed 003 section 9: sets the samples per axis).")] = 216,
+    m: Annotated[str, typer.Option("--m", help="Quiet bursts in a row before final static.")] = "1,2,3",
+    k: Annotated[float, typer.Option("--k", help="A burst is quiet when its variance is under k sigma^2 on every axis.")] = 4.0,
+    odr_hz: Annotated[float, typer.Option("--odr-hz", help="Samples per second per axis in a burst.")] = 10.0,
+    confidence: Annotated[float, typer.Option("--confidence", help="Confidence of the upper bound.")] = 0.95,
+    workers: Annotated[int, typer.Option("--workers", help="Dask worker processes (1: in this process).")] = 1,
+    out: Annotated[Optional[Path], typer.Option("--out", help="Write the per-flight rows here (Parquet).")] = None,
+) -> None:
+    """The battery trade-off of a duty-cycled e-obs tag on flights: samples per hour against false
+    statics per flight-hour and the response at the gate, per ACC interval and m."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from flightmode.eobs.population import summarise, tradeoff_population
+
+    try:
+        intervals = _axis(interval_s, "--interval-s")
+        ms = tuple(int(x) for x in _axis(m, "--m"))
+        with Progress(TextColumn("flights"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                      console=console) as bar:
+            task = bar.add_task("flights", total=None)
+            rows = tradeoff_population([str(d) for d in datasets], intervals, byte_count, ms, k, odr_hz, workers,
+                                       on_start=lambda n: bar.update(task, total=n),
+                                       on_flight=lambda n: bar.advance(task))
+        t = Table("ACC interval s", "samples/axis/burst", "m", "samples/h/axis", "flights", "in-window h",
+                  "false statics", "/h", f"{confidence:.0%} bound /h", "response p50/p95/max s",
+                  title=f"e-obs duty cycle on flights: k {k:g}, {odr_hz:g} Hz per axis, {byte_count} bytes per burst",
+                  title_justify="left")
+        for r in summarise(rows, confidence):
+            t.add_row(f"{r['interval_s']:g}", str(r["burst_samples"]), str(r["m"]), f"{r['samples_per_hour_per_axis']:,.0f}",
+                      str(r["flights"]), f"{r['in_window_h']:.1f}", str(r["false_statics"]), f"{r['rate_per_h']:.3g}",
+                      f"{r['rate_upper_per_h']:.3g}",
+                      f"{r['response_p50_s']:.0f}/{r['response_p95_s']:.0f}/{r['response_max_s']:.0f}")
+        console.print(t)
+        if out is not None:
+            import pyarrow as pa
+            import pyarrow.parquet as pq
+
+            out.parent.mkdir(parents=True, exist_ok=True)
+            tmp = out.with_name(f".{out.name}.partial")
+            pq.write_table(pa.Table.from_pylist(rows), tmp)
+            tmp.replace(out)
+            console.print(Text.assemble("wrote ", (str(out), "bold")), highlight=False)
+    except FlightmodeError as e:
+        _die(e)
 
 
 @eobs_app.command("calibrate")

@@ -396,28 +396,8 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
     grid.validate(round(1.0 / float(np.median(np.diff(t0))), 6))  # a window under 2 samples, before any work
     if on_start:
         on_start(len(jobs))
-    results: list[dict] = []
-    if workers <= 1:
-        for d, r, fam in jobs:
-            results.append(sweep_flight(d, r, grid, sigma2_from, fam, sensors))
-            if on_flight:
-                on_flight(r["flight_id"])
-    else:
-        import logging
-
-        from dask.distributed import Client, LocalCluster, as_completed
-
-        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                          dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL) as cluster, \
-                Client(cluster) as client:
-            futs = {client.submit(sweep_flight, d, r, grid, sigma2_from, fam, sensors, pure=False): n
-                    for n, (d, r, fam) in enumerate(jobs)}
-            done: dict[int, dict] = {}
-            for f in as_completed(futs):
-                done[futs[f]] = f.result()
-                if on_flight:
-                    on_flight(jobs[futs[f]][1]["flight_id"])
-            results = [done[n] for n in range(len(jobs))]  # dataset and flight order, whatever the completion order
+    results = map_flights(sweep_flight, [(d, r, grid, sigma2_from, fam, sensors) for d, r, fam in jobs], workers,
+                          (lambda n: on_flight(jobs[n][1]["flight_id"])) if on_flight else None)
     tables = {part: pa.Table.from_pylist([row for res in results for row in res[part]])
               for part in ("points", "phases", "static")}
     meta = {"format": SWEEP_FORMAT, "datasets": described, "sigma2_from": sigma2_from, "sensors": list(sensors) if sensors else None,
@@ -428,6 +408,33 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
     if out is not None:
         write_sweep(result, out)
     return result
+
+
+def map_flights(fn: Callable, args: Sequence[tuple], workers: int = 1,
+                on_done: Callable[[int], None] | None = None) -> list:
+    """``[fn(*a) for a in args]``, one flight per call: in this process (``workers`` <= 1) or on a Dask
+    LocalCluster of ``workers`` processes (127.0.0.1, dashboard on a free local port), results in the
+    order of ``args`` whatever the completion order; ``on_done(n)`` as call n finishes."""
+    if workers <= 1:
+        out = []
+        for n, a in enumerate(args):
+            out.append(fn(*a))
+            if on_done:
+                on_done(n)
+        return out
+    import logging
+
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
+        futs = {client.submit(fn, *a, pure=False): n for n, a in enumerate(args)}
+        done: dict[int, object] = {}
+        for f in as_completed(futs):
+            done[futs[f]] = f.result()
+            if on_done:
+                on_done(futs[f])
+        return [done[n] for n in range(len(args))]
 
 
 def write_sweep(result: SweepResult, out: str | Path) -> None:

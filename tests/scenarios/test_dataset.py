@@ -351,6 +351,45 @@ def test_sweep_re_senses_full_truth_flights_with_other_presets(tmp_path, family_
     st = {r["sensor_preset"]: r for r in res.static.to_pylist()}
     assert st["lis302dl-8g"]["static_checks"] == st[own]["static_checks"]
     assert st["lis302dl-8g"]["hist_max"] != st[own]["hist_max"]
+    # the e-obs battery trade-off on the same full-truth dataset (issue 18)
+    _eobs_tradeoff_on_a_population(reference, full)
+
+
+def _eobs_tradeoff_on_a_population(ten_hz, full):
+    import math
+
+    from flightmode.eobs.flight import tradeoff_on_track
+    from flightmode.eobs.population import summarise, tradeoff_population
+    from flightmode.errors import InputDataError
+    from flightmode.scenarios import run_io
+
+    with pytest.raises(InputDataError, match="--truth full"):
+        tradeoff_population([ten_hz], (30.0,), 216, (1,))
+    rows = tradeoff_population([full], (30.0, 120.0), 216, (1, 2))
+    # the population's row is the flight's own trade-off (its track rebuilt from the full-rate truth)
+    (r0,) = read_manifest(full).values()
+    import pyarrow.parquet as pq
+
+    t = pq.read_table(full / r0["truth_file"])
+    track = run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
+    from flightmode.scenarios.scenario import Scenario
+
+    direct = tradeoff_on_track(track, Scenario.from_toml_text(r0["scenario_toml"]), (30.0, 120.0), 216, (1, 2))
+    assert [(r["interval_s"], r["m"], r["false_statics"]) for r in rows] == \
+        [(d.burst_interval_s, d.m, d.false_statics) for d in direct]
+    # samples per hour per axis: N per burst, one burst per interval
+    for r in rows:
+        assert r["samples_per_hour_per_axis"] == pytest.approx(r["burst_samples"] * 3600.0 / r["interval_s"])
+    # m quiet bursts in a row: a larger m declares a subset of the smaller m's bursts final static, so
+    # it can only have fewer false statics and answer later
+    by = {(r["interval_s"], r["m"]): r for r in rows}
+    for interval in (30.0, 120.0):
+        a, b = by[(interval, 1)], by[(interval, 2)]
+        assert b["false_statics"] <= a["false_statics"]
+        assert b["response_s"] >= a["response_s"] or math.isnan(a["response_s"])
+    s = summarise(rows)
+    assert [(x["interval_s"], x["m"]) for x in s] == [(30.0, 1), (30.0, 2), (120.0, 1), (120.0, 2)]
+    assert all(x["flights"] == 1 and x["in_window_h"] > 0 for x in s)
 
 
 GRID_SMALL = (("nmv", 1.0), ("emv", 5.0)), (1.0, 2.0), (3.0, 4.0, 5.0), (2.0, 4.0, 6.0)
