@@ -34,9 +34,11 @@ def test_rate_bounds_against_known_values():
     (Grid(windows_s=(0.01,)), r"window 0.01 s at 100 Hz is 1 sample"),
     (Grid(ks=(0.0,)), r"--k 0.0: the threshold k sigma\^2 needs k > 0"),
     (Grid(time_thresholds_s=(-1.0,)), r"--time-threshold-s -1.0"),
-    (Grid(methods=(("rms", 1.0),)), r"--method 'rms': use nmv, emv or one of seed 001's detectors"),
+    (Grid(methods=(("rms", 1.0),)), r"--method 'rms': use nmv, emv, nmv\+baro, emv\+baro or one of seed 001's detectors"),
     (Grid(methods=(("mbdc", 1.0),)), r"did you mean \"mbcd\"\?"),
-    (Grid(methods=(("shod", 1.0),)), r"--method shod: Stance Hypothesis Optimal Detector needs a gyroscope"),
+    (Grid(methods=(("amvd:sum", 1.0),)), r"--method 'amvd:sum': Acceleration Moving Variance Detector takes no input choice"),
+    (Grid(methods=(("fsd:gyro", 1.0),)), r"--method 'fsd:gyro': fsd takes acc, gyr, sum, product"),
+    (Grid(methods=(("nmv", 1.0), ("nmv", 1.0))), r"--method: a value is given twice"),
 ])
 def test_bad_grids_are_one_line_errors(grid, message):
     with pytest.raises(DetectorError, match=message):
