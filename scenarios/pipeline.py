@@ -173,6 +173,8 @@ def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarr
     None, where it came from). ``preset``: the same 60 s bench recording as :func:`stream_sigma2`
     (needs run.json; the bench models no gyroscope); ``rest``: the longest run of truly static
     samples before the flight (with the recording's gyroscope, if it has one)."""
+    import numpy as np
+
     from flightmode.detector.evaluation import longest_static_run
     from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
 

@@ -17,10 +17,15 @@ from flightmode.sim.sensor.gyroscope import GyroSpec, get_preset
 from flightmode.sim.sensor.sensing import sense
 
 
-def test_bmi270_at_rest_has_its_datasheet_noise_step_and_offset(fly_cached):
+@pytest.fixture(scope="module")
+def gyro_rec(fly_cached):
     _, tr = fly_cached("pattern")
-    g = get_preset("bmi270")
-    rec = sense(tr, CarrierSpec(handled_in_cruise=0), accel_preset("lis302dl"), np.random.default_rng(3), gyro=g)
+    return sense(tr, CarrierSpec(handled_in_cruise=0), accel_preset("lis302dl"), np.random.default_rng(3),
+                 gyro=get_preset("bmi270"))
+
+
+def test_bmi270_at_rest_has_its_datasheet_noise_step_and_offset(gyro_rec):
+    g, rec = get_preset("bmi270"), gyro_rec
     rest = rec.gyro_dps[rec.phase == "terminal_rest"]
     assert rest.shape[0] > 10_000
     # the output word: +-250 deg/s in 16 bits at 131.072 LSB/(deg/s)
@@ -38,6 +43,26 @@ def test_bmi270_at_rest_has_its_datasheet_noise_step_and_offset(fly_cached):
     assert np.all(np.abs(rest.mean(axis=0)) <= g.bias_tol_dps + 0.002)
     # a turn beyond the range saturates at it
     assert g.range_dps == 250.0 and np.abs(rec.gyro_dps).max() <= 250.0
+
+
+def test_the_rest_before_the_flight_calibrates_both_sensors(gyro_rec):
+    """stream_rest("rest"): the longest run of truly static samples before the in-flight window, the
+    accelerometer's and the gyroscope's rows of it (what the gyroscope detectors calibrate on)."""
+    from flightmode.scenarios.pipeline import stream_rest
+
+    rec = gyro_rec
+    cols = {"acc_g": rec.acc_g, "gyro_dps": rec.gyro_dps, "sensor_static": rec.sensor_static,
+            "in_flight_window": rec.in_flight_window}
+    acc, gyr, said = stream_rest("rest", cols, None)
+    assert gyr.shape == acc.shape and said == f"{acc.shape[0]} truly static samples before the flight"
+    # the runs of truly static samples before the window, found here independently
+    t_push = rec.t_s[np.flatnonzero(rec.in_flight_window)[0]]
+    st = rec.sensor_static & (rec.t_s < t_push)
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], st.astype(np.int8), [0]])))
+    lengths = edges[1::2] - edges[::2]
+    a = int(edges[::2][np.argmax(lengths)])
+    assert acc.shape[0] == lengths.max()  # the longest run
+    assert np.array_equal(acc, rec.acc_g[a:a + acc.shape[0]]) and np.array_equal(gyr, rec.gyro_dps[a:a + acc.shape[0]])
 
 
 def test_presets_and_bad_input():
