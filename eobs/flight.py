@@ -56,9 +56,28 @@ class DutyCycleOnFlight:
     samples_per_hour: float  # per axis
 
 
-def duty_cycle_on_flight(rec, sigma2: np.ndarray, k: float, m: int) -> DutyCycleOnFlight:
+def rest_after_window_s(rec, track, step_s: float = 0.01) -> float | None:
+    """When the bag truly came to rest after the in-flight window, to ``step_s``: the labels on a dense
+    grid of the recording's carrier timeline (:func:`flightmode.sim.sensor.sensing.labels_at`), since a
+    burst recording's own rows only see it at the next burst. None if it never does."""
+    from flightmode.sim.sensor.sensing import labels_at
+
+    t_end = float(rec.t_s[-1])
+    window = np.asarray(rec.in_flight_window, bool)
+    if not window.any():
+        return None
+    t0 = float(rec.t_s[np.flatnonzero(window)[-1]])  # the last recorded in-window sample
+    grid = t0 + np.arange(int((t_end - t0) / step_s) + 1) * step_s
+    lab = labels_at(grid, rec.segments, track)
+    ok = np.flatnonzero(lab["sensor_static"] & ~lab["in_flight_window"])
+    return float(grid[ok[0]]) if ok.size else None
+
+
+def duty_cycle_on_flight(rec, sigma2: np.ndarray, k: float, m: int, t_rest_s: float | None = None) -> DutyCycleOnFlight:
     """The duty-cycled detector over a burst recording, scored against its labels: a burst's truth is
-    its last sample's (in the in-flight window, truly static)."""
+    its last sample's (in the in-flight window, truly static). ``t_rest_s``: when the bag truly came to
+    rest after the window (:func:`rest_after_window_s`); the response counts from it. Without it, from
+    the first truly static recorded sample after the window (a burst's: up to an interval late)."""
     from flightmode.eobs.duty_cycle import detect_bursts
 
     sl = burst_slices(rec.t_s, rec.odr_hz)
@@ -70,13 +89,14 @@ def duty_cycle_on_flight(rec, sigma2: np.ndarray, k: float, m: int) -> DutyCycle
     runs = np.diff(np.concatenate([[0], (fin & in_w).astype(np.int8), [0]]))
     response = None
     window = np.asarray(rec.in_flight_window, bool)
-    if window.any():
+    t_rest = t_rest_s
+    if t_rest is None and window.any():
         end = int(np.flatnonzero(window)[-1])
         rest = np.flatnonzero(np.asarray(rec.sensor_static, bool)[end:])
-        if rest.size:
-            t_rest = float(rec.t_s[end + rest[0]])
-            hit = np.flatnonzero(fin & (t >= t_rest))
-            response = float(t[hit[0]] - t_rest) if hit.size else None
+        t_rest = float(rec.t_s[end + rest[0]]) if rest.size else None
+    if t_rest is not None:
+        hit = np.flatnonzero(fin & (t >= t_rest))
+        response = float(t[hit[0]] - t_rest) if hit.size else None
     interval = float(np.median(np.diff([float(rec.t_s[s.start]) for s in sl]))) if len(sl) > 1 else math.nan
     n = int(np.median([s.stop - s.start for s in sl]))
     return DutyCycleOnFlight(interval, n, m, k, len(sl), int(in_w.sum()), int((runs == 1).sum()), response,
@@ -104,8 +124,10 @@ def tradeoff_on_track(track, scenario, intervals_s, byte_count: int, ms, k: floa
                              UnitDraw.from_dict(rec.unit), streams.rng("detector/bench"), duration_s=600.0)
         cut = bench.acc_g[: (bench.acc_g.shape[0] // n) * n].reshape(-1, n, 3)
         s2 = calibrate_sigma2_bursts(list(cut), lsb_g=preset.lsb_g)
-        rows += [duty_cycle_on_flight(rec, s2, k, m) for m in ms]
+        t_rest = rest_after_window_s(rec, track)
+        rows += [duty_cycle_on_flight(rec, s2, k, m, t_rest) for m in ms]
     return rows
 
 
-__all__ = ["recording_bursts", "burst_slices", "duty_cycle_on_flight", "tradeoff_on_track", "DutyCycleOnFlight"]
+__all__ = ["recording_bursts", "burst_slices", "duty_cycle_on_flight", "rest_after_window_s", "tradeoff_on_track",
+           "DutyCycleOnFlight"]

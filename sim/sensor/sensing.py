@@ -333,6 +333,14 @@ def _gyro(t: np.ndarray, segs, track: FlightTrack, spec: GyroSpec, rng: np.rando
     return out if spec.lsb_dps is None else np.rint(out / spec.lsb_dps) * spec.lsb_dps
 
 
+def labels_at(t_s: np.ndarray, segments, track: FlightTrack) -> dict:
+    """The truth labels (phase code, in-flight window, airborne, turbulence, bag state, sensor static)
+    at any times ``t_s`` of a recording's carrier timeline (``Recording.segments``) on its track: what a
+    burst recording's own rows cannot say between its bursts (when the bag truly came to rest)."""
+    events = {e.name: e.t_s for e in track.events}
+    return _labels(np.asarray(t_s, float), list(segments), track, events)
+
+
 def _labels(t: np.ndarray, segs: list[car.Segment], track: FlightTrack, events: dict[str, float]) -> dict:
     seg_t0 = np.array([s.t0_s for s in segs])
     si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
