@@ -8,7 +8,6 @@ the response at the gate. One flight per task on the sweep's executor
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -21,17 +20,11 @@ from flightmode.errors import InputDataError
 def tradeoff_flight(dataset: str, row: dict, intervals_s: Sequence[float], byte_count: int, ms: Sequence[int],
                     k: float, odr_per_axis_hz: float) -> list[dict]:
     """One flight's rows (:func:`flightmode.eobs.flight.tradeoff_on_track` on its full-rate truth)."""
-    import pyarrow.parquet as pq
-
     from flightmode.eobs.flight import tradeoff_on_track
-    from flightmode.scenarios import run_io
     from flightmode.scenarios.scenario import Scenario
+    from flightmode.scenarios.sweep import full_truth_track
 
-    t = pq.read_table(Path(dataset) / row["truth_file"])
-    if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
-        raise InputDataError(f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track; make the "
-                             "dataset with `flightmode dataset ... --truth full`")
-    track = run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
+    track = full_truth_track(dataset, row)
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
     in_window_h = float(np.count_nonzero(track.in_flight_window)) / track.fs_hz / 3600.0
     out = []

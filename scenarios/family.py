@@ -147,6 +147,8 @@ class Family:
         from flightmode.scenarios import airports as ap
         from flightmode.scenarios.spec import SPEC
         from flightmode.sim.flight.aircraft_profiles import PROFILES
+        from flightmode.sim.sensor.barometer import PRESETS as BARO_PRESETS
+        from flightmode.sim.sensor.gyroscope import PRESETS as GYRO_PRESETS
 
         try:
             doc = tomllib.loads(text)
@@ -237,8 +239,8 @@ class Family:
                              SPEC["sensor"]["preset"].choices),
             vibration_level=(_range(source, "[sensor].vibration_level", sen["vibration_level"], 0.05, 20)
                              if "vibration_level" in sen else None),
-            baro=_baro(source, sen.get("baro")),
-            gyro=_gyro(source, sen.get("gyro")),
+            baro=_preset(source, "baro", sen.get("baro"), BARO_PRESETS),
+            gyro=_preset(source, "gyro", sen.get("gyro"), GYRO_PRESETS),
             text=text, source=source,
         )
         for t in out.aircraft.choices:  # every type with a positive weight needs a route it can fly
@@ -325,25 +327,13 @@ class Family:
             yield self.member(i)
 
 
-def _baro(source: str, name: Any) -> str | None:
+def _preset(source: str, key: str, name: Any, presets: Mapping[str, Any]) -> str | None:
+    """A fixed ``[sensor]`` preset name (``baro``, ``gyro``) checked against its presets; None if absent."""
     if name is None:
         return None
-    from flightmode.sim.sensor.barometer import PRESETS
-
-    if not isinstance(name, str) or name not in PRESETS:
-        raise ScenarioError(f"{source}: [sensor].baro = {name!r}: a barometer preset, one of {', '.join(PRESETS)}"
-                            f"{did_you_mean(str(name), PRESETS)}")
-    return name
-
-
-def _gyro(source: str, name: Any) -> str | None:
-    if name is None:
-        return None
-    from flightmode.sim.sensor.gyroscope import PRESETS
-
-    if not isinstance(name, str) or name not in PRESETS:
-        raise ScenarioError(f"{source}: [sensor].gyro = {name!r}: a gyroscope preset, one of {', '.join(PRESETS)}"
-                            f"{did_you_mean(str(name), PRESETS)}")
+    if not isinstance(name, str) or name not in presets:
+        raise ScenarioError(f"{source}: [sensor].{key} = {name!r}: a preset, one of {', '.join(presets)}"
+                            f"{did_you_mean(str(name), presets)}")
     return name
 
 

@@ -117,16 +117,10 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
         cols, _ = read_samples(Path(dataset) / row["samples_file"])
         yield row.get("sensor_preset"), cols, row["scenario_toml"]
         return
-    import pyarrow.parquet as pq
-
-    from flightmode.scenarios import pipeline, run_io
+    from flightmode.scenarios import pipeline
     from flightmode.scenarios.scenario import Scenario
 
-    t = pq.read_table(Path(dataset) / row["truth_file"])
-    if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
-        raise InputDataError(f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "
-                             "dataset); make the dataset again with `flightmode dataset ... --truth full`")
-    track = run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
+    track = full_truth_track(dataset, row)
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
     for preset in sensors:
         sc2 = sc.replace(sensor={"preset": preset, "odr_hz": None})
@@ -138,6 +132,20 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
         if rec.gyro_dps is not None:
             cols["gyro_dps"] = rec.gyro_dps
         yield preset, cols, sc2.to_toml()
+
+
+def full_truth_track(dataset: str | Path, row: dict):
+    """A dataset flight's FlightTrack, rebuilt from its full-rate truth (``--truth full``; the Parquet
+    metadata carries what run.json would: :data:`flightmode.scenarios.run_io.TRACK_INFO_KEY`)."""
+    import pyarrow.parquet as pq
+
+    from flightmode.scenarios import run_io
+
+    t = pq.read_table(Path(dataset) / row["truth_file"])
+    if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
+        raise InputDataError(f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "
+                             "dataset, or not --truth full); make the dataset with `flightmode dataset ... --truth full`")
+    return run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
 
 
 def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", family: str = "",
