@@ -120,20 +120,22 @@ def baro_preset(sensor: SensorChoice | str | AccelerometerPreset | None):
 
 
 def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str | AccelerometerPreset,
-          streams: Streams | np.random.Generator | int, *, gyro: GyroSpec | None = None) -> Recording:
+          streams: Streams | np.random.Generator | int, *, gyro: GyroSpec | None = None,
+          fitted: SensorChoice | None = None) -> Recording:
     """What the bag's sensors record of ``track`` (``streams``: the run's sensor streams): the
-    accelerometer, and the barometer and gyroscope when the ``[sensor]`` choice fits them (``gyro``:
-    a gyroscope instead of the choice's)."""
+    accelerometer, and the barometer and gyroscope that the ``[sensor]`` choice fits (``fitted``: take
+    them from this choice instead, e.g. the scenario's when ``sensor`` names another accelerometer;
+    ``gyro``: this gyroscope instead)."""
     from flightmode.sim.sensor.sensing import sense as _sense
 
-    if gyro is None and isinstance(sensor, SensorChoice) and sensor.gyro is not None:
+    parts = fitted if fitted is not None else sensor if isinstance(sensor, SensorChoice) else None
+    if gyro is None and parts is not None and parts.gyro is not None:
         from flightmode.sim.sensor.gyroscope import get_preset
 
-        gyro = get_preset(sensor.gyro)
-
+        gyro = get_preset(parts.gyro)
     level = getattr(sensor, "vibration_level", None)
     return _sense(track, carrier, sensor_preset(sensor), streams, gyro=gyro,
-                  vibration_level=1.0 if level is None else float(level), baro=baro_preset(sensor))
+                  vibration_level=1.0 if level is None else float(level), baro=baro_preset(parts))
 
 
 def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng: np.random.Generator) -> np.ndarray:
@@ -462,9 +464,9 @@ def run(
             t0 = time.perf_counter()
             g = gyro if isinstance(gyro, GyroSpec) else (get_preset("bmi270") if gyro else None)
             choice = sc.sensor if sensor is None else sensor
-            if not isinstance(choice, SensorChoice) and (sc.sensor.baro or sc.sensor.gyro):  # another accelerometer, the rest the same
-                choice = dataclasses.replace(sc.sensor, preset=sensor_preset(choice).name, odr_hz=sensor_preset(choice).odr_hz)
-            rec = sense(track, sc.carrier, choice, root.child("sensor"), gyro=g)
+            # another accelerometer given by name or preset: the scenario's barometer and gyroscope stay fitted
+            rec = sense(track, sc.carrier, choice, root.child("sensor"), gyro=g,
+                        fitted=None if isinstance(choice, SensorChoice) else sc.sensor)
             wall["sense"] = time.perf_counter() - t0
             if writer is not None:
                 writer.submit("samples", "samples.parquet", run_io.write_samples, rec)
