@@ -85,24 +85,16 @@ def tradeoff_population(datasets, intervals_s: Sequence[float], byte_count: int,
 def summarise(rows: list[dict], confidence: float = 0.95) -> list[dict]:
     """Per (interval, burst, m): flights, in-window hours, false statics, their rate and exact upper
     bound per flight-hour, response p50 / p95 / max at the gate, samples per hour per axis."""
-    from flightmode.detector.confidence import rate_upper_bound
+    from flightmode.scenarios.sweep import rate_and_response
 
     groups: dict[tuple, list[dict]] = {}
     for r in rows:
         groups.setdefault((r["interval_s"], r["burst_samples"], r["m"], r["k"]), []).append(r)
     out = []
     for (interval, n, m, k), rs in sorted(groups.items()):
-        hours = sum(r["in_window_h"] for r in rs)
-        events = sum(r["false_statics"] for r in rs)
-        resp = np.array([r["response_s"] for r in rs], float)
-        resp = resp[~np.isnan(resp)]
         out.append({"interval_s": interval, "burst_samples": n, "m": m, "k": k, "flights": len(rs),
-                    "in_window_h": hours, "false_statics": events,
-                    "rate_per_h": events / hours if hours > 0 else math.nan,
-                    "rate_upper_per_h": rate_upper_bound(events, hours, confidence) if hours > 0 else math.nan,
-                    "response_p50_s": float(np.percentile(resp, 50, method="higher")) if resp.size else math.nan,
-                    "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan,
-                    "response_max_s": float(resp.max()) if resp.size else math.nan,
+                    **rate_and_response(sum(r["false_statics"] for r in rs), sum(r["in_window_h"] for r in rs),
+                                        [r["response_s"] for r in rs], confidence),
                     "samples_per_hour_per_axis": float(np.mean([r["samples_per_hour_per_axis"] for r in rs]))})
     return out
 

@@ -471,12 +471,10 @@ def eobs_tradeoff_cmd(
         console.print(t)
         if out is not None:
             import pyarrow as pa
-            import pyarrow.parquet as pq
 
-            out.parent.mkdir(parents=True, exist_ok=True)
-            tmp = out.with_name(f".{out.name}.partial")
-            pq.write_table(pa.Table.from_pylist(rows), tmp)
-            tmp.replace(out)
+            from flightmode.scenarios.dataset import _atomic_parquet
+
+            _atomic_parquet(pa.Table.from_pylist(rows), out)
             console.print(Text.assemble("wrote ", (str(out), "bold")), highlight=False)
     except FlightmodeError as e:
         _die(e)

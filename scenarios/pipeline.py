@@ -215,6 +215,12 @@ def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) ->
     return s2, f"{n} truly static samples before the flight"
 
 
+def _labels(recording: Recording) -> dict:
+    """The labels a detector is scored against (:mod:`flightmode.detector.evaluation`)."""
+    return {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
+            "phase": recording.phase}
+
+
 def detect(recording: Recording, rng: np.random.Generator) -> Evaluation:
     """Seed 000's recommended detector on the recording, sigma^2 from the bench calibration of its
     unit (``rng``: the run's ``detector/bench`` stream), scored against the truth labels."""
@@ -222,9 +228,7 @@ def detect(recording: Recording, rng: np.random.Generator) -> Evaluation:
 
     p = recommended_params(recording.odr_hz)
     s2 = unit_sigma2(recording.preset, recording.odr_hz, recording.unit, p.window, rng)
-    labels = {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
-              "phase": recording.phase}
-    return evaluate_recommended(recording.t_s, recording.acc_g, labels, recording.odr_hz, s2)
+    return evaluate_recommended(recording.t_s, recording.acc_g, _labels(recording), recording.odr_hz, s2)
 
 
 def pressure_params(scenario: Scenario, baro_odr_hz: float, **changes) -> PressureParams:
@@ -248,10 +252,8 @@ def detect_redundant(recording: Recording, detection: Evaluation, params: Pressu
     from flightmode.detector.pressure import evaluate_redundant
 
     tb, pb = recording.baro_stream
-    labels = {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
-              "phase": recording.phase}
-    return evaluate_redundant(recording.t_s, recording.acc_g, tb, pb, labels, detection.params, detection.sigma2,
-                              params)
+    return evaluate_redundant(recording.t_s, recording.acc_g, tb, pb, _labels(recording), detection.params,
+                              detection.sigma2, params)
 
 
 def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:

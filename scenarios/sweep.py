@@ -477,6 +477,26 @@ def read_sweep(path: str | Path) -> SweepResult:
     return SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
 
 
+def rate_and_response(events: int, hours: float, responses, confidence: float = 0.95) -> dict:
+    """A population's false statics and gate responses in the figures every table here prints: in-window
+    hours, events, their rate and exact upper bound per flight-hour, response p50 / p95 / max (a NaN
+    response, nothing to answer, is left out; inf, never answered, counts as infinitely slow) and the
+    number of flights never answered."""
+    from flightmode.detector.confidence import rate_upper_bound
+
+    resp = np.asarray(responses, float)
+    resp = resp[~np.isnan(resp)]
+    return {
+        "in_window_h": hours, "false_statics": events,
+        "rate_per_h": events / hours if hours > 0 else math.nan,
+        "rate_upper_per_h": rate_upper_bound(events, hours, confidence) if hours > 0 else math.nan,
+        "response_p50_s": float(np.percentile(resp, 50, method="higher")) if resp.size else math.nan,
+        "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan,
+        "response_max_s": float(resp.max()) if resp.size else math.nan,
+        "no_response": int(np.isinf(resp).sum()),
+    }
+
+
 def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None = None,
               by_sensor: bool = False) -> list[dict]:
     """One row per grid point over all flights: events, in-window hours, rate, its exact upper bound,
@@ -484,7 +504,7 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
     share of all truly static time reported static), and the hours still needed for
     ``target_rate_per_h``. ``by_sensor``: a point per sensor preset too (a sweep with ``--sensor``
     re-senses the same flights: their hours must not add up across presets)."""
-    from flightmode.detector.confidence import hours_needed, rate_upper_bound
+    from flightmode.detector.confidence import hours_needed
 
     keys = list(POINT_KEYS) + (["sensor_preset"] if by_sensor else [])
     df = table.select(keys + ["in_window_h", "false_static_count", "false_static_s", "response_s", "static_s",
@@ -497,20 +517,13 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
         hours = float(sum(df["in_window_h"][i] for i in idx))
         events = int(sum(df["false_static_count"][i] for i in idx))
         resp = np.array([df["response_s"][i] for i in idx], float)
-        resp = resp[~np.isnan(resp)]  # NaN: no rest after the flight, nothing to answer; inf: never answered
         susp = np.array([df["suspend_s"][i] for i in idx], float)
         susp = susp[np.isfinite(susp)]
         static_s = float(sum(df["static_s"][i] for i in idx))
         missed_s = float(sum(df["missed_static_s"][i] for i in idx))
         row = dict(zip(keys, key)) | {
-            "flights": len(idx), "in_window_h": hours, "false_statics": events,
-            "false_static_s": float(sum(df["false_static_s"][i] for i in idx)),
-            "rate_per_h": events / hours if hours > 0 else math.nan,
-            "rate_upper_per_h": rate_upper_bound(events, hours, confidence) if hours > 0 else math.nan,
-            "response_p50_s": float(np.percentile(resp, 50, method="higher")) if resp.size else math.nan,
-            "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan,
-            "response_max_s": float(resp.max()) if resp.size else math.nan,
-            "no_response": int(np.isinf(resp).sum()),
+            "flights": len(idx), "false_static_s": float(sum(df["false_static_s"][i] for i in idx)),
+            **rate_and_response(events, hours, resp, confidence),
             "suspend_max_s": float(susp.max()) if susp.size else math.nan,
             "availability": (static_s - missed_s) / static_s if static_s > 0 else math.nan,
         }

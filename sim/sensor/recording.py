@@ -32,8 +32,8 @@ class Recording:
     bag_state_code: np.ndarray
     sensor_static: np.ndarray
     gyro_dps: np.ndarray | None = None  # (M, 3) optional gyroscope, deg/s, sensor axes
-    # the pressure at the bag (truth: the cabin's, the hold's, or ambient off board; None: a track
-    # without pressure truth) and an optional barometer read at the accelerometer's rows: baro_pa is
+    # with a barometer fitted: the pressure at the bag (truth: the cabin's, the hold's, or ambient off
+    # board) and the barometer read at the accelerometer's rows: baro_pa is
     # the latest reading (held), baro_new marks the rows where a new one arrived (sensing.read_barometer)
     pressure_pa: np.ndarray | None = None
     baro_pa: np.ndarray | None = None

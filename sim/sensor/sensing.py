@@ -182,12 +182,12 @@ def sense(
         t_out, counts, acc, clipped = t_out[keep], counts[keep], acc[keep], clipped[keep]
     gyro_dps = None if gyro is None else _gyro(t_out, segs, track, gyro, streams.rng("gyro"))
     labels = _labels(t_out, segs, track, events)
-    pressure = None if track.cabin_pressure_pa is None else bag_pressure_pa(t_out, segs, track)
-    baro_cols = {}
-    if baro is not None:
-        if pressure is None:
+    pressure, baro_cols = None, {}
+    if baro is not None:  # the pressure at the bag is the barometer's truth: computed only for one
+        if track.cabin_pressure_pa is None:
             raise SensorError("a barometer needs the track's pressure truth: this track has none "
                               "(read from an older file); fly the scenario again")
+        pressure = bag_pressure_pa(t_out, segs, track)
         baro_cols = read_barometer(t_out, segs, track, baro, streams)
     return Recording(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
