@@ -26,27 +26,44 @@ def _flight_cache_dir(tmp_path_factory, worker_id):
 
 
 def _store(path, value) -> None:
+    # streamed into the file (no second copy of a gigabyte in memory), then renamed into place
     tmp = path.with_suffix(f".tmp-{os.getpid()}")
-    tmp.write_bytes(pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+    with open(tmp, "wb") as f:
+        pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
     os.replace(tmp, path)
 
 
-def _shared(path, compute):
+def _load(path):
+    with open(path, "rb") as f:
+        return pickle.load(f)
+
+
+def _shared(path, compute, store=lambda v: v, restore=lambda v: v):
     """``compute()`` once per test session whatever the number of workers: the first to need it
-    computes and stores it (pickled, renamed into place) under a lock, the others load it."""
+    computes and stores ``store(value)`` (pickled, renamed into place) under a lock, the others load
+    it and return ``restore(stored)``."""
     from filelock import FileLock
 
     with FileLock(str(path) + ".lock"):
         if path.exists():
-            return pickle.loads(path.read_bytes())
+            return restore(_load(path))
         value = compute()
-        _store(path, value)
+        _store(path, store(value))
         return value
 
 
+def _without_track(run):
+    """A run as stored: its track is the flight's own file (a long haul's track is a gigabyte; stored
+    twice, the session's cache outgrew the page cache and waited on the disk)."""
+    import dataclasses
+
+    return dataclasses.replace(run, track=None)
+
+
 def _claim(path, compute) -> None:
-    """Compute and store ``compute()`` at ``path`` if it is not there and no other worker holds its
-    lock; return at once otherwise (the worker flying ahead: :func:`_fly_ahead`)."""
+    """Compute and store ``compute()`` (already in its stored form) at ``path`` if it is not there and
+    no other worker holds its lock; return at once otherwise (the worker flying ahead:
+    :func:`_fly_ahead`)."""
     from filelock import FileLock, Timeout
 
     lock = FileLock(str(path) + ".lock")
@@ -91,7 +108,7 @@ def _fly_ahead(request, _flight_cache_dir):
         flight = _flight_cache_dir / f"{_flight_key(sc)}.pkl"
         if flight.exists():
             _claim(_flight_cache_dir / f"{_run_key(sc, RUN_STAGES)}.pkl",
-                   lambda: pipeline.run(sc, track=pickle.loads(flight.read_bytes()), stages=RUN_STAGES))
+                   lambda: _without_track(pipeline.run(sc, track=_load(flight), stages=RUN_STAGES)))
 
 
 @pytest.fixture(scope="session")
@@ -127,6 +144,8 @@ def run_cached(fly_cached, _flight_cache_dir):
     ``flightmode.run`` (no files written), on the session's cached flight; like the flights, each
     result is computed once per session whatever the number of workers (pickled, renamed into
     place, under a lock)."""
+    import dataclasses
+
     from flightmode.scenarios import pipeline
 
     memo: dict = {}
@@ -135,7 +154,8 @@ def run_cached(fly_cached, _flight_cache_dir):
         sc, track = fly_cached(name, seed, **changes)
         key = _run_key(sc, stages)
         if key not in memo:
-            memo[key] = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.run(sc, track=track, stages=stages))
+            memo[key] = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.run(sc, track=track, stages=stages),
+                                store=_without_track, restore=lambda r: dataclasses.replace(r, track=track))
         return memo[key]
 
     return _run
