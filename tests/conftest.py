@@ -8,6 +8,7 @@ other's lock."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import pickle
 
@@ -55,8 +56,6 @@ def _shared(path, compute, store=lambda v: v, restore=lambda v: v):
 def _without_track(run):
     """A run as stored: its track is the flight's own file (a long haul's track is a gigabyte; stored
     twice, the session's cache outgrew the page cache and waited on the disk)."""
-    import dataclasses
-
     return dataclasses.replace(run, track=None)
 
 
@@ -144,8 +143,6 @@ def run_cached(fly_cached, _flight_cache_dir):
     ``flightmode.run`` (no files written), on the session's cached flight; like the flights, each
     result is computed once per session whatever the number of workers (pickled, renamed into
     place, under a lock)."""
-    import dataclasses
-
     from flightmode.scenarios import pipeline
 
     memo: dict = {}
