@@ -25,8 +25,8 @@ import numpy as np
 
 from flightmode.sim.flight import geodesy
 from flightmode.sim.flight.aircraft_profiles import get_profile
-from flightmode.errors import FlightDivergedError
-from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+from flightmode.errors import AircraftError, FlightDivergedError
+from flightmode.sim.flight.jsbsim_adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.sim.flight.draws import draw_flight
 from flightmode.sim.flight.turbulence import GustFeed, GustField
@@ -128,6 +128,11 @@ def fly(
     _load_fuel(ac, fuel_kg)
     fuel_start_lbs = _fuel_lbs(ac)
     ac.set("atmosphere/turb-type", 0)  # JSBSim's own turbulence is off: flightmode feeds its gusts
+    if ac.get("simulation/integrator/rate/rotational") != ROTATIONAL_RATE_INTEGRATOR_RECT_EULER:
+        # the track's angular acceleration is the rates' forward difference (jsbsim_adapter.ANG_ACC_PROPS)
+        raise AircraftError(f"'{plan.aircraft}' integrates its body rates with JSBSim integrator "
+                            f"{ac.get('simulation/integrator/rate/rotational'):g}, not rectangular Euler (1): "
+                            "remove the model's <integrator> setting")
     ac.set("propulsion/cutoff_cmd", 1)
     draws = draw_flight(plan, prof, streams)
     pilot = Pilot(ac, plan, prof, fdm_hz, draws, taxi)
@@ -217,6 +222,8 @@ def fly(
                 phase=pilot.phase,
                 t_s=step / fdm_hz,
             )
+    # the rates one step past the last row: the last row's angular acceleration (_to_track)
+    rates_after = [ac.get(p) for p in ("velocities/p-rad_sec", "velocities/q-rad_sec", "velocities/r-rad_sec")]
     raw_record = np.empty((step, nch))
     raw_record[:, :nf] = np.frombuffer(data, dtype=np.float64).reshape(-1, nf)
     ticks = np.frombuffer(tick_steps, dtype=np.int64)
@@ -235,7 +242,7 @@ def fly(
     phase_code = np.repeat(np.array([c[1] for c in changes], dtype=np.uint8), reps)
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
-    track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events)
+    track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events, rates_after)
     fuel = {"fuel_planned_kg": fuel_kg, "fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
     cab = pressure_truth(track, plan, draws)
     return dataclasses.replace(track, conditions=draws.as_dict() | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m}
@@ -276,8 +283,9 @@ def _gather(raw: np.ndarray, scales: np.ndarray, groups: dict[str, list[int]], b
     return out
 
 
-def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> FlightTrack:
-    """Assemble the FlightTrack from the (steps, channels) raw record and the terrain per step."""
+def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events, rates_after) -> FlightTrack:
+    """Assemble the FlightTrack from the (steps, channels) raw record, the terrain per step and the
+    body rates one step past the last row (rad/s)."""
     ix = ac.index
     ne = get_profile(plan.aircraft).n_engines
     one = lambda name: [ix[name]]  # noqa: E731
@@ -293,7 +301,6 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> Flight
     groups |= {
         "euler": three("phi_rad", "theta_rad", "psi_rad"),
         "rates": three("p_radps", "q_radps", "r_radps"),
-        "ang_acc": three("pdot_radps2", "qdot_radps2", "rdot_radps2"),
         "vel": three("v_north_mps", "v_east_mps", "v_down_mps"),
         "sf": three("fx_mps2", "fy_mps2", "fz_mps2"),
         "n1": eng("n1_pct"),
@@ -308,6 +315,9 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> Flight
     o = plan.origin
     pos = geodesy.geodetic_to_ned(col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m)
     vel = g["vel"]
+    # JSBSim's own angular acceleration of each step: the rates' forward difference (rectangular
+    # Euler, jsbsim_adapter.ANG_ACC_PROPS)
+    ang_acc = np.diff(g["rates"], axis=0, append=np.asarray(rates_after)[None, :]) * fdm_hz
     euler = g["euler"]
     t_push = next((e.t_s for e in events if e.name == "pushback"), math.inf)
     t_off = next((e.t_s for e in events if e.name == "engines_off"), math.inf)  # a stopped flight
@@ -328,7 +338,7 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events) -> Flight
         euler_rad=euler,
         quat_wxyz=euler_to_quat_wxyz(euler),
         rates_radps=g["rates"],
-        ang_acc_radps2=g["ang_acc"],
+        ang_acc_radps2=ang_acc,
         specific_force_body_mps2=g["sf"],
         n1_pct=g["n1"],
         n2_pct=g["n2"],
