@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import lfilter
 
-from flightmode.errors import DetectorError
+from flightmode.errors import DetectorError, first_nonfinite
 
 
 
@@ -72,8 +72,7 @@ class MovingVariance:
             raise DetectorError(f"samples must be an (n, {self.n_axes}) array, got shape {x.shape}")
         if x.shape[0] == 0:
             return np.zeros((0, self.n_axes))
-        if not np.isfinite(x).all():
-            bad = int(np.flatnonzero(~np.isfinite(x).all(axis=1))[0])
+        if (bad := first_nonfinite(x)) is not None:
             raise DetectorError(
                 f"NaN or inf in the stream at sample {self.n + bad}: clean the stream, or start a new "
                 "detector after the gap (a gap resets the detector)"

@@ -80,7 +80,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 from flightmode.detector.flight_mode import Checks, DetectorParams, FlightModeDetector
 
-from flightmode.errors import DetectorError
+from flightmode.errors import DetectorError, first_nonfinite
 from flightmode.units import FPM_MPS, FT_M, G0_MPS2
 
 # ---------------------------------------------------------------------------------------------
@@ -295,8 +295,7 @@ class PressureDetector:
         if m == 0:
             return _cat_pressure([])
         for name, v in (("t_s", t), ("baro_pa", x)):
-            if not np.isfinite(v).all():
-                i = int(np.flatnonzero(~np.isfinite(v))[0])
+            if (i := first_nonfinite(v)) is not None:
                 raise DetectorError(f"pressure detector: {name} is NaN or inf at sample {self._n + i} "
                                     f"(t = {t[i]:.3f} s): clean the stream")
         period = 1.0 / p.fs_hz

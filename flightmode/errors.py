@@ -77,3 +77,18 @@ def did_you_mean(name: str, allowed: Iterable[str]) -> str:
     """Return ' (did you mean "x"?)' for the closest allowed name, or '' when none is close."""
     close = difflib.get_close_matches(str(name), [str(a) for a in allowed], n=1, cutoff=0.5)
     return f' (did you mean "{close[0]}"?)' if close else ""
+
+
+def first_nonfinite(x, axis: int = 0) -> int | None:
+    """The index along ``axis`` (the samples) of the first sample holding a NaN or an infinity in any
+    of its values, or None when every value is finite: the one test behind each room's "NaN or inf at
+    sample i" message."""
+    import numpy as np
+
+    ok = np.isfinite(np.asarray(x, dtype=float))
+    if ok.all():
+        return None
+    bad = ~ok
+    if bad.ndim > 1:
+        bad = np.moveaxis(bad, axis, 0).reshape(bad.shape[axis], -1).any(axis=1)
+    return int(np.flatnonzero(bad)[0])

@@ -37,7 +37,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from flightmode.errors import DetectorError, did_you_mean
+from flightmode.errors import DetectorError, did_you_mean, first_nonfinite
 
 SIGNALS = ("acc", "gyr", "sum", "product")  # the flexible input (seed 001, section 3.1.2)
 GRAVITY_G = 1.0  # g in eq. (2) and (4), in the unit of acc_g ("1 g or 9.8 m/s^2", section 2.1.2)
@@ -150,13 +150,6 @@ def window_sums(v: np.ndarray, window: int) -> np.ndarray:
 
 
 # ---------------------------------------------------------------- the input stream
-def _first_bad(x: np.ndarray) -> int:
-    bad = ~np.isfinite(x)
-    if bad.ndim > 1:
-        bad = bad.any(axis=tuple(range(1, bad.ndim)))
-    return int(np.flatnonzero(bad)[0])
-
-
 class StreamInput:
     """Checks chunks of (t_s, acc_g, gyr_dps) and the time axis across chunks; counts samples. A
     detector calls :meth:`take` first and :meth:`commit` once it has processed the chunk, so a chunk
@@ -192,13 +185,9 @@ class StreamInput:
                     f"{self.who}: gyr_dps must be an ({t.shape[0]}, 3) array (one row per t_s), "
                     f"got shape {g.shape}"
                 )
-        if not (np.isfinite(t).all() and np.isfinite(a).all() and (g is None or np.isfinite(g).all())):
-            for name, x in (("t_s", t), ("acc_g", a), ("gyr_dps", g)):
-                if x is not None and not np.isfinite(x).all():
-                    i = _first_bad(x)
-                    raise DetectorError(
-                        f"{self.who}: NaN or inf in {name} at sample {self.n + i}: clean the stream"
-                    )
+        for name, x in (("t_s", t), ("acc_g", a), ("gyr_dps", g)):
+            if x is not None and (i := first_nonfinite(x)) is not None:
+                raise DetectorError(f"{self.who}: NaN or inf in {name} at sample {self.n + i}: clean the stream")
         if t.shape[0]:
             tt = t if self._t_last is None else np.concatenate([[self._t_last], t])
             if tt.shape[0] > 1:
@@ -238,8 +227,8 @@ def batch_rate(t_s, fs_hz: float | None, who: str) -> float:
     t = np.asarray(t_s, dtype=float)
     if t.ndim != 1:
         raise DetectorError(f"{who}: t_s must be a 1-D array of seconds, got shape {t.shape}")
-    if not np.isfinite(t).all():
-        raise DetectorError(f"{who}: NaN or inf in t_s at sample {_first_bad(t)}: clean the stream")
+    if (i := first_nonfinite(t)) is not None:
+        raise DetectorError(f"{who}: NaN or inf in t_s at sample {i}: clean the stream")
     if t.shape[0] < 2:
         raise DetectorError(f"{who}: {t.shape[0]} sample(s): a stream needs at least 2 samples")
     dt = np.diff(t)

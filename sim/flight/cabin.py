@@ -77,7 +77,7 @@ from dataclasses import dataclass
 import numpy as np
 from flightmode.sim.flight import atmosphere as isa
 
-from flightmode.errors import AircraftError, InputDataError, ScenarioError, did_you_mean
+from flightmode.errors import AircraftError, InputDataError, ScenarioError, did_you_mean, first_nonfinite
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.units import FPM_MPS, FT_M, HPA_PA, PSI_PA
 
@@ -254,8 +254,7 @@ def _check_series(t_s, alt_m) -> tuple[np.ndarray, np.ndarray, float]:
         raise InputDataError(f"cabin pressure: need t_s and alt_m as 1-D arrays of one length >= 2, "
                              f"got {t.shape} and {h.shape}")
     for name, x in (("t_s", t), ("alt_m", h)):
-        if not np.isfinite(x).all():
-            i = int(np.flatnonzero(~np.isfinite(x))[0])
+        if (i := first_nonfinite(x)) is not None:
             raise InputDataError(f"cabin pressure: {name} is NaN or inf at sample {i}")
     dt = np.diff(t)
     step = float(np.median(dt))

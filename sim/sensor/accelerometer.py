@@ -63,7 +63,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from flightmode.errors import SensorError, did_you_mean
+from flightmode.errors import SensorError, did_you_mean, first_nonfinite
 
 
 @dataclass(frozen=True, slots=True)
@@ -338,8 +338,7 @@ class SensorChain:
         a = np.asarray(f_rows_g, dtype=float)
         if a.ndim != 2 or a.shape[0] != 3:
             raise SensorError(f"specific force rows must be a (3, N) array, got shape {a.shape}")
-        if not np.isfinite(a).all():
-            bad = int(np.flatnonzero(~np.isfinite(a).all(axis=0))[0])
+        if (bad := first_nonfinite(a, axis=1)) is not None:
             raise SensorError(f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken")
         n_in = a.shape[1]
         # the anti-alias filter is linear and per axis, the cross-axis mixing a constant matrix and the

@@ -44,7 +44,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from flightmode.errors import SensorError, did_you_mean
+from flightmode.errors import SensorError, did_you_mean, first_nonfinite
 from flightmode.units import HPA_PA
 
 
@@ -198,8 +198,7 @@ def measure(
         raise SensorError(f"barometer: need t_s and pressure_pa as 1-D arrays of one length >= 2, "
                           f"got {t.shape} and {x.shape}")
     for name, v in (("t_s", t), ("pressure_pa", x)):
-        if not np.isfinite(v).all():
-            i = int(np.flatnonzero(~np.isfinite(v))[0])
+        if (i := first_nonfinite(v)) is not None:
             raise SensorError(f"barometer: {name} is NaN or inf at sample {i} (t = {t[i]:.3f} s)")
     if np.any(np.diff(t) <= 0):
         i = int(np.flatnonzero(np.diff(t) <= 0)[0])

@@ -28,7 +28,7 @@ from scipy.signal import sosfilt, sosfilt_zi
 
 from flightmode.sim.sensor import carrier as car
 from flightmode.sim.sensor import mount as mnt
-from flightmode.errors import SensorError
+from flightmode.errors import SensorError, first_nonfinite
 from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, UnitDraw, draw_unit
 from flightmode.sim.sensor.barometer import BarometerPreset
 from flightmode.sim.sensor.gyroscope import GyroSpec
@@ -52,9 +52,9 @@ def _check_track(track: FlightTrack) -> None:
         i = int(np.flatnonzero(np.diff(track.t_s) <= 0)[0])
         raise SensorError(f"FlightTrack time is not strictly increasing at sample {i} (t = {track.t_s[i]:.3f} s)")
     for name in ("specific_force_body_mps2", "rates_radps", "ang_acc_radps2", "n1_pct", "tas_mps", "alt_m"):
-        a = getattr(track, name)
-        if not np.isfinite(a).all():
-            raise SensorError(f"FlightTrack.{name} has NaN or inf: re-fly the scenario")
+        if (i := first_nonfinite(getattr(track, name))) is not None:
+            raise SensorError(f"FlightTrack.{name} has NaN or inf at sample {i} (t = {track.t_s[i]:.3f} s): "
+                              "re-fly the scenario")
 
 
 def sense(
