@@ -21,6 +21,8 @@ Each main-gear contact (the braked ones) of the private model copy gets:
   1.3 g at 2 ft/s, 1.5 g at 4 ft/s and 2.0 g at 8 ft/s;
 - rebound damping as the model had it (linear): a strut damps its extension hard and must not bounce.
 
+The nose gear gets the same strut scaled to the weight it carries (:func:`soften_nose_gear`).
+
 The aircraft then sits lower on its gear than the stock model: the pilot measures its settled height
 after the gear has settled (:func:`flightmode.sim.flight.simulate.fly`).
 """
@@ -88,11 +90,41 @@ def main_strut(landing_mass_kg: float, n_main: int, hard_landing_g: float = HARD
     return k, c2
 
 
+def nose_gear(root: ET.Element) -> ET.Element:
+    """The nose-gear contact of a JSBSim model: its one steerable BOGEY contact (the structural
+    contact points some models declare as BOGEYs do not steer)."""
+    steer = [c for c in root.iterfind("ground_reactions/contact")
+             if c.get("type") == "BOGEY" and float(c.findtext("max_steer") or 0.0) > 0.0]
+    if len(steer) != 1:
+        raise AircraftError(f"the model has {len(steer)} steerable gear contacts, not one: cannot tell its nose gear")
+    return steer[0]
+
+
 def soften_main_gear(root: ET.Element, landing_mass_kg: float) -> tuple[float, float]:
     """Give the model's main gear the strut of the module docstring, in place. Returns (k, c2)."""
     mains = main_gear(root)
     k, c2 = main_strut(landing_mass_kg, len(mains))
-    for c in mains:
+    _set_strut(mains, k, c2)
+    return k, c2
+
+
+def soften_nose_gear(root: ET.Element, landing_mass_kg: float) -> tuple[float, float]:
+    """Give the model's nose gear an oleo strut too, in place: the main strut scaled to the weight it
+    carries (1 - ``MAIN_SHARE``), i.e. the same static deflection and the same stroke for the same
+    contact speed (spring and quadratic damper both in proportion to the mass, the 1-DOF strut's
+    motion is unchanged). The stock nose struts have stiff springs and linear dampers like the stock
+    mains: the 787-8's (80,000 lbf/(ft/s)) turned the nose wheels' contact after a normal touchdown
+    into a 2.2 g peak at the CG, above the main-gear touchdown's 1.3 g. Returns (k, c2)."""
+    mains = main_gear(root)
+    k_main, c2_main = main_strut(landing_mass_kg, len(mains))
+    scale = (1.0 - MAIN_SHARE) / (MAIN_SHARE / len(mains))
+    k, c2 = k_main * scale, c2_main * scale
+    _set_strut([nose_gear(root)], k, c2)
+    return k, c2
+
+
+def _set_strut(contacts: list[ET.Element], k: float, c2: float) -> None:
+    for c in contacts:
         damp = c.find("damping_coeff")
         if c.find("damping_coeff_rebound") is None:  # rebound: the model's linear damping
             reb = ET.SubElement(c, "damping_coeff_rebound", unit=damp.get("unit", "LBS/FT/SEC"))
@@ -102,4 +134,3 @@ def soften_main_gear(root: ET.Element, landing_mass_kg: float) -> tuple[float, f
         spring = c.find("spring_coeff")
         spring.attrib = {"unit": "LBS/FT"}
         spring.text = f"{k:.3f}"
-    return k, c2

@@ -2,7 +2,9 @@
 XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each with its reason:
 
 - every type: the main gear's strut (:func:`flightmode.sim.flight.gear.soften_main_gear`): the stock
-  stiff springs and linear dampers made touchdowns 2-5 times too hard;
+  stiff springs and linear dampers made touchdowns 2-5 times too hard; and the nose gear's, the same
+  strut scaled to its share of the weight (:func:`flightmode.sim.flight.gear.soften_nose_gear`): the
+  stock one turned the nose wheels' contact into the landing's highest load (2.2 g on the 787-8);
 - A320: the elevator's nose-up travel from 25 to 35 degrees. The stock model has no trimmable
   horizontal stabiliser and trims with its elevator alone: on a 3-degree approach with 25 degrees of
   flap it already needs 22 of its 25 degrees of nose-up elevator, so it cannot flare. The real
@@ -18,7 +20,7 @@ import functools
 import xml.etree.ElementTree as ET
 
 from flightmode.errors import AircraftError
-from flightmode.sim.flight.gear import soften_main_gear
+from flightmode.sim.flight.gear import soften_main_gear, soften_nose_gear
 
 
 def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:
@@ -41,7 +43,8 @@ def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:
 
 def edits_for(profile) -> tuple:
     """The model edits of a type (module docstring), as functions of the XML root."""
-    edits = [functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg)]
+    edits = [functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg),
+             functools.partial(soften_nose_gear, landing_mass_kg=profile.ref_landing_mass_kg)]
     if profile.elevator_nose_up_deg is not None:
         edits.append(functools.partial(extend_elevator_nose_up, nose_up_deg=profile.elevator_nose_up_deg))
     return tuple(edits)
