@@ -21,7 +21,8 @@ Each main-gear contact (the braked ones) of the private model copy gets:
   1.3 g at 2 ft/s, 1.5 g at 4 ft/s and 2.0 g at 8 ft/s;
 - rebound damping as the model had it (linear): a strut damps its extension hard and must not bounce.
 
-The nose gear gets the same strut scaled to the weight it carries (:func:`soften_nose_gear`).
+The nose gear keeps its stock spring and gets the same quadratic damping, scaled to the weight it
+carries (:func:`soften_nose_gear`).
 
 The aircraft then sits lower on its gear than the stock model: the pilot measures its settled height
 after the gear has settled (:func:`flightmode.sim.flight.simulate.fly`).
@@ -108,19 +109,25 @@ def soften_main_gear(root: ET.Element, landing_mass_kg: float) -> tuple[float, f
     return k, c2
 
 
-def soften_nose_gear(root: ET.Element, landing_mass_kg: float) -> tuple[float, float]:
-    """Give the model's nose gear an oleo strut too, in place: the main strut scaled to the weight it
-    carries (1 - ``MAIN_SHARE``), i.e. the same static deflection and the same stroke for the same
-    contact speed (spring and quadratic damper both in proportion to the mass, the 1-DOF strut's
-    motion is unchanged). The stock nose struts have stiff springs and linear dampers like the stock
-    mains: the 787-8's (80,000 lbf/(ft/s)) turned the nose wheels' contact after a normal touchdown
-    into a 2.2 g peak at the CG, above the main-gear touchdown's 1.3 g. Returns (k, c2)."""
+def soften_nose_gear(root: ET.Element, landing_mass_kg: float) -> float:
+    """Give the model's nose gear an orifice damper, in place: quadratic compression damping, the main
+    struts' c2 scaled to the weight the nose carries (1 - ``MAIN_SHARE``); the stock spring and rebound
+    damping stay. The stock nose struts damp linearly, and the force of a linear damper jumps to c v at
+    contact: the 787-8's (80,000 lbf/(ft/s)) turned the nose wheels' contact after a normal touchdown
+    into a 2.2 g peak at the CG, above the main-gear touchdown's 1.3 g. Its stiff spring is kept: the
+    aircraft's stance and its response to taxiway roughness (seed 000 Table 4's ground-phase cells)
+    are the stock model's. Returns c2."""
     mains = main_gear(root)
-    k_main, c2_main = main_strut(landing_mass_kg, len(mains))
-    scale = (1.0 - MAIN_SHARE) / (MAIN_SHARE / len(mains))
-    k, c2 = k_main * scale, c2_main * scale
-    _set_strut([nose_gear(root)], k, c2)
-    return k, c2
+    _, c2_main = main_strut(landing_mass_kg, len(mains))
+    c2 = c2_main * (1.0 - MAIN_SHARE) / (MAIN_SHARE / len(mains))
+    c = nose_gear(root)
+    damp = c.find("damping_coeff")
+    if c.find("damping_coeff_rebound") is None:  # rebound: the model's linear damping
+        reb = ET.SubElement(c, "damping_coeff_rebound", unit=damp.get("unit", "LBS/FT/SEC"))
+        reb.text = damp.text
+    damp.attrib = {"type": "SQUARE", "unit": "LBS/FT2/SEC2"}
+    damp.text = f"{c2:.3f}"
+    return c2
 
 
 def _set_strut(contacts: list[ET.Element], k: float, c2: float) -> None:

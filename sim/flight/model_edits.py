@@ -2,9 +2,10 @@
 XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each with its reason:
 
 - every type: the main gear's strut (:func:`flightmode.sim.flight.gear.soften_main_gear`): the stock
-  stiff springs and linear dampers made touchdowns 2-5 times too hard; and the nose gear's, the same
-  strut scaled to its share of the weight (:func:`flightmode.sim.flight.gear.soften_nose_gear`): the
-  stock one turned the nose wheels' contact into the landing's highest load (2.2 g on the 787-8);
+  stiff springs and linear dampers made touchdowns 2-5 times too hard; and the nose gear's damper,
+  quadratic like the mains', scaled to its share of the weight, its stock spring kept
+  (:func:`flightmode.sim.flight.gear.soften_nose_gear`): the stock linear one turned the nose wheels'
+  contact into the landing's highest load (2.2 g on the 787-8);
 - A320: the elevator's nose-up travel from 25 to 35 degrees. The stock model has no trimmable
   horizontal stabiliser and trims with its elevator alone: on a 3-degree approach with 25 degrees of
   flap it already needs 22 of its 25 degrees of nose-up elevator, so it cannot flare. The real

@@ -67,7 +67,7 @@ def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_
     assert abs(m["touchdown_centreline_offset_m"]) <= 10.0
     # the landing's load peak is the main gear's touchdown: their struts stop the sink within half a
     # second (measured 0.27-0.44 s on the built-ins). The nose wheels meet the runway seconds later,
-    # after the derotation; the stock nose struts (stiff springs, linear dampers) made that contact
+    # after the derotation; the stock nose struts' linear dampers (force c v at contact) made that contact
     # the peak, 2.2 g at +2.0 s on the 787-8 (sim.flight.gear.soften_nose_gear)
     near = (tr.t_s >= t_td - 0.5) & (tr.t_s <= t_td + 3.0)
     t_peak = tr.t_s[near][np.argmax(nz[near])] - t_td

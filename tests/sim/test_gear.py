@@ -6,9 +6,7 @@ import os
 import xml.etree.ElementTree as ET
 
 import pytest
-
-from flightmode.sim.flight.gear import MAIN_SHARE, main_strut, nose_gear, peak_load_factor, soften_nose_gear
-from flightmode.units import FT_M, G0_MPS2, LBF_N
+from flightmode.sim.flight.gear import MAIN_SHARE, main_strut, nose_gear, soften_nose_gear
 
 
 def _model(name: str) -> ET.Element:
@@ -24,24 +22,24 @@ def test_the_nose_gear_is_the_one_steerable_contact(model, nose):
     assert nose_gear(_model(model)).get("name").strip() == nose
 
 
-@pytest.mark.parametrize("sink_fps", [2.0, 6.0, 10.0])
-def test_the_nose_strut_is_the_main_strut_scaled_to_the_weight_it_carries(sink_fps):
-    """Spring and quadratic damper both in proportion to the carried mass leave the 1-DOF strut's
-    motion unchanged (m x'' = -(k x + c2 x'|x'|) divided through by the scale): the nose strut's
-    peak load on its own share of the weight equals the mains' on theirs, to the ODE solver's
-    tolerance (rtol 1e-8; 1e-6 allowed)."""
-    mass_kg, n_main = 64_500.0, 2
-    root = _model("A320")
-    k_n, c2_n = soften_nose_gear(root, mass_kg)
-    k_m, c2_m = main_strut(mass_kg, n_main)
-    weight = mass_kg * G0_MPS2 / LBF_N
-    # the same static deflection under the share each carries (0.35 m)
-    assert k_n * 0.35 / FT_M == pytest.approx((1.0 - MAIN_SHARE) * weight, rel=1e-9)
-    # peak_load_factor carries MAIN_SHARE of "weight" on n struts: the nose's weight is chosen so that
-    # its one strut carries (1 - MAIN_SHARE) of the aircraft's
-    nose_weight = (1.0 - MAIN_SHARE) / MAIN_SHARE * weight
-    assert peak_load_factor(sink_fps, nose_weight, k_n, c2_n, 1) == pytest.approx(
-        peak_load_factor(sink_fps, weight, k_m, c2_m, n_main), rel=1e-6)
-    # and the edit is in the model: quadratic compression damping, the stock linear one kept for rebound
-    c = nose_gear(root)
-    assert c.find("damping_coeff").get("type") == "SQUARE" and c.find("damping_coeff_rebound") is not None
+@pytest.mark.parametrize("model", ["A320", "737", "fokker100", "787-8"])
+def test_the_nose_strut_damps_like_the_mains_scaled_to_its_weight_and_keeps_its_spring(model):
+    """The nose gear's compression damping becomes quadratic, c2 of a main strut times the ratio of
+    the weights they carry (1 - MAIN_SHARE against MAIN_SHARE / n_main); its spring and its rebound
+    damping stay the stock model's (the stance and the taxiway response are the model's)."""
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.gear import main_gear
+
+    stock, root = _model(model), _model(model)
+    mass_kg = get_profile(model).ref_landing_mass_kg
+    c2 = soften_nose_gear(root, mass_kg)
+    n_main = len(main_gear(stock))
+    _, c2_main = main_strut(mass_kg, n_main)
+    assert c2 == pytest.approx(c2_main * (1.0 - MAIN_SHARE) * n_main / MAIN_SHARE, rel=1e-12)
+    before, after = nose_gear(stock), nose_gear(root)
+    assert after.find("damping_coeff").get("type") == "SQUARE"
+    assert float(after.findtext("damping_coeff")) == pytest.approx(c2, abs=5e-4)  # written to 3 decimals
+    assert after.findtext("spring_coeff") == before.findtext("spring_coeff")
+    rebound = before.find("damping_coeff_rebound")
+    assert float(after.findtext("damping_coeff_rebound")) == float(
+        (rebound if rebound is not None else before.find("damping_coeff")).text)
