@@ -65,13 +65,16 @@ def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_
     assert 60.0 <= sink_fpm <= 600.0, f"touchdown sink rate {sink_fpm:.0f} ft/min"
     assert 150.0 <= m["touchdown_past_threshold_m"] <= 900.0
     assert abs(m["touchdown_centreline_offset_m"]) <= 10.0
-    # the landing's load peak is the main gear's touchdown: their struts stop the sink within half a
-    # second (measured 0.27-0.44 s on the built-ins). The nose wheels meet the runway seconds later,
-    # after the derotation; the stock nose struts' linear dampers (force c v at contact) made that contact
-    # the peak, 2.2 g at +2.0 s on the 787-8 (sim.flight.gear.soften_nose_gear)
-    near = (tr.t_s >= t_td - 0.5) & (tr.t_s <= t_td + 3.0)
-    t_peak = tr.t_s[near][np.argmax(nz[near])] - t_td
-    assert t_peak < 1.0, f"landing load peak {nz[near].max():.2f} g at {t_peak:.2f} s after touchdown"
+    # the nose wheels' contact after the derotation (1-3 s after touchdown) loads the aircraft no more
+    # than the main gear's touchdown (the first second) plus the runway's own roughness (the largest
+    # deviation from 1 g 5-15 s into the rollout: 0.10-0.16 g measured on the built-ins). The stock
+    # nose struts' linear dampers (force c v at contact) made it 2.2 g on the 787-8, where the mains
+    # gave 1.3 g (sim.flight.gear.soften_nose_gear)
+    since = tr.t_s - t_td
+    main_g = nz[(since >= -0.5) & (since <= 1.0)].max()
+    nose_g = nz[(since > 1.0) & (since <= 3.0)].max()
+    rough_g = np.abs(nz[(since > 5.0) & (since < 15.0)] - 1.0).max()
+    assert nose_g - 1.0 <= main_g - 1.0 + rough_g, (nose_g, main_g, rough_g)
 
 
 @pytest.mark.slow
