@@ -105,7 +105,11 @@ def soften_main_gear(root: ET.Element, landing_mass_kg: float) -> tuple[float, f
     """Give the model's main gear the strut of the module docstring, in place. Returns (k, c2)."""
     mains = main_gear(root)
     k, c2 = main_strut(landing_mass_kg, len(mains))
-    _set_strut(mains, k, c2)
+    for c in mains:
+        _set_damper(c, c2)
+        spring = c.find("spring_coeff")
+        spring.attrib = {"unit": "LBS/FT"}
+        spring.text = f"{k:.3f}"
     return k, c2
 
 
@@ -120,24 +124,15 @@ def soften_nose_gear(root: ET.Element, landing_mass_kg: float) -> float:
     mains = main_gear(root)
     _, c2_main = main_strut(landing_mass_kg, len(mains))
     c2 = c2_main * (1.0 - MAIN_SHARE) / (MAIN_SHARE / len(mains))
-    c = nose_gear(root)
-    damp = c.find("damping_coeff")
-    if c.find("damping_coeff_rebound") is None:  # rebound: the model's linear damping
-        reb = ET.SubElement(c, "damping_coeff_rebound", unit=damp.get("unit", "LBS/FT/SEC"))
-        reb.text = damp.text
-    damp.attrib = {"type": "SQUARE", "unit": "LBS/FT2/SEC2"}
-    damp.text = f"{c2:.3f}"
+    _set_damper(nose_gear(root), c2)
     return c2
 
 
-def _set_strut(contacts: list[ET.Element], k: float, c2: float) -> None:
-    for c in contacts:
-        damp = c.find("damping_coeff")
-        if c.find("damping_coeff_rebound") is None:  # rebound: the model's linear damping
-            reb = ET.SubElement(c, "damping_coeff_rebound", unit=damp.get("unit", "LBS/FT/SEC"))
-            reb.text = damp.text
-        damp.attrib = {"type": "SQUARE", "unit": "LBS/FT2/SEC2"}
-        damp.text = f"{c2:.3f}"
-        spring = c.find("spring_coeff")
-        spring.attrib = {"unit": "LBS/FT"}
-        spring.text = f"{k:.3f}"
+def _set_damper(contact: ET.Element, c2: float) -> None:
+    """Quadratic compression damping c2 on ``contact``; its rebound keeps the model's linear damping."""
+    damp = contact.find("damping_coeff")
+    if contact.find("damping_coeff_rebound") is None:
+        reb = ET.SubElement(contact, "damping_coeff_rebound", unit=damp.get("unit", "LBS/FT/SEC"))
+        reb.text = damp.text
+    damp.attrib = {"type": "SQUARE", "unit": "LBS/FT2/SEC2"}
+    damp.text = f"{c2:.3f}"
