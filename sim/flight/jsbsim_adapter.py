@@ -60,7 +60,6 @@ DERIVED_CHANNELS = (Channel("agl_m", "(alt_m - terrain elevation)"),)
 # 5e-8 rad/s^2 (the change of the Earth's rate seen in body axes; tests/sim/test_adapter.py). The
 # flight loop then reads 16 properties per step instead of 19.
 ROTATIONAL_RATE_INTEGRATOR_RECT_EULER = 1
-ANG_ACC_PROPS = ("accelerations/pdot-rad_sec2", "accelerations/qdot-rad_sec2", "accelerations/rdot-rad_sec2")
 
 
 def _channels(n_engines: int) -> tuple[Channel, ...]:

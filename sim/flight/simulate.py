@@ -129,7 +129,8 @@ def fly(
     fuel_start_lbs = _fuel_lbs(ac)
     ac.set("atmosphere/turb-type", 0)  # JSBSim's own turbulence is off: flightmode feeds its gusts
     if ac.get("simulation/integrator/rate/rotational") != ROTATIONAL_RATE_INTEGRATOR_RECT_EULER:
-        # the track's angular acceleration is the rates' forward difference (jsbsim_adapter.ANG_ACC_PROPS)
+        # the track's angular acceleration is the rates' forward difference (jsbsim_adapter, the
+        # comment above ROTATIONAL_RATE_INTEGRATOR_RECT_EULER)
         raise AircraftError(f"'{plan.aircraft}' integrates its body rates with JSBSim integrator "
                             f"{ac.get('simulation/integrator/rate/rotational'):g}, not rectangular Euler (1): "
                             "remove the model's <integrator> setting")
@@ -316,7 +317,7 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events, rates_aft
     pos = geodesy.geodetic_to_ned(col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m)
     vel = g["vel"]
     # JSBSim's own angular acceleration of each step: the rates' forward difference (rectangular
-    # Euler, jsbsim_adapter.ANG_ACC_PROPS)
+    # Euler: jsbsim_adapter, ROTATIONAL_RATE_INTEGRATOR_RECT_EULER)
     ang_acc = np.diff(g["rates"], axis=0, append=np.asarray(rates_after)[None, :]) * fdm_hz
     euler = g["euler"]
     t_push = next((e.t_s for e in events if e.name == "pushback"), math.inf)
