@@ -224,7 +224,7 @@ def fly(
                 t_s=step / fdm_hz,
             )
     # the rates one step past the last row: the last row's angular acceleration (_to_track)
-    rates_after = [ac.get(p) for p in ("velocities/p-rad_sec", "velocities/q-rad_sec", "velocities/r-rad_sec")]
+    rates_after = [get(nodes[ac.index[name]]) for name in ("p_radps", "q_radps", "r_radps")]
     raw_record = np.empty((step, nch))
     raw_record[:, :nf] = np.frombuffer(data, dtype=np.float64).reshape(-1, nf)
     ticks = np.frombuffer(tick_steps, dtype=np.int64)
