@@ -333,7 +333,7 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
             on_flight: Callable[[str], None] | None = None, figures: bool = True,
             log: Callable[[str], None] = lambda s: None) -> Certification:
     """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``."""
-    from flightmode.scenarios.dataset import _atomic_text
+    from flightmode.scenarios.dataset import atomic_text
     from flightmode.scenarios.sweep import breakdown, read_sweep, summarise, sweep
 
     target.validate()
@@ -382,7 +382,7 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
                           "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors)}
     cert = Certification(target, summary, front, rec, seed000, th, breakdowns, worst, meta)
     out.mkdir(parents=True, exist_ok=True)
-    _atomic_text(json.dumps(as_dict(cert), indent=2, default=_jsonable), out / "certify.json")
+    atomic_text(json.dumps(as_dict(cert), indent=2, default=_jsonable), out / "certify.json")
     if figures:
         from flightmode.viz.certify_report import write_report
 

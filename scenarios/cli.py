@@ -8,7 +8,8 @@
                       [--sigma2-from] [--tables]
     flightmode path RUN_DIR [--sensors run,ideal,...]
     flightmode view RUN_DIR_OR_RRD [--web]
-    flightmode validate RUN_DIR [--paper-flight 1|2] [--json] [--strict]
+    flightmode validate RUN_DIR_OR_DATASET [--paper-flight 1|2] [--json] [--strict] [--workers N]
+                      [--checks-out FILE]
 
 Errors that flightmode raises on purpose (bad scenario, unknown aircraft, failed flight, a file that
 is not a run) print one line on stderr and exit with status 2, with no traceback. Only Typer and
@@ -472,9 +473,9 @@ def eobs_tradeoff_cmd(
         if out is not None:
             import pyarrow as pa
 
-            from flightmode.scenarios.dataset import _atomic_parquet
+            from flightmode.scenarios.dataset import atomic_parquet
 
-            _atomic_parquet(pa.Table.from_pylist(rows), out)
+            atomic_parquet(pa.Table.from_pylist(rows), out)
             console.print(Text.assemble("wrote ", (str(out), "bold")), highlight=False)
     except FlightmodeError as e:
         _die(e)
@@ -923,12 +924,21 @@ def certify_cmd(
 
 @app.command("validate")
 def validate_cmd(
-    run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`.")],
+    run_dir: Annotated[Path, typer.Argument(help="A run folder written by `flightmode fly`, or a dataset folder "
+                                            "(`flightmode dataset ... --truth full`): every flight, summarised per type.")],
     paper_flight: Annotated[int, typer.Option("--paper-flight", help="Seed 000 flight whose P_FA table to compare: 1 (Table 4) or 2 (Table 5, calm).")] = 1,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the checks as JSON instead of a table.")] = False,
-    strict: Annotated[bool, typer.Option("--strict", help="Exit with status 1 if any check fails.")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the checks (a dataset: the summary) as JSON instead of a table.")] = False,
+    strict: Annotated[bool, typer.Option("--strict", help="Exit with status 1 if any check (of any flight) fails.")] = False,
+    workers: Annotated[int, typer.Option("--workers", help="A dataset: local worker processes (a LocalCluster on 127.0.0.1).")] = 1,
+    checks_out: Annotated[Optional[Path], typer.Option("--checks-out", help="A dataset: also write every flight's checks to this Parquet file.")] = None,
 ) -> None:
-    """Set the run's figures beside their public anchors (WRAP, ADS-B taxi tracks, ICAO, NASA, seed 000)."""
+    """Set a run's figures beside their public anchors (WRAP, ADS-B taxi tracks, ICAO, NASA, seed 000);
+    for a dataset, each figure's distribution over its flights, per aircraft type."""
+    from flightmode.scenarios.validate_population import is_dataset
+
+    if is_dataset(run_dir):
+        _validate_dataset(run_dir, paper_flight, as_json, strict, workers, checks_out)
+        return
     from flightmode.scenarios.validate import validate_run
 
     try:
@@ -953,6 +963,57 @@ def validate_cmd(
         console.print(table)
         console.print(f"{len(checks) - failed} of {len(checks)} checks pass", highlight=False)
     if strict and failed:
+        raise typer.Exit(code=1)
+
+
+def _validate_dataset(dataset: Path, paper_flight: int, as_json: bool, strict: bool, workers: int,
+                      checks_out: Optional[Path]) -> None:
+    """`flightmode validate DATASET`: every flight's checks, one table per aircraft type."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from flightmode.scenarios import validate_population as vp
+
+    try:
+        ok, _ = vp.check_request(dataset, paper_flight)
+        with Progress(TextColumn("flights"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                      console=err_console, transient=True) as bar:
+            task = bar.add_task("flights", total=len(ok))
+            results, not_flown = vp.validate_dataset(dataset, paper_flight, workers,
+                                                     on_done=lambda _: bar.update(task, advance=1))
+        if checks_out is not None:
+            from flightmode.scenarios.dataset import atomic_parquet
+
+            atomic_parquet(vp.checks_table(results), Path(checks_out))
+    except FlightmodeError as e:
+        _die(e)
+    summary = vp.summarise(results)
+    errors = [r for r in results if "error" in r]
+    failing = sum(s.flights - s.passed for s in summary)
+    if as_json:
+        import json
+
+        typer.echo(json.dumps({"dataset": str(dataset), "flights_validated": len(results) - len(errors),
+                               "not_validated": [{"flight_id": r["flight_id"], "error": r["error"]} for r in errors],
+                               "failed_to_fly": len(not_flown), "failing_checks": failing,
+                               "figures": [_finite(s.as_dict()) for s in summary]}, indent=1, allow_nan=False))
+    else:
+        for aircraft in dict.fromkeys(s.aircraft for s in summary):
+            rows = [s for s in summary if s.aircraft == aircraft]
+            n = max(s.flights for s in rows)
+            table = Table(title=f"{dataset}: {aircraft}, {n} flights beside the anchors", title_justify="left")
+            for col in ("group", "figure", "anchor", "p5", "median", "p95", "pass", "95 % CI", "source"):
+                table.add_column(col, justify="right" if col in ("anchor", "p5", "median", "p95", "pass") else "left")
+            for s in rows:
+                style = "green" if s.passed == s.flights else ("bold red" if s.passed == 0 else "yellow")
+                table.add_row(s.group, f"{s.figure} ({s.unit})", s.anchor, f"{s.p5:.4g}", f"{s.median:.4g}",
+                              f"{s.p95:.4g}", Text(f"{s.passed}/{s.flights}", style=style),
+                              f"{s.pass_ci[0]:.2f}-{s.pass_ci[1]:.2f}", s.source)
+            console.print(table)
+        console.print(f"{len(results) - len(errors)} flights validated, {failing} failing checks; "
+                      f"{len(not_flown)} flights of the dataset failed to fly", highlight=False)
+        for r in errors:
+            err_console.print(Text(f"flight {r['flight_id']} not validated: {r['error']}"), highlight=False)
+    if strict and (failing or errors):
         raise typer.Exit(code=1)
 
 

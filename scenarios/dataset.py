@@ -79,7 +79,8 @@ def _tmp_name(path: Path) -> Path:
     return path.with_name(f".{path.name}.tmp-{os.getpid()}-{uuid.uuid4().hex[:8]}")
 
 
-def _atomic_parquet(table, path: Path) -> None:
+def atomic_parquet(table, path: Path) -> None:
+    """Write a Parquet file (zstd) to a temporary name beside ``path`` and rename it into place."""
     import pyarrow.parquet as pq
 
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -88,7 +89,8 @@ def _atomic_parquet(table, path: Path) -> None:
     os.replace(tmp, path)
 
 
-def _atomic_text(text: str, path: Path) -> None:
+def atomic_text(text: str, path: Path) -> None:
+    """Write a UTF-8 text file to a temporary name beside ``path`` and rename it into place."""
     tmp = _tmp_name(path)
     tmp.write_text(text, encoding="utf-8")
     os.replace(tmp, path)
@@ -128,7 +130,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
     samples = run_io.recording_table(r.recording)
     samples = samples.append_column("flight_id", pa.array(np.full(samples.num_rows, fid)))
     files = {"samples": f"samples/{part}"}
-    _atomic_parquet(samples, out / files["samples"])
+    atomic_parquet(samples, out / files["samples"])
     if options["truth"] != "none":
         truth = run_io.track_table(r.track)
         if options["truth"] == "10hz":
@@ -139,7 +141,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
             truth = truth.replace_schema_metadata(
                 {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(r.track), default=run_io._json_default)})
         files["truth"] = f"truth/{part}"
-        _atomic_parquet(truth, out / files["truth"])
+        atomic_parquet(truth, out / files["truth"])
     if options.get("rrd"):
         import shutil
         import tempfile
@@ -246,7 +248,7 @@ def _write_manifest(out: Path, rows: dict[int, dict]) -> None:
     schema = manifest_schema()
     ordered = [rows[i] for i in sorted(rows)]
     table = pa.Table.from_pylist([{k: r.get(k) for k in schema.names} for r in ordered], schema=schema)
-    _atomic_parquet(table, Path(out) / MANIFEST)
+    atomic_parquet(table, Path(out) / MANIFEST)
 
 
 # ---------------------------------------------------------------------- the folder
@@ -288,8 +290,8 @@ def _claim_folder(out: Path, fam, options: Options) -> None:
             tmp.unlink(missing_ok=True)
     marker = out / "family.toml"
     if not marker.exists():
-        _atomic_text(fam.text, marker)
-    _atomic_text(json.dumps({"family": fam.name, "family_sha256": fam.digest(), "options": options.as_dict()},
+        atomic_text(fam.text, marker)
+    atomic_text(json.dumps({"family": fam.name, "family_sha256": fam.digest(), "options": options.as_dict()},
                             indent=2), out / "dataset.json")
 
 

@@ -55,7 +55,7 @@ def _schema_lines(out: Path, rows: dict) -> list[str]:
 
 
 def write_card(out: Path, fam, rows: dict, options) -> Path:
-    from flightmode.scenarios.dataset import _atomic_text
+    from flightmode.scenarios.dataset import atomic_text
     from flightmode.scenarios.run_io import package_versions
 
     ok = [r for r in rows.values() if r["status"] == "ok"]
@@ -97,5 +97,5 @@ def write_card(out: Path, fam, rows: dict, options) -> Path:
               "The data are simulated and free to use under CC-BY-4.0. Airport and runway data: OurAirports "
               "(public domain).", ""]
     path = out / "README.md"
-    _atomic_text("\n".join(lines), path)
+    atomic_text("\n".join(lines), path)
     return path

@@ -75,7 +75,10 @@ def manifest_digest(dataset: str | Path) -> str:
     return h.hexdigest()
 
 
-def _sigma2_of(source: str, row: dict, columns: dict) -> Callable[[int], np.ndarray]:
+def sigma2_of_flight(source: str, row: dict, columns: dict) -> Callable[[int], np.ndarray]:
+    """sigma^2 per axis of one dataset flight's stream, as a function of the window (samples):
+    ``preset``, the bench calibration of the unit its sensing drew (what its own detector used);
+    ``rest``, its truly static samples before the flight."""
     from flightmode.detector.recommended import sigma2_from_rest
     from flightmode.scenarios import pipeline
     from flightmode.scenarios.scenario import Scenario
@@ -174,13 +177,13 @@ def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
     mv = tuple(m for m in grid.methods if m[0] in MV_METHODS)
     if mv:
         for p, e in evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=mv), fs,
-                                  _sigma2_of(sigma2_from, row, cols)):
+                                  sigma2_of_flight(sigma2_from, row, cols)):
             yield p.method, p, e
     red = tuple((m.partition("+")[0], w) for m, w in grid.methods if m in REDUNDANT)
     if red:
         gate = _pressure_gate(row, cols)
         for p, e in evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=red), fs,
-                                  _sigma2_of(sigma2_from, row, cols), gate=gate):
+                                  sigma2_of_flight(sigma2_from, row, cols), gate=gate):
             yield f"{p.method}+baro", p, e
     others = [m for m, _ in grid.methods if m not in MV_METHODS and m not in REDUNDANT]
     if others:
@@ -447,7 +450,7 @@ def map_flights(fn: Callable, args: Sequence[tuple], workers: int = 1,
 
 def write_sweep(result: SweepResult, out: str | Path) -> None:
     """The sweep folder (module docstring); ``sweep.json`` last, so a folder without it is incomplete."""
-    from flightmode.scenarios.dataset import _atomic_parquet, _atomic_text
+    from flightmode.scenarios.dataset import atomic_parquet, atomic_text
 
     out = Path(out)
     if out.exists() and not out.is_dir():
@@ -455,8 +458,8 @@ def write_sweep(result: SweepResult, out: str | Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
     (out / "sweep.json").unlink(missing_ok=True)
     for part in ("points", "phases", "static"):
-        _atomic_parquet(getattr(result, part), out / f"{part}.parquet")
-    _atomic_text(json.dumps(result.meta | {"failed_flights": [
+        atomic_parquet(getattr(result, part), out / f"{part}.parquet")
+    atomic_text(json.dumps(result.meta | {"failed_flights": [
         {"dataset": r["dataset"], "flight_id": r["flight_id"], "error": r.get("error")} for r in result.failed]},
         indent=2), out / "sweep.json")
 

@@ -41,6 +41,7 @@ Groups and anchors:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -474,21 +475,23 @@ def _order_check(group: str, figure: str, ours: float, interval: tuple[float, fl
                  f"run {ours:.2g}{counted}, {PFA_CONFIDENCE:.0%} CI {lo:.1e}..{hi:.1e}; paper {paper:.0e}")
 
 
-def seed000_checks(columns: dict, info: dict, paper_flight: int) -> list[Check]:
-    """Seed 000 Tables 2, 4/5 and Fig. 6 on the run's samples (module docstring)."""
+def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.ndarray],
+                   paper_flight: int) -> list[Check]:
+    """Seed 000 Tables 2, 4/5 and Fig. 6 on a run's samples (module docstring), sampled at ``fs_hz``;
+    ``sigma2_of(window)``: the per-axis sigma^2 of the stream's unit for a window of that many samples
+    (its bench calibration, as the run's own detector had it)."""
     from scipy.signal import welch
 
     from flightmode.detector.evaluation import pfa_table
     from flightmode.detector.moving_variance import moving_variance
     from flightmode.detector.recommended import labels_of, recommended_params
-    from flightmode.scenarios.pipeline import stream_sigma2
 
     if paper_flight not in PAPER_TABLES:
         raise InputDataError(f"paper flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
     t, acc = columns["t_s"], columns["acc_g"]
-    fs = float(info["sensor"]["odr_hz"])
+    fs = float(fs_hz)
     params = recommended_params(fs)
-    sigma2, _ = stream_sigma2("preset", columns, info, params.window)
+    sigma2 = sigma2_of(params.window)
     labels = labels_of(columns)
     out = []
     # Table 2: spread of the 1 s NMV over truly static windows outside the flight
@@ -551,25 +554,35 @@ def seed000_checks(columns: dict, info: dict, paper_flight: int) -> list[Check]:
 
 
 # --------------------------------------------------------------------------------------- the run
-def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
-    """Every check of a run folder (module docstring), in the order printed."""
-    from flightmode.scenarios.run_io import read_samples, read_track, run_scenario
-    from flightmode.sim.flight.flight_metrics import flight_metrics
+def track_checks(track, plan) -> list[Check]:
+    """Every check of a flight's track (kinematics, touchdown, taxi, turbulence, ground), in the order
+    printed; ``plan``: the flight plan it was flown to."""
     from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.flight_metrics import flight_metrics
 
-    if paper_flight not in PAPER_TABLES:
-        raise InputDataError(f"paper flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
-    run_dir = Path(run_dir)
-    track, info = read_track(run_dir)
-    plan = run_scenario(info, str(run_dir / "run.json")).plan
     m = flight_metrics(track, plan)
     checks = kinematic_checks(track, plan, get_profile(track.aircraft).wrap_type, m)
     checks += touchdown_checks(track, plan, m)
     checks += taxi_checks(track)
     checks += turbulence_checks(track)
     checks += ground_checks(track)
+    return checks
+
+
+def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
+    """Every check of a run folder (module docstring), in the order printed."""
+    from flightmode.scenarios.pipeline import stream_sigma2
+    from flightmode.scenarios.run_io import read_samples, read_track, run_scenario
+
+    if paper_flight not in PAPER_TABLES:
+        raise InputDataError(f"paper flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
+    run_dir = Path(run_dir)
+    track, info = read_track(run_dir)
+    checks = track_checks(track, run_scenario(info, str(run_dir / "run.json")).plan)
     samples = run_dir / "samples.parquet"
     if samples.is_file():
         columns, sinfo = read_samples(samples)
-        checks += seed000_checks(columns, sinfo or info, paper_flight)
+        sinfo = sinfo or info
+        checks += seed000_checks(columns, float(sinfo["sensor"]["odr_hz"]),
+                                 lambda window: stream_sigma2("preset", columns, sinfo, window)[0], paper_flight)
     return checks

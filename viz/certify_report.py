@@ -411,7 +411,7 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
 
 def write_report(cert, result, out: Path) -> dict[str, Path]:
     """The figures (``out/figures``) and ``out/report.html``; the paths written."""
-    from flightmode.scenarios.dataset import _atomic_text
+    from flightmode.scenarios.dataset import atomic_text
 
     fig_dir = Path(out) / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
@@ -431,7 +431,7 @@ def write_report(cert, result, out: Path) -> dict[str, Path]:
     else:
         paths.pop("worst_flight")
     report = Path(out) / "report.html"
-    _atomic_text(render_html(cert, {n: p.read_bytes() for n, p in paths.items()}), report)
+    atomic_text(render_html(cert, {n: p.read_bytes() for n, p in paths.items()}), report)
     return paths | {"report": report}
 
 

@@ -353,6 +353,37 @@ def test_sweep_re_senses_full_truth_flights_with_other_presets(tmp_path, family_
     assert st["lis302dl-8g"]["hist_max"] != st[own]["hist_max"]
     # the e-obs battery trade-off on the same full-truth dataset (issue 18)
     _eobs_tradeoff_on_a_population(reference, full)
+    # and `flightmode validate` on it
+    _validate_a_population(reference, full, rows[0])
+
+
+def _validate_a_population(ten_hz, full, row):
+    import pyarrow.parquet as pq
+    from typer.testing import CliRunner
+
+    from flightmode.scenarios.cli import app
+    from flightmode.units import FPS_MPS
+
+    out = full.parent / "checks.parquet"
+    r = CliRunner().invoke(app, ["validate", str(full), "--json", "--checks-out", str(out)])
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.output)
+    assert doc["flights_validated"] == 1 and not doc["not_validated"] and doc["failed_to_fly"] == 0
+    checks = {c["figure"]: c for c in pq.read_table(out).to_pylist()}
+    assert {c["flight_id"] for c in checks.values()} == {row["flight_id"]} and len(checks) == len(doc["figures"])
+    # the flight's checks see the stream its own detector saw: the same unit's sigma^2 and window give
+    # the same number of in-flight checks as the dataset's detector counted when it flew
+    note = checks["in-flight checks under 4 sigma^2 on all axes at once"]["note"]
+    assert int(re.search(r"of (\d+)$", note).group(1)) == row["detector_in_flight_checks"] > 0, note
+    # and the track rebuilt from the full-rate truth touches down as the flown one did (float32 storage:
+    # 7 significant digits)
+    sink = [c for f, c in checks.items() if f.startswith("sink speed")][0]
+    assert sink["value"] == pytest.approx(row["touchdown_sink_mps"] / FPS_MPS, rel=1e-5)
+    by_fig = {f["figure"]: f for f in doc["figures"]}
+    assert by_fig[sink["figure"]]["median"] == sink["value"] and by_fig[sink["figure"]]["flights"] == 1
+    # a 10 Hz truth cannot rebuild a track: said before any work, with the fix
+    r = CliRunner().invoke(app, ["validate", str(ten_hz)])
+    assert r.exit_code == 2 and "--truth full" in r.output, r.output
 
 
 def _eobs_tradeoff_on_a_population(ten_hz, full):

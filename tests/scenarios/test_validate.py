@@ -43,6 +43,31 @@ def test_the_taxi_anchors_span_the_real_segments():
     assert r["yaw_rate_max_dps"][1] < 12.0 and r["turns_per_min"][0] > 0.0
 
 
+def test_a_population_summary_keeps_types_and_figures_apart_and_bounds_its_pass_rate():
+    from flightmode.scenarios.validate_population import summarise
+
+    c = lambda fig, v: Check("touchdown", fig, "ft/s", v, 0.0, 5.5, "src")  # noqa: E731
+    sinks = [0.5 + 0.25 * i for i in range(20)]  # 0.5 .. 5.25 ft/s: every one inside 0 .. 5.5
+    results = [{"flight_id": f"{i:06d}", "aircraft": "A320", "checks": [c("sink", v)]} for i, v in enumerate(sinks)]
+    # the 737's flights: one shows no value (NaN: fails, left out of the percentiles), one a hard landing,
+    # and one could not be validated (no checks: it counts nowhere)
+    results += [{"flight_id": "000100", "aircraft": "737", "checks": [c("sink", 2.0), c("peak", 1.2)]},
+                {"flight_id": "000101", "aircraft": "737", "checks": [c("sink", math.nan)]},
+                {"flight_id": "000102", "aircraft": "737", "checks": [c("sink", 9.0)]},
+                {"flight_id": "000103", "aircraft": "737", "error": "InputDataError: unreadable"}]
+    s = {(r.aircraft, r.figure): r for r in summarise(results)}
+    assert sorted(s) == [("737", "peak"), ("737", "sink"), ("A320", "sink")]
+    a = s["A320", "sink"]
+    # linear-interpolation percentiles of an arithmetic sequence: p5 at rank 0.95 (0.5 + 0.95 * 0.25)
+    assert (a.flights, a.passed) == (20, 20)
+    assert (a.p5, a.median, a.p95) == pytest.approx((0.7375, 2.875, 5.0125), abs=1e-12)
+    # Clopper-Pearson with all 20 passing: the lower bound solves p^20 = 0.025, i.e. 0.025^(1/20)
+    assert a.pass_ci == pytest.approx((0.025 ** (1 / 20), 1.0), abs=1e-9)
+    b = s["737", "sink"]
+    assert (b.flights, b.passed) == (3, 1) and (b.median, b.p5) == pytest.approx((5.5, 2.35))
+    assert (s["737", "peak"].flights, s["737", "peak"].passed) == (1, 1)
+
+
 def _run_folder(tmp_path_factory, run_cached, name: str):
     """The built-in's run folder (truth, samples, run.json), written from the session's run."""
     from flightmode.scenarios import pipeline

@@ -1,0 +1,163 @@
+"""`flightmode validate DATASET`: a population of flights beside the public figures.
+
+A single run says little about a distribution: a touchdown's sink speed is one draw, a taxi's yaw rate
+one airport. Every flight of a dataset made by ``flightmode dataset ... --truth full`` is checked here
+exactly as a run folder is (:func:`flightmode.scenarios.validate.track_checks` on the track rebuilt
+from its full-rate truth and the plan of the scenario in its manifest row;
+:func:`~flightmode.scenarios.validate.seed000_checks` on its samples, sigma^2 the bench calibration of
+the unit its sensing drew, as its own detector had it). Flights run in this process or one Dask task
+per flight (``workers`` > 1: a LocalCluster on 127.0.0.1, as the sweep's).
+
+The summary (:func:`summarise`) gives, per aircraft type and figure, the anchor, the flights' values
+(p5, median, p95 over the flights that show the figure) and how many pass, with the 95 %
+Clopper-Pearson interval of the pass fraction (:func:`~flightmode.scenarios.validate.fraction_interval`):
+20 flights that all pass still allow a true failure rate up to 17 %. A flight that cannot be checked
+is reported with its error, never dropped silently; nothing is written (``--checks-out`` writes the
+per-flight rows as Parquet, atomically).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+from flightmode.errors import InputDataError
+
+SUMMARY_QUANTILES = (5.0, 50.0, 95.0)
+
+
+@dataclass(frozen=True, slots=True)
+class FigureSummary:
+    """One figure over the flights of one aircraft type that show it."""
+
+    aircraft: str
+    group: str
+    figure: str
+    unit: str
+    anchor: str
+    source: str
+    flights: int  # flights showing the figure
+    passed: int
+    p5: float  # over the flights with a finite value (NaN if none)
+    median: float
+    p95: float
+    pass_ci: tuple[float, float]  # 95 % Clopper-Pearson interval of the pass fraction
+
+    @property
+    def pass_fraction(self) -> float:
+        return self.passed / self.flights
+
+    def as_dict(self) -> dict:
+        return asdict(self) | {"pass_fraction": self.pass_fraction}
+
+
+def is_dataset(path: str | Path) -> bool:
+    """A folder made by ``flightmode dataset`` (it has the manifest)."""
+    from flightmode.scenarios.dataset import MANIFEST
+
+    return (Path(path) / MANIFEST).is_file()
+
+
+def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict], list[dict]]:
+    """The dataset's flights (ok, failed), checked before any work: a folder that is not a dataset,
+    one without a successful flight or without full-rate truth raises an InputDataError saying how
+    to make one that can be validated."""
+    import pyarrow.parquet as pq
+
+    from flightmode.scenarios.dataset import read_manifest
+    from flightmode.scenarios.run_io import TRACK_INFO_KEY
+    from flightmode.scenarios.validate import PAPER_TABLES
+
+    if paper_flight not in PAPER_TABLES:
+        raise InputDataError(f"--paper-flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
+    dataset = Path(dataset)
+    if not is_dataset(dataset):
+        raise InputDataError(f"{dataset}: not a dataset (no flights.parquet); make one with `flightmode dataset`")
+    rows = read_manifest(dataset)
+    ok = [rows[i] for i in sorted(rows) if rows[i]["status"] == "ok"]
+    failed = [rows[i] for i in sorted(rows) if rows[i]["status"] != "ok"]
+    if not ok:
+        raise InputDataError(f"{dataset}: no flight of the dataset succeeded ({len(failed)} failed): nothing to validate")
+    truth = ok[0].get("truth_file")
+    meta = pq.read_schema(dataset / truth).metadata if truth and (dataset / truth).is_file() else None
+    if not meta or TRACK_INFO_KEY not in meta:
+        raise InputDataError(f"{dataset}: its flights' truth cannot rebuild their tracks (made without "
+                             "--truth full); make the dataset with `flightmode dataset ... --truth full`")
+    return ok, failed
+
+
+def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
+    """One dataset flight's checks: ``{"flight_id", "aircraft", "checks": [Check, ...]}``, or with
+    ``"error"`` (the exception's type and message) instead of checks if it cannot be validated."""
+    from flightmode.scenarios import pipeline
+    from flightmode.scenarios.run_io import read_samples
+    from flightmode.scenarios.scenario import Scenario
+    from flightmode.scenarios.sweep import full_truth_track, sigma2_of_flight
+    from flightmode.scenarios.validate import seed000_checks, track_checks
+
+    head = {"flight_id": row["flight_id"], "aircraft": row["aircraft"]}
+    try:
+        track = full_truth_track(dataset, row)
+        sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']} (scenario_toml)")
+        checks = track_checks(track, sc.plan)
+        columns, _ = read_samples(Path(dataset) / row["samples_file"])
+        checks += seed000_checks(columns, pipeline.sensor_preset(sc.sensor).odr_hz,
+                                 sigma2_of_flight("preset", row, columns), paper_flight)
+    except Exception as e:  # noqa: BLE001  recorded with its type and reported, never dropped
+        return head | {"error": f"{type(e).__name__}: {e}"}
+    return head | {"checks": checks}
+
+
+def validate_dataset(dataset: str | Path, paper_flight: int = 1, workers: int = 1,
+                     on_done: Callable[[int], None] | None = None) -> tuple[list[dict], list[dict]]:
+    """Every successful flight of the dataset validated: (per-flight results of :func:`validate_flight`
+    in manifest order, the manifest rows of the flights that failed to fly)."""
+    from flightmode.scenarios.sweep import map_flights
+
+    ok, failed = check_request(dataset, paper_flight)
+    results = map_flights(validate_flight, [(str(dataset), r, paper_flight) for r in ok], workers, on_done)
+    return results, failed
+
+
+def summarise(results: Sequence[dict]) -> list[FigureSummary]:
+    """Per aircraft type (in order of appearance) and figure (in the order a run prints them), the
+    flights' values and passes (module docstring)."""
+    from flightmode.scenarios.validate import fraction_interval
+
+    cells: dict[tuple[str, str, str], list] = {}
+    for r in results:
+        for c in r.get("checks", ()):
+            cells.setdefault((r["aircraft"], c.group, c.figure), []).append(c)
+    out = []
+    for (aircraft, group, figure), checks in cells.items():
+        values = np.array([c.value for c in checks], float)
+        finite = values[np.isfinite(values)]
+        q = np.percentile(finite, SUMMARY_QUANTILES) if finite.size else np.full(len(SUMMARY_QUANTILES), math.nan)
+        n_pass = sum(c.passed for c in checks)
+        # one anchor per figure: the same source range for every flight of the type (the first flight's text)
+        c0 = checks[0]
+        out.append(FigureSummary(aircraft, group, figure, c0.unit, c0.anchor_text(), c0.source, len(checks), n_pass,
+                                 float(q[0]), float(q[1]), float(q[2]), fraction_interval(n_pass, len(checks))))
+    return out
+
+
+def checks_table(results: Sequence[dict]):
+    """The per-flight rows as a pyarrow Table: one row per flight and check (flights that could not be
+    validated: one row with the error)."""
+    import pyarrow as pa
+
+    rows = []
+    for r in results:
+        if "error" in r:
+            rows.append({"flight_id": r["flight_id"], "aircraft": r["aircraft"], "error": r["error"]})
+        for c in r.get("checks", ()):
+            rows.append({"flight_id": r["flight_id"], "aircraft": r["aircraft"], "error": None} | c.as_dict())
+    schema = pa.schema([("flight_id", pa.string()), ("aircraft", pa.string()), ("error", pa.string()),
+                        ("group", pa.string()), ("figure", pa.string()), ("unit", pa.string()),
+                        ("value", pa.float64()), ("lo", pa.float64()), ("hi", pa.float64()),
+                        ("source", pa.string()), ("note", pa.string()), ("passed", pa.bool_())])
+    return pa.Table.from_pylist(rows, schema=schema)
