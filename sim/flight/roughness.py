@@ -45,8 +45,17 @@ practice): tau = 0.02-0.1 s for the mains of these models (1.6-8 Hz). The force 
 (earth-vertical, as the gear's ground-normal reaction) external force at the group's mean contact
 location, times the group's weight on wheels: it acts only while that wheel is on the ground. Spring,
 damping and locations are read from the contact elements of the model copy, after flightmode's own
-gear edits. Each wheel's datum is the ground where it started rolling (the force starts at 0); the
-nose runs a wheelbase ahead of the mains.
+gear edits. The nose runs a wheelbase ahead of the mains.
+
+Datum: each wheel's force is k (w - d) + D(w_dot), d its datum: the wheel's own height through a
+first-order lag of :data:`DATUM_TAU_S` (d = w where it starts rolling, so the force starts at 0). The
+struts carry what the ground does slowly, as the real ones do on a slope; the force carries the
+bumps. A fixed datum (the ground where the wheel started) let the profile's long waves build static
+forces of thousands of lbf over a taxi route, one nose strut carrying a third of its load; at the
+stand JSBSim's contact then held a 2.6 Hz rocking of 0.025 g after the engines stopped (3 of 20 A320
+flights of a validated dataset, seed 000 Table 2's rest spread 15-18 times the paper's). Stopped
+(below :data:`ROLLING_MIN_MPS`), the wheels stay where they are on the profile and the force decays
+with the datum.
 
 Timing: Python works only at the pilot's ticks and only on the ground, from taxi-out to the stand. At
 each tick it writes the force *knots* of the tick's interval, 1/40 s apart (one knot at the runway's
@@ -88,6 +97,17 @@ _RING_MASK = RING - 1
 GEAR_LEVEL_M = 0.6  # BOGEY contacts within this of the lowest one are gear (not tail, engine, wingtip)
 TYRE_DEFLECTION_M = 0.08  # tyre deflection under static load (module docstring)
 SQUARE_DAMPING_RATE_MPS = 0.1  # a square-law damper counts as linear at this strut rate in the tyre lag
+# Each wheel's datum follows its height with this time constant (module docstring, Datum): the force is
+# the profile's change, not its level. Waves longer than 2 pi v tau (63 m at a 5 m/s taxi, 880 m on a
+# 70 m/s roll) are slopes the aircraft stands on; at 0.2 Hz the leak keeps 93 % of the force, above
+# 1 Hz all of it
+DATUM_TAU_S = 2.0
+# below this ground speed the wheels are at rest on the profile: no new profile comes under them. A
+# stopped aircraft still rocks on its struts at a few mm/s; counted as rolling (a speed's magnitude
+# never runs backwards), that would creep the wheels along the profile and step the force at every
+# 0.1 m sample crossed. At 0.1 m/s a wheel crosses one sample a second: slower than a tyre's footprint
+# would notice
+ROLLING_MIN_MPS = 0.1
 
 
 @dataclass(frozen=True, slots=True)
@@ -411,7 +431,7 @@ class GearRoughness:
         # tyre-filtered profile, m), last knot (lbf), datum (the wheel height where it started rolling, m)
         self._state = [[0, 0.0, 0.0, 0.0, 0.0] for _ in GROUPS]
         self._every = 0
-        self._m, self._inv_dtk, self._dtk_dx, self._dtk = 1, 0.0, 0.0, 0.0
+        self._m, self._inv_dtk, self._dtk_dx, self._dtk, self._beta = 1, 0.0, 0.0, 0.0, 0.0
         self._n = 0  # knots written since the ring's restart (the last one is in slot n mod RING)
         self._anchor = True  # restart the ring at the next tick
         self._alpha = [0.0, 0.0, 0.0]
@@ -439,8 +459,9 @@ class GearRoughness:
             self._set_every(every)
         if self._anchor:
             self._reanchor()
-        m, n, inv_dtk = self._m, self._n, self._inv_dtk
-        ds = math.hypot(x[self._ivn], x[self._ive]) * self._dtk_dx  # samples rolled per knot
+        m, n, inv_dtk, beta = self._m, self._n, self._inv_dtk, self._beta
+        v = math.hypot(x[self._ivn], x[self._ive])
+        ds = v * self._dtk_dx if v >= ROLLING_MIN_MPS else 0.0  # samples rolled per knot
         s = self._s
         if m == 1:  # one knot a tick (40 Hz ticks on the runway): the loop below, unrolled
             slot = (n + 1) & _RING_MASK
@@ -450,6 +471,7 @@ class GearRoughness:
                 n_in = (i - i0) & _MASK
                 c1 = c[i]
                 w1 = w + a * (((c1 - c0) / n_in if n_in else h[i]) - w)
+                datum += beta * (w1 - datum)
                 r = (w1 - w) * inv_dtk
                 f = k * (w1 - datum) + (cl * r + cq * r * r if r > 0.0 else rl * r - rq * r * r)
                 knots[slot](f)
@@ -457,6 +479,7 @@ class GearRoughness:
                 st[1] = c1
                 st[2] = w1
                 st[3] = f
+                st[4] = datum
             self._s = s + ds
             self._n = n + 1
             return
@@ -469,11 +492,12 @@ class GearRoughness:
                 c1 = c[i]
                 # the profile averaged over the distance rolled in the knot interval, through the tyre
                 w1 = w + a * (((c1 - c0) / n_in if n_in else h[i]) - w)
+                datum += beta * (w1 - datum)
                 r = (w1 - w) * inv_dtk
                 f = k * (w1 - datum) + (cl * r + cq * r * r if r > 0.0 else rl * r - rq * r * r)
                 knots[(n + j) & _RING_MASK](f)
                 i0, c0, w = i, c1, w1
-            st[0], st[1], st[2], st[3] = i0, c0, w, f
+            st[0], st[1], st[2], st[3], st[4] = i0, c0, w, f, datum
         self._s = s + m * ds
         self._n = n + m
 
@@ -484,6 +508,7 @@ class GearRoughness:
         m = min(MAX_KNOTS, max(1, round(span / KNOT_S)))
         dtk = span / m
         self._every, self._m, self._inv_dtk, self._dtk_dx = every, m, 1.0 / dtk, dtk / DX_M
+        self._beta = 1.0 - math.exp(-dtk / DATUM_TAU_S)
         if dtk != self._dtk:
             self._dtk = dtk
             self._alpha = [1.0 - math.exp(-dtk / tau) for tau in self.tau_s]

@@ -211,6 +211,38 @@ def test_stream_profiles_are_deterministic_and_lazy():
     assert 0.02 < a.tau_s[1] < 0.2  # the main tyre's lag: a few Hz
 
 
+def test_a_stopped_aircraft_rocking_on_its_struts_comes_to_rest_on_its_own_gear():
+    """Rolling at 1 m/s the wheels feel the profile. Stopped, an aircraft still rocks on its struts at
+    a few mm/s: that must not creep the wheels along the profile, and the force left by the last
+    bumps decays with the datum's lag (R.DATUM_TAU_S), so that the struts carry the aircraft at the
+    stand. (A fixed datum once left thousands of lbf on one strut there, and JSBSim's contact rocked at
+    2.6 Hz, 0.025 g, with the engines off.) After 30 s, 15 lags, e^-15 = 3e-7 of a force of thousands
+    of lbf is left: under 0.01 lbf."""
+    from flightmode.streams import Streams
+
+    ac = _parked()
+    rough = R.GearRoughness(ac, Streams(7), 120.0)
+    x = np.zeros(len(ac.index))
+    x[ac.index["wow"]] = 1.0
+
+    def ticks(v_mps, n):  # 40 Hz ticks (every 3 steps at 120 Hz): the ring's knots after each
+        out = []
+        for k in range(n):
+            x[ac.index["v_north_mps"]] = v_mps if v_mps >= 1.0 else v_mps * (-1.0) ** k  # rolling, or rocking
+            rough.tick(x, "parked", 3)
+            out.append([ac.get(f"roughness/{g}/f{j}-lbf") for g in R.GROUPS for j in range(R.RING)])
+        return np.array(out)
+
+    rolling = ticks(1.0, 160)  # 4 m of taxiway: 40 profile samples under each wheel
+    assert np.ptp(rolling[:, R.RING:], axis=0).min() > 1.0  # lbf: the mains feel it
+    rocking = ticks(0.005, 1200)  # 30 s at +-5 mm/s
+    assert np.abs(rocking[-1]).max() < 0.01
+    # no bump felt while rocking: once the tyre's lag has settled (1 s, > 5 of its tau < 0.2 s), each
+    # group's force only decays towards 0, never a step away from it
+    last = rocking[40::R.RING, R.RING - 1::R.RING]  # one slot per group, rewritten every RING ticks
+    assert np.all(np.diff(np.abs(last), axis=0) <= 1e-9)
+
+
 # --------------------------------------------------------------------------- on a flown flight
 def _increments_g(tr, lever_arm_m=(0.0, 0.0, 0.0)) -> np.ndarray:
     """Vertical load-factor increment (g) at a point: the specific force's body z, up positive, with
