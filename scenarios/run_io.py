@@ -97,9 +97,11 @@ def track_table(track: FlightTrack):
 
 # time and position keep double precision (float32 would quantise a 5000 km position to 0.5 m), and so do
 # the pressures (float32 near 100 kPa steps by 0.008 Pa: below any barometer's noise, but an ideal
-# barometer read from the file would then differ from one read from the flight)
+# barometer read from the file would then differ from one read from the flight) and the ground speed
+# (the floor vibration places the taxiway joints by integrating it: rounded to float32, a joint's
+# impulse moved by one sample on re-sensing the pattern flight, 48 counts for a second after it)
 FLOAT64_COLUMNS = frozenset({"t_s", "lat_deg", "lon_deg", "alt_m", "pos_n_m", "pos_e_m", "pos_d_m",
-                             "ambient_pressure_pa", "cabin_pressure_pa", "hold_pressure_pa"})
+                             "ambient_pressure_pa", "cabin_pressure_pa", "hold_pressure_pa", "ground_speed_mps"})
 PRESSURE_COLUMNS = ("ambient_pressure_pa", "cabin_pressure_pa", "cabin_altitude_m", "hold_pressure_pa")
 
 
