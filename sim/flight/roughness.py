@@ -51,9 +51,10 @@ Datum: each wheel's force is k (w - d) + D(w_dot), d its datum: the wheel's own 
 first-order lag of :data:`DATUM_TAU_S` (d = w where it starts rolling, so the force starts at 0). The
 struts carry what the ground does slowly, as the real ones do on a slope; the force carries the
 bumps. A fixed datum (the ground where the wheel started) let the profile's long waves build static
-forces of thousands of lbf over a taxi route, one nose strut carrying a third of its load; at the
-stand JSBSim's contact then held a 2.6 Hz rocking of 0.025 g after the engines stopped (3 of 20 A320
-flights of a validated dataset, seed 000 Table 2's rest spread 15-18 times the paper's). Stopped
+forces of thousands of lbf over a taxi route (6,400 lbf lifting an A320's nose wheel: 3/4 of its
+static load); at the stand JSBSim's contact then held a 2.6 Hz rocking of 0.025 g after the engines
+stopped (3 of 20 A320 flights of a validated dataset, seed 000 Table 2's rest spread 15-18 times the
+paper's). Stopped
 (below :data:`ROLLING_MIN_MPS`), the wheels stay where they are on the profile and the force decays
 with the datum.
 
@@ -428,7 +429,7 @@ class GearRoughness:
         self._prof: _Surface | None = None
         self._s = 0.0  # main gear's position along the surface, samples
         # per group: last knot boundary (sample index) and its prefix sum, wheel height (the
-        # tyre-filtered profile, m), last knot (lbf), datum (the wheel height where it started rolling, m)
+        # tyre-filtered profile, m), last knot (lbf), datum (the wheel height through DATUM_TAU_S, m)
         self._state = [[0, 0.0, 0.0, 0.0, 0.0] for _ in GROUPS]
         self._every = 0
         self._m, self._inv_dtk, self._dtk_dx, self._dtk, self._beta = 1, 0.0, 0.0, 0.0, 0.0
