@@ -228,7 +228,7 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
 
     from flightmode.detector.flight_mode import DetectorParams, detect, final_static
     from flightmode.scenarios.dataset import read_manifest
-    from flightmode.scenarios.sweep import _sigma2_of, _streams
+    from flightmode.scenarios.sweep import sigma2_of_flight, _streams
 
     plt = _plt()
     w = cert.worst_flight
@@ -240,7 +240,7 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
     t, acc = cols["t_s"], cols["acc_g"]
     fs = round(1.0 / float(np.median(np.diff(t))), 6)
     p = DetectorParams(fs_hz=fs, window_s=1.0, k_sigma=4.0, time_threshold_s=4.0, method="nmv")
-    sigma2 = np.asarray(_sigma2_of(sigma2_from, row, cols)(p.window), float)
+    sigma2 = np.asarray(sigma2_of_flight(sigma2_from, row, cols)(p.window), float)
     c = detect(t, acc, p, sigma2)
     tm = (c.t_s - t[0]) / 60.0
     window = np.asarray(cols["in_flight_window"], bool)[c.index]

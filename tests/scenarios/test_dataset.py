@@ -251,7 +251,7 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
     from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.grid import Grid
     from flightmode.scenarios.run_io import read_samples
-    from flightmode.scenarios.sweep import _sigma2_of, at_point, read_sweep, summarise, sweep
+    from flightmode.scenarios.sweep import sigma2_of_flight, at_point, read_sweep, summarise, sweep
 
     grid = Grid(methods=(("nmv", 1.0), ("emv", 5.0)), windows_s=(1.0, 2.0), ks=(3.0, 4.0, 5.0),
                 time_thresholds_s=(2.0, 4.0))
@@ -276,7 +276,7 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
     for method, weight, w, k, tth in (("emv", 5.0, 2.0, 5.0, 2.0), ("emv", 5.0, 1.0, 3.0, 4.0), ("nmv", 1.0, 2.0, 5.0, 2.0)):
         p = DetectorParams(fs_hz=100.0, window_s=w, k_sigma=k, time_threshold_s=tth, method=method, weight=weight)
-        e = evaluate(cols["t_s"], cols["acc_g"], labels, p, _sigma2_of("preset", row, cols)(p.window))
+        e = evaluate(cols["t_s"], cols["acc_g"], labels, p, sigma2_of_flight("preset", row, cols)(p.window))
         got = [r for r in at_point(table, {"method": method, "weight": weight, "window_s": w, "k": k,
                                            "time_threshold_s": tth}) if r["flight_id"] == row["flight_id"]]
         assert len(got) == 1
