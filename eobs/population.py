@@ -42,7 +42,7 @@ def tradeoff_flight(dataset: str, row: dict, intervals_s: Sequence[float], byte_
 def check_request(datasets, intervals_s, byte_count: int, ms, k: float, odr_per_axis_hz: float) -> list[tuple]:
     """(dataset, row) of every successful flight, after checking the request (one-line errors)."""
     from flightmode.errors import DetectorError
-    from flightmode.scenarios.sweep import _ok_rows
+    from flightmode.scenarios.dataset import ok_flights
     from flightmode.sim.sensor.accelerometer import eobs_preset
 
     paths = [Path(d) for d in datasets]
@@ -59,7 +59,7 @@ def check_request(datasets, intervals_s, byte_count: int, ms, k: float, odr_per_
         eobs_preset(float(interval), byte_count, odr_per_axis_hz)  # the tag's own rules (a SensorError)
     jobs = []
     for d in paths:
-        ok, _, meta = _ok_rows(d)
+        ok, _, meta = ok_flights(d, "evaluate")
         truth = (meta.get("options") or {}).get("truth")
         if truth != "full":
             raise InputDataError(f"{d}: the trade-off re-senses each flight from its full-rate truth, and this "

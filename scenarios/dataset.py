@@ -222,6 +222,23 @@ def read_manifest(out: Path) -> dict[int, dict]:
     return {int(r["index"]): r for r in pq.read_table(p).to_pylist()}
 
 
+def ok_flights(dataset: str | Path, purpose: str = "sweep") -> tuple[list[dict], list[dict], dict]:
+    """A dataset's flights for ``purpose`` (a verb, for the error): the manifest rows of the flights
+    that flew and of those that failed (each with its ``dataset``), in manifest order, and its
+    dataset.json. An InputDataError if the folder is not a dataset or no flight of it flew."""
+    dataset = Path(dataset)
+    if not (dataset / MANIFEST).exists():
+        raise InputDataError(f"{dataset}: no flights.parquet: not a dataset made by `flightmode dataset`")
+    rows = read_manifest(dataset)
+    ok = [rows[i] for i in sorted(rows) if rows[i]["status"] == "ok"]
+    failed = [rows[i] | {"dataset": str(dataset)} for i in sorted(rows) if rows[i]["status"] != "ok"]
+    if not ok:
+        raise InputDataError(f"{dataset}: no flight succeeded ({len(failed)} failed): nothing to {purpose}")
+    meta_p = dataset / "dataset.json"
+    meta = json.loads(meta_p.read_text()) if meta_p.exists() else {}
+    return ok, failed, meta
+
+
 def manifest_schema():
     """The manifest's columns and types, whatever the flights' outcomes (a manifest of failures only
     has every column, null where a failed flight has no value)."""
@@ -292,7 +309,7 @@ def _claim_folder(out: Path, fam, options: Options) -> None:
     if not marker.exists():
         atomic_text(fam.text, marker)
     atomic_text(json.dumps({"family": fam.name, "family_sha256": fam.digest(), "options": options.as_dict()},
-                            indent=2), out / "dataset.json")
+                           indent=2), out / "dataset.json")
 
 
 # ---------------------------------------------------------------------- the cluster

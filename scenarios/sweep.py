@@ -317,21 +317,6 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
     return {"points": points, "phases": phases, "static": statics}
 
 
-def _ok_rows(dataset: Path) -> tuple[list[dict], list[dict], dict]:
-    from flightmode.scenarios.dataset import read_manifest
-
-    if not (dataset / "flights.parquet").exists():
-        raise InputDataError(f"{dataset}: no flights.parquet: not a dataset made by `flightmode dataset`")
-    rows = read_manifest(dataset)
-    ok = [rows[i] for i in sorted(rows) if rows[i]["status"] == "ok"]
-    failed = [rows[i] | {"dataset": str(dataset)} for i in sorted(rows) if rows[i]["status"] != "ok"]
-    if not ok:
-        raise InputDataError(f"{dataset}: no flight succeeded ({len(failed)} failed): nothing to sweep")
-    meta_p = dataset / "dataset.json"
-    meta = json.loads(meta_p.read_text()) if meta_p.exists() else {}
-    return ok, failed, meta
-
-
 def _versions() -> dict:
     import platform
     from importlib.metadata import PackageNotFoundError, version
@@ -365,9 +350,11 @@ def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from
             raise InputDataError(f"--sensor {','.join(sensors)!r}: name each preset once, at least one")
         for name in sensors:
             get_preset(name)  # a SensorError with the presets to choose from
+    from flightmode.scenarios.dataset import ok_flights
+
     seen: dict[str, str] = {}
     for d in paths:
-        ok, _, meta = _ok_rows(d)
+        ok, _, meta = ok_flights(d)
         for r in ok:  # the same flight twice would count its hours and events twice
             other = seen.setdefault(r["samples_sha256"], f"{d}/{r['flight_id']}")
             if other != f"{d}/{r['flight_id']}":
@@ -390,11 +377,13 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
     import pyarrow as pa
     import pyarrow.parquet as pq
 
+    from flightmode.scenarios.dataset import ok_flights
+
     paths = check_request(datasets, grid, sigma2_from, sensors)
     sensors = tuple(sensors) if sensors else None
     jobs, failed, described = [], [], []
     for d in paths:
-        ok, bad, meta = _ok_rows(d)
+        ok, bad, meta = ok_flights(d)
         family = meta.get("family", "")
         jobs += [(str(d), r, family) for r in ok]
         failed += bad

@@ -66,27 +66,16 @@ def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict
     """The dataset's flights (ok, failed), checked before any work: a folder that is not a dataset,
     one without a successful flight or without full-rate truth raises an InputDataError saying how
     to make one that can be validated."""
-    import pyarrow.parquet as pq
-
-    from flightmode.scenarios.dataset import read_manifest
-    from flightmode.scenarios.run_io import TRACK_INFO_KEY
+    from flightmode.scenarios.dataset import ok_flights
     from flightmode.scenarios.validate import PAPER_TABLES
 
     if paper_flight not in PAPER_TABLES:
         raise InputDataError(f"--paper-flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
-    dataset = Path(dataset)
-    if not is_dataset(dataset):
-        raise InputDataError(f"{dataset}: not a dataset (no flights.parquet); make one with `flightmode dataset`")
-    rows = read_manifest(dataset)
-    ok = [rows[i] for i in sorted(rows) if rows[i]["status"] == "ok"]
-    failed = [rows[i] for i in sorted(rows) if rows[i]["status"] != "ok"]
-    if not ok:
-        raise InputDataError(f"{dataset}: no flight of the dataset succeeded ({len(failed)} failed): nothing to validate")
-    truth = ok[0].get("truth_file")
-    meta = pq.read_schema(dataset / truth).metadata if truth and (dataset / truth).is_file() else None
-    if not meta or TRACK_INFO_KEY not in meta:
-        raise InputDataError(f"{dataset}: its flights' truth cannot rebuild their tracks (made without "
-                             "--truth full); make the dataset with `flightmode dataset ... --truth full`")
+    ok, failed, meta = ok_flights(dataset, "validate")
+    truth = (meta.get("options") or {}).get("truth")
+    if truth != "full":
+        raise InputDataError(f"{dataset}: validation rebuilds each flight from its full-rate truth, and this dataset "
+                             f"keeps truth {truth!r}; make it with `flightmode dataset ... --truth full`")
     return ok, failed
 
 
