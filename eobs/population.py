@@ -59,11 +59,7 @@ def check_request(datasets, intervals_s, byte_count: int, ms, k: float, odr_per_
         eobs_preset(float(interval), byte_count, odr_per_axis_hz)  # the tag's own rules (a SensorError)
     jobs = []
     for d in paths:
-        ok, _, meta = ok_flights(d, "evaluate")
-        truth = (meta.get("options") or {}).get("truth")
-        if truth != "full":
-            raise InputDataError(f"{d}: the trade-off re-senses each flight from its full-rate truth, and this "
-                                 f"dataset keeps truth {truth!r}; make it with `flightmode dataset ... --truth full`")
+        ok, _, _ = ok_flights(d, "evaluate", full_truth_for="the trade-off re-senses each flight")
         jobs += [(str(d), r) for r in ok]
     return jobs
 

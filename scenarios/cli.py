@@ -934,7 +934,7 @@ def validate_cmd(
 ) -> None:
     """Set a run's figures beside their public anchors (WRAP, ADS-B taxi tracks, ICAO, NASA, seed 000);
     for a dataset, each figure's distribution over its flights, per aircraft type."""
-    from flightmode.scenarios.validate_population import is_dataset
+    from flightmode.scenarios.dataset import is_dataset
 
     if is_dataset(run_dir):
         _validate_dataset(run_dir, paper_flight, as_json, strict, workers, checks_out)

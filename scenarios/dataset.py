@@ -222,12 +222,20 @@ def read_manifest(out: Path) -> dict[int, dict]:
     return {int(r["index"]): r for r in pq.read_table(p).to_pylist()}
 
 
-def ok_flights(dataset: str | Path, purpose: str = "sweep") -> tuple[list[dict], list[dict], dict]:
+def is_dataset(path: str | Path) -> bool:
+    """A folder made by ``flightmode dataset`` (it has the manifest)."""
+    return (Path(path) / MANIFEST).is_file()
+
+
+def ok_flights(dataset: str | Path, purpose: str = "sweep", full_truth_for: str | None = None
+               ) -> tuple[list[dict], list[dict], dict]:
     """A dataset's flights for ``purpose`` (a verb, for the error): the manifest rows of the flights
     that flew and of those that failed (each with its ``dataset``), in manifest order, and its
-    dataset.json. An InputDataError if the folder is not a dataset or no flight of it flew."""
+    dataset.json. An InputDataError if the folder is not a dataset or no flight of it flew, or, when
+    ``full_truth_for`` names what needs it (e.g. "validation rebuilds each flight"), if the dataset
+    was not made with ``--truth full``."""
     dataset = Path(dataset)
-    if not (dataset / MANIFEST).exists():
+    if not is_dataset(dataset):
         raise InputDataError(f"{dataset}: no flights.parquet: not a dataset made by `flightmode dataset`")
     rows = read_manifest(dataset)
     ok = [rows[i] for i in sorted(rows) if rows[i]["status"] == "ok"]
@@ -236,6 +244,10 @@ def ok_flights(dataset: str | Path, purpose: str = "sweep") -> tuple[list[dict],
         raise InputDataError(f"{dataset}: no flight succeeded ({len(failed)} failed): nothing to {purpose}")
     meta_p = dataset / "dataset.json"
     meta = json.loads(meta_p.read_text()) if meta_p.exists() else {}
+    truth = (meta.get("options") or {}).get("truth")
+    if full_truth_for is not None and truth != "full":
+        raise InputDataError(f"{dataset}: {full_truth_for} from its full-rate truth, and this dataset keeps truth "
+                             f"{truth!r}; make it with `flightmode dataset ... --truth full`")
     return ok, failed, meta
 
 
@@ -374,8 +386,6 @@ def make_dataset(family, n: int, out: str | Path, *, workers: int = 2, scheduler
     """Make (or, with ``resume``, complete) the dataset of the family's members 0..n-1 in ``out``;
     returns the manifest rows by index. ``on_start(dashboard_url, flights_to_do)`` and
     ``on_flight(row)`` report progress (the CLI's progress bar)."""
-    from dask.distributed import as_completed
-
     fam, options, out = check_request(family, n, out, workers=workers, resume=resume, truth=truth,
                                       flight_timeout_s=flight_timeout_s, rrd=rrd)
     client, cluster = _client(workers, scheduler)  # before writing: a dead scheduler leaves nothing behind

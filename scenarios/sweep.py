@@ -354,16 +354,12 @@ def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from
 
     seen: dict[str, str] = {}
     for d in paths:
-        ok, _, meta = ok_flights(d)
+        ok, _, _ = ok_flights(d, full_truth_for="--sensor re-senses each flight" if sensors else None)
         for r in ok:  # the same flight twice would count its hours and events twice
             other = seen.setdefault(r["samples_sha256"], f"{d}/{r['flight_id']}")
             if other != f"{d}/{r['flight_id']}":
                 raise InputDataError(f"{d}: flight {r['flight_id']} has the very samples of {other}: the same flight "
                                      "in two datasets would count twice; name each dataset once")
-        truth = (meta.get("options") or {}).get("truth")
-        if sensors and truth != "full":
-            raise InputDataError(f"{d}: --sensor re-senses each flight from its full-rate truth, and this dataset "
-                                 f"keeps truth {truth!r}; make it with `flightmode dataset ... --truth full`")
     return paths
 
 

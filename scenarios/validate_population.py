@@ -55,13 +55,6 @@ class FigureSummary:
         return asdict(self) | {"pass_fraction": self.pass_fraction}
 
 
-def is_dataset(path: str | Path) -> bool:
-    """A folder made by ``flightmode dataset`` (it has the manifest)."""
-    from flightmode.scenarios.dataset import MANIFEST
-
-    return (Path(path) / MANIFEST).is_file()
-
-
 def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict], list[dict]]:
     """The dataset's flights (ok, failed), checked before any work: a folder that is not a dataset,
     one without a successful flight or without full-rate truth raises an InputDataError saying how
@@ -71,11 +64,7 @@ def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict
 
     if paper_flight not in PAPER_TABLES:
         raise InputDataError(f"--paper-flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
-    ok, failed, meta = ok_flights(dataset, "validate")
-    truth = (meta.get("options") or {}).get("truth")
-    if truth != "full":
-        raise InputDataError(f"{dataset}: validation rebuilds each flight from its full-rate truth, and this dataset "
-                             f"keeps truth {truth!r}; make it with `flightmode dataset ... --truth full`")
+    ok, failed, _ = ok_flights(dataset, "validate", full_truth_for="validation rebuilds each flight")
     return ok, failed
 
 
