@@ -185,6 +185,7 @@ class AircraftProfile:
     taxi_turn_kt: float = 10.0  # about 10 kt in turns (Airbus A319 FCOM)
     rotate_elevator: float = 0.3  # nose-up elevator bias during rotation (fraction of full travel)
     elevator_nose_up_deg: float | None = None  # extends the model's elevator travel (sim.flight.model_edits)
+    spread_spoiler_lift: bool = False  # the ground spoilers' lift loss over their whole travel (sim.flight.model_edits)
     tuning: PilotTuning = field(default_factory=PilotTuning)
 
 
@@ -200,6 +201,7 @@ PROFILES: dict[str, AircraftProfile] = {
         # the two real 737 taxi-outs (N899DN, a 737-900, MSP: speed p50 6.3 and 7.3 m/s, p90 7.8 and
         # 10.2) against 7.9 m/s p50 over 19 seeded ist-osl flights at the default straight speeds
         tuning=PilotTuning(taxi_speed_out_mps=(6.5, 9.0)),
+        spread_spoiler_lift=True,  # the stock table's lift loss is all in 10 % of the travel (sim.flight.model_edits)
         wrap_type="B737",
         n_engines=2,
         length_m=33.4,

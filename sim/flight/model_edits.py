@@ -13,6 +13,15 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
   manoeuvre (Airbus A320 FCOM, flight controls description); the extra travel stands in for the
   stabiliser's authority. The model's elevator coefficients are linear in the deflection, so the
   extension changes nothing below 25 degrees.
+- 737: the ground spoilers' lift loss spread over their whole travel (:func:`spread_spoiler_lift_loss`).
+  The stock table loses its full 40 % of lift at 10 % of the spoilers' travel, reached 0.06 s after
+  the first wheel contact (the panels take 0.6 s to open): the centre of gravity's load factor fell
+  from 1.1 to 0.55-0.6 g within a tenth of a second after a light touchdown, a drop the
+  accelerometer records and no airliner shows. Small spoiler deflections barely change a wing's lift
+  (near the stall they even raise it: Lindsay and Walsh 2018, "Experimental investigation of spoiler
+  deployment on wing stall", Open Journal of Fluid Dynamics 8, 308-320), and the stock Fokker 100
+  model's lift loss is linear in the spoilers' position; the edit keeps the 737's 40 % at full
+  travel and makes it grow linearly to there.
 """
 
 from __future__ import annotations
@@ -42,10 +51,32 @@ def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:
         raise AircraftError("no elevator aerosurface_scale found to extend")
 
 
+def spread_spoiler_lift_loss(root: ET.Element) -> None:
+    """Stretch the spoiler lift tables (those of ``fcs/spoiler-pos-norm``) so that their last breakpoint
+    falls at full travel, the lift factors unchanged: a loss that saturated at 10 % of the travel
+    then grows linearly over all of it."""
+    changed = 0
+    for table in root.iterfind(".//aerodynamics//table"):
+        var = table.find("independentVar")
+        data = table.find("tableData")
+        if var is None or data is None or (var.text or "").strip() != "fcs/spoiler-pos-norm":
+            continue
+        rows = [[float(v) for v in line.split()] for line in data.text.strip().splitlines() if line.strip()]
+        last = rows[-1][0]
+        if last <= 0.0 or any(len(r) != 2 for r in rows):
+            raise AircraftError(f"unexpected spoiler lift table {rows}: expected (position, factor) rows")
+        data.text = "\n" + "\n".join(f"{r[0] / last:.4f}\t{r[1]:.4f}" for r in rows) + "\n"
+        changed += 1
+    if changed == 0:
+        raise AircraftError("no spoiler lift table (fcs/spoiler-pos-norm) found to spread")
+
+
 def edits_for(profile) -> tuple:
     """The model edits of a type (module docstring), as functions of the XML root."""
     edits = [functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg),
              functools.partial(soften_nose_gear, landing_mass_kg=profile.ref_landing_mass_kg)]
     if profile.elevator_nose_up_deg is not None:
         edits.append(functools.partial(extend_elevator_nose_up, nose_up_deg=profile.elevator_nose_up_deg))
+    if profile.spread_spoiler_lift:
+        edits.append(spread_spoiler_lift_loss)
     return tuple(edits)
