@@ -145,6 +145,9 @@ class AircraftProfile:
     # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
     # sim.flight.controllers.FLARE_PITCH_GAIN
     flare_accel_gain: float = 1.0
+    # the share of the flare's elevator the attitude loop keeps at touchdown (sim.flight.controllers.Rollout):
+    # 0 relaxes it to the loop's own (half its integrator), 1 keeps it all
+    touchdown_elevator_keep: float = 0.0
     # maximum operating altitude (type certificate data sheet): the highest step climb (sim.flight.step_climb)
     ceiling_ft: float = 37_000.0
     # flights between any two airports (flightmode.scenarios.routes): the type's usual cruise level
@@ -231,6 +234,9 @@ PROFILES: dict[str, AircraftProfile] = {
         reverse_throttle=0.6,
         flare_height_ft=55.0,
         flare_pitch_kp=4.0,
+        # the 737's nose fell at 3-4 deg/s after its elevator relaxed at touchdown (the nose wheels
+        # down 0.8-1.9 s after the mains, 4 pattern landings); kept, 2-3.4 s and 0.9-2.4 deg/s
+        touchdown_elevator_keep=1.0,
         # WRAP B737
         climb=ClimbSchedule(Spread(11.41, 2.07, 8.01, 14.82), Spread(11.71, 1.96, 8.49, 14.93),
                             Spread(6.74, 1.42, 4.4, 9.08), 3400.0, 8900.0, 151.95),

@@ -443,6 +443,13 @@ FLARE_HOLD_PER_S = 1.0  # below the aim height: upward acceleration per m/s of s
 FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far above the runway (the lag)
 
 
+# derotation: the nose wheels meet the runway about 3.5 s after the mains (A320 cabin-floor landing
+# shock record, Irvine, vibrationdata), so the pitch is lowered from its touchdown attitude to 1 deg
+# over that time (and at no less than DEROTATION_MIN_RATE)
+DEROTATION_S = 3.5
+DEROTATION_MIN_RATE = math.radians(0.5)
+
+
 class Rollout(Controller):
     """Spoilers and speedbrake out, reversers while fast, a deceleration-loop autobrake to the plan's
     target; the reverse thrust is trimmed down when it alone decelerates harder than the target."""
@@ -453,8 +460,17 @@ class Rollout(Controller):
         ap.ac.set("fcs/spoiler-cmd-norm", 1.0)
         # stop flaring: the attitude held as it is (no further pull: with lift still near the weight,
         # a pull after the first contact bounces the aircraft back into the air), then lowered
-        ap.theta_cmd = x[self.p.ix["theta_rad"]]
-        ap.pitch_pid.integral *= 0.5
+        ix, prof = self.p.ix, self.p.prof
+        theta = x[ix["theta_rad"]]
+        ap.theta_cmd = theta
+        # the elevator keeps the type's share of where the flare left it (the attitude loop's
+        # integrator takes over the flare's bias; the rest relaxes at once, as the flare's pull)
+        u_now = -ap.ac.get("fcs/elevator-cmd-norm")
+        keep = prof.touchdown_elevator_keep
+        ap.pitch_pid.reset(integral=keep * (u_now + prof.pitch_kq * x[ix["q_radps"]]) / prof.pitch_ki
+                           + (1.0 - keep) * 0.5 * ap.pitch_pid.integral)
+        # the nose is flown down to the runway over DEROTATION_S, not let fall
+        self.derotation_rate = max((theta - math.radians(1.0)) / DEROTATION_S, DEROTATION_MIN_RATE)
         self.rev_thr = self.p.prof.reverse_throttle
         self.nose_down = False
         ap.brake_pid.reset()
@@ -463,9 +479,10 @@ class Rollout(Controller):
         ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
         ap.runway_track(x, ap.dest)
         ap.ac.set("fcs/aileron-cmd-norm", 0.0)
-        ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(-1.0), math.radians(2.0) * ap.dt)
+        ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(-1.0), self.derotation_rate * ap.dt)
         if x[ix["theta_rad"]] > math.radians(0.5):
-            ap.pitch_to(x, ap.theta_cmd)
+            # the flare's firmer attitude loop: the stock models' noses otherwise fall at 3-6 deg/s
+            ap.pitch_to(x, ap.theta_cmd, bias=prof.flare_pitch_kp * (ap.theta_cmd - x[ix["theta_rad"]]))
         else:
             ap.ac.set("fcs/elevator-cmd-norm", 0.2)
         gs = ap.gs(x)

@@ -118,3 +118,22 @@ def test_exceeding_a_limit_raises_flight_error_naming_phase_time_and_cause(monke
     assert "bank angle" in e.cause and "exceeds 45" in e.cause
     assert e.phase in ("initial_climb", "climb", "cruise", "descent", "approach")
     assert e.t_s > 0 and f"{e.t_s:.2f}" in str(e)
+
+
+def test_the_nose_is_flown_down_after_the_mains_not_dropped(fly_cached):
+    """Derotation (sim.flight.controllers.Rollout): the nose wheels meet the runway about 3.5 s after the
+    mains on an A320 (a cabin-floor landing-shock record, Irvine, vibrationdata); the pilot lowers the
+    nose over that time. The pattern 737 touches down at about 3 deg: lowered at (3 - 1) / 3.5 deg/s
+    with the attitude loop's lag of about a second, its nose reaches the ground attitude 1.5-6 s after
+    the mains and never pitches down faster than 2 deg/s. Before the 737 kept its flare elevator, its
+    nose fell in 0.8 s at 3 deg/s."""
+    sc, tr = fly_cached("pattern")
+    th = np.degrees(tr.euler_rad[:, 1])
+    t_td = tr.event_time("touchdown")
+    since = tr.t_s - t_td
+    i0 = int(np.searchsorted(tr.t_s, t_td))
+    ground = np.median(th[(since > 20.0) & (since < 25.0)])  # rolling on all its wheels
+    k = i0 + int(np.argmax(th[i0:] < ground + 0.3))  # within 0.3 deg of it (the struts' pitch wobble)
+    assert 1.5 <= tr.t_s[k] - t_td <= 6.0
+    q_dps = np.gradient(th, tr.t_s)[i0 : k + 1]
+    assert q_dps.min() > -2.0
