@@ -235,7 +235,7 @@ PROFILES: dict[str, AircraftProfile] = {
         flare_height_ft=55.0,
         flare_pitch_kp=4.0,
         # the 737's nose fell at 3-4 deg/s after its elevator relaxed at touchdown (the nose wheels
-        # down 0.8-1.9 s after the mains, 4 pattern landings); kept, 2-3.4 s and 0.9-2.4 deg/s
+        # down 0.8-1.9 s after the mains, 8 pattern landings); kept: 2.0-4.0 s, at most 0.9-2.6 deg/s
         touchdown_elevator_keep=1.0,
         # WRAP B737
         climb=ClimbSchedule(Spread(11.41, 2.07, 8.01, 14.82), Spread(11.71, 1.96, 8.49, 14.93),

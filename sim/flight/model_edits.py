@@ -16,7 +16,7 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
 - 737: the ground spoilers' lift loss spread over their whole travel (:func:`spread_spoiler_lift_loss`).
   The stock table loses its full 40 % of lift at 10 % of the spoilers' travel, reached 0.06 s after
   the first wheel contact (the panels take 0.6 s to open): the centre of gravity's load factor fell
-  from 1.1 to 0.55-0.6 g within a tenth of a second after a light touchdown, a drop the
+  from 1.1 to 0.55-0.75 g within a tenth of a second after a light touchdown, a drop the
   accelerometer records and no airliner shows. Small spoiler deflections barely change a wing's lift
   (near the stall they even raise it: Lindsay and Walsh 2018, "Experimental investigation of spoiler
   deployment on wing stall", Open Journal of Fluid Dynamics 8, 308-320), and the stock Fokker 100
