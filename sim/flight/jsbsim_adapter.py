@@ -107,18 +107,25 @@ def available_models() -> list[str]:
     return sorted(p.name for p in root.iterdir() if (p / f"{p.name}.xml").is_file())
 
 
-def _private_model_copy(model: str, workdir: Path, edits=()) -> Path:
-    """Write the sanitised copy of ``model``'s main XML below ``workdir``; return the aircraft path.
-    ``edits``: functions applied to the XML root before it is written (e.g. the gear's damping,
-    :mod:`flightmode.sim.flight.gear`)."""
+def stock_model_xml(model: str) -> Path:
+    """The main XML file of the stock JSBSim ``model`` shipped in the installed wheel (an
+    :class:`AircraftError` naming the installed models if there is none)."""
     import jsbsim
 
-    src_dir = Path(jsbsim.get_default_root_dir()) / "aircraft" / model
-    if not (src_dir / f"{model}.xml").is_file():
+    path = Path(jsbsim.get_default_root_dir()) / "aircraft" / model / f"{model}.xml"
+    if not path.is_file():
         raise AircraftError(
             f"unknown JSBSim aircraft model '{model}'{did_you_mean(model, available_models())}; "
             f"installed models: {', '.join(available_models())}"
         )
+    return path
+
+
+def _private_model_copy(model: str, workdir: Path, edits=()) -> Path:
+    """Write the sanitised copy of ``model``'s main XML below ``workdir``; return the aircraft path.
+    ``edits``: functions applied to the XML root before it is written (e.g. the gear's damping,
+    :mod:`flightmode.sim.flight.gear`)."""
+    src_dir = stock_model_xml(model).parent
     dst_dir = workdir / "aircraft" / model
     dst_dir.mkdir(parents=True)
     for entry in src_dir.iterdir():

@@ -2,17 +2,15 @@
 
 from __future__ import annotations
 
-import os
 import xml.etree.ElementTree as ET
 
 import pytest
 from flightmode.sim.flight.gear import MAIN_SHARE, main_strut, nose_gear, soften_nose_gear
+from flightmode.sim.flight.jsbsim_adapter import stock_model_xml
 
 
 def _model(name: str) -> ET.Element:
-    import jsbsim
-
-    return ET.parse(os.path.join(jsbsim.get_default_root_dir(), "aircraft", name, name + ".xml")).getroot()
+    return ET.parse(stock_model_xml(name)).getroot()
 
 
 @pytest.mark.parametrize("model,nose", [("A320", "NOSE_LG"), ("737", "Nose Gear"), ("fokker100", "NOSE"),

@@ -2,20 +2,18 @@
 
 from __future__ import annotations
 
-import os
 import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
 
 from flightmode.errors import AircraftError
+from flightmode.sim.flight.jsbsim_adapter import stock_model_xml
 from flightmode.sim.flight.model_edits import spread_spoiler_lift_loss
 
 
 def _model(name: str) -> ET.Element:
-    import jsbsim
-
-    return ET.parse(os.path.join(jsbsim.get_default_root_dir(), "aircraft", name, name + ".xml")).getroot()
+    return ET.parse(stock_model_xml(name)).getroot()
 
 
 def _spoiler_lift_table(root: ET.Element) -> np.ndarray:

@@ -112,11 +112,10 @@ def _parked(model: str = "737"):
 @pytest.mark.parametrize("model", ["A320", "737", "fokker100", "787-8"])
 def test_gear_groups_of_the_stock_models(model):
     import xml.etree.ElementTree as ET
-    from pathlib import Path
 
-    import jsbsim
+    from flightmode.sim.flight.jsbsim_adapter import stock_model_xml
 
-    root = ET.parse(Path(jsbsim.get_default_root_dir()) / "aircraft" / model / f"{model}.xml").getroot()
+    root = ET.parse(stock_model_xml(model)).getroot()
     g = R.gear_groups(root)
     assert g["nose"]["x"] < g["left"]["x"] - 10.0  # structural x runs aft: the nose wheel is metres ahead
     assert g["left"]["y"] < 0 < g["right"]["y"]

@@ -21,7 +21,7 @@ def _inet_sockets(proc: psutil.Process):
 
 
 def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
-    from flightmode.sim.flight.jsbsim_adapter import _private_model_copy
+    from flightmode.sim.flight.jsbsim_adapter import _private_model_copy, stock_model_xml
 
     path = _private_model_copy("737", tmp_path)
     root = ET.parse(path / "737" / "737.xml").getroot()
@@ -30,9 +30,7 @@ def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
     # the tug, and the runway roughness felt through each gear group (sim.flight.roughness)
     assert [f.get("name") for f in forces] == ["pushback", "roughness-nose", "roughness-left", "roughness-right"]
     # the stock file does have them (so the stripping above is doing something)
-    import jsbsim
-
-    stock = ET.parse(Path(jsbsim.get_default_root_dir()) / "aircraft" / "737" / "737.xml").getroot()
+    stock = ET.parse(stock_model_xml("737")).getroot()
     assert len(stock.findall("input")) == 2
 
 
