@@ -471,7 +471,7 @@ class Rollout(Controller):
                            + (1.0 - keep) * 0.5 * ap.pitch_pid.integral)
         # the nose is flown down to the runway over DEROTATION_S, not let fall
         self.derotation_rate = max((theta - math.radians(1.0)) / DEROTATION_S, DEROTATION_MIN_RATE)
-        self.rev_thr = self.p.prof.reverse_throttle
+        self.rev_thr = prof.reverse_throttle
         self.nose_down = False
         ap.brake_pid.reset()
 

@@ -125,13 +125,14 @@ def _private_model_copy(model: str, workdir: Path, edits=()) -> Path:
     """Write the sanitised copy of ``model``'s main XML below ``workdir``; return the aircraft path.
     ``edits``: functions applied to the XML root before it is written (e.g. the gear's damping,
     :mod:`flightmode.sim.flight.gear`)."""
-    src_dir = stock_model_xml(model).parent
+    src = stock_model_xml(model)
+    src_dir = src.parent
     dst_dir = workdir / "aircraft" / model
     dst_dir.mkdir(parents=True)
     for entry in src_dir.iterdir():
         if entry.name != f"{model}.xml":
             os.symlink(entry, dst_dir / entry.name)
-    tree = ET.parse(src_dir / f"{model}.xml")
+    tree = ET.parse(src)
     root = tree.getroot()
     for tag in ("input", "output"):
         for el in root.findall(tag):
