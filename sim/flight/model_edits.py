@@ -22,6 +22,12 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
   deployment on wing stall", Open Journal of Fluid Dynamics 8, 308-320), and the stock Fokker 100
   model's lift loss is linear in the spoilers' position; the edit keeps the 737's 40 % at full
   travel and makes it grow linearly to there.
+- A320: ground spoilers (:func:`add_ground_spoilers`). The stock model has a speedbrake (drag only)
+  and no spoiler lift term, so its wing kept lifting after touchdown and its nose could only be let
+  fall (5-6 deg/s) or held up by the elevator. The real A320 extends all its spoiler panels as ground
+  spoilers at touchdown (Airbus A320 FCOM, flight controls: ground spoiler function); the edit gives the
+  model the stock 737's: the same 0.6 s travel and 40 % of the wing's lift lost at full travel, grown
+  linearly (as :func:`spread_spoiler_lift_loss` makes the 737's).
 """
 
 from __future__ import annotations
@@ -71,6 +77,41 @@ def spread_spoiler_lift_loss(root: ET.Element) -> None:
         raise AircraftError("no spoiler lift table (fcs/spoiler-pos-norm) found to spread")
 
 
+GROUND_SPOILER_LIFT_FACTOR = 0.6  # the wing's lift with the ground spoilers fully out: the stock 737 model's figure
+GROUND_SPOILER_TRAVEL_S = 0.6  # the panels' full travel: the stock 737 model's
+
+
+def add_ground_spoilers(root: ET.Element) -> None:
+    """Give a model without ground spoilers the 737's: a spoiler channel (``fcs/spoiler-cmd-norm`` to
+    ``fcs/spoiler-pos-norm`` over ``GROUND_SPOILER_TRAVEL_S``) and a lift factor falling linearly with
+    their position to ``GROUND_SPOILER_LIFT_FACTOR`` at full travel, applied to the wing's lift (the
+    LIFT axis's ``CLalpha``, as the 737 applies its own to its wing terms, not to the elevator's)."""
+    if any((out.text or "").strip() == "fcs/spoiler-pos-norm" for out in root.iterfind(".//flight_control//output")):
+        raise AircraftError("the model already has spoilers (fcs/spoiler-pos-norm): edit its table instead")
+    fcs = root.find("flight_control")
+    lift = root.find(".//aerodynamics/axis[@name='LIFT']")
+    wing = None if lift is None else lift.find("function[@name='aero/coefficient/CLalpha']/product")
+    if fcs is None or wing is None:
+        raise AircraftError("no flight_control, or no LIFT axis with a CLalpha product, to add ground spoilers to")
+    channel = ET.SubElement(fcs, "channel", name="Ground spoilers (flightmode)")
+    kin = ET.SubElement(channel, "kinematic", name="Ground spoilers")
+    ET.SubElement(kin, "input").text = "fcs/spoiler-cmd-norm"
+    trav = ET.SubElement(kin, "traverse")
+    for pos, t in ((0, 0), (1, GROUND_SPOILER_TRAVEL_S)):
+        setting = ET.SubElement(trav, "setting")
+        ET.SubElement(setting, "position").text = str(pos)
+        ET.SubElement(setting, "time").text = str(t)
+    ET.SubElement(kin, "output").text = "fcs/spoiler-pos-norm"
+    aero = root.find("aerodynamics")
+    fn = ET.Element("function", name="aero/function/kCLsp")
+    ET.SubElement(fn, "description").text = "Change_in_lift_due_to_ground_spoilers (flightmode)"
+    table = ET.SubElement(fn, "table")
+    ET.SubElement(table, "independentVar").text = "fcs/spoiler-pos-norm"
+    ET.SubElement(table, "tableData").text = f"\n0.0\t1.0\n1.0\t{GROUND_SPOILER_LIFT_FACTOR}\n"
+    aero.insert(0, fn)
+    ET.SubElement(wing, "property").text = "aero/function/kCLsp"
+
+
 def edits_for(profile) -> tuple:
     """The model edits of a type (module docstring), as functions of the XML root."""
     edits = [functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg),
@@ -79,4 +120,6 @@ def edits_for(profile) -> tuple:
         edits.append(functools.partial(extend_elevator_nose_up, nose_up_deg=profile.elevator_nose_up_deg))
     if profile.spread_spoiler_lift:
         edits.append(spread_spoiler_lift_loss)
+    if profile.add_ground_spoilers:
+        edits.append(add_ground_spoilers)
     return tuple(edits)

@@ -56,3 +56,59 @@ def test_the_737s_load_factor_does_not_drop_when_its_spoilers_open(fly_cached):
     near = (tr.t_s >= t_td - 0.5) & (tr.t_s <= t_td + 3.0)
     nz = -tr.specific_force_body_mps2[near, 2] / G0_MPS2
     assert nz.min() > 0.8
+
+
+def test_the_a320_gets_ground_spoilers_that_take_the_737s_share_of_its_wing_lift():
+    """The edit adds a spoiler channel and a lift factor to the stock A320 (which has neither), and
+    JSBSim flies it: the panels take 0.6 s over their travel (the 737's), so 0.3 s after the command
+    they are half out and the wing keeps 1 - 0.4 x 0.5 = 80 % of its lift (linear table)."""
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.model_edits import add_ground_spoilers, edits_for
+
+    root = _model("A320")
+    add_ground_spoilers(root)
+    table = _spoiler_lift_table(root)
+    assert table.ravel().tolist() == pytest.approx([0.0, 1.0, 1.0, 0.6], abs=1e-12)
+    wing = root.find(".//aerodynamics/axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']/product")
+    assert "aero/function/kCLsp" in [p.text for p in wing.findall("property")]
+    elevator_lift = root.find(".//aerodynamics/axis[@name='LIFT']/function[@name='aero/coefficient/CLDe']/product")
+    assert "aero/function/kCLsp" not in [p.text for p in elevator_lift.findall("property")]  # the tail's lift is not the wing's
+
+    prof = get_profile("A320")
+    assert add_ground_spoilers in edits_for(prof)
+    ac = JSBSimAircraft("A320", 1.0 / 120.0, prof.n_engines, edits=edits_for(prof))
+    ac.init_on_ground(47.0, 8.0, 400.0, 0.0)
+    assert ac.get("aero/function/kCLsp") == pytest.approx(1.0, abs=1e-12)
+    ac.set("fcs/spoiler-cmd-norm", 1.0)
+    for _ in range(36):  # 0.3 s
+        ac.step()
+    # one step of slack: JSBSim's kinematic moves the position in the step after the command
+    assert ac.get("fcs/spoiler-pos-norm") == pytest.approx(0.5, abs=1.0 / 72.0)
+    assert ac.get("aero/function/kCLsp") == pytest.approx(1.0 - 0.4 * ac.get("fcs/spoiler-pos-norm"), abs=1e-9)
+
+
+def test_a_model_that_has_spoilers_is_not_given_a_second_set():
+    from flightmode.sim.flight.model_edits import add_ground_spoilers
+
+    with pytest.raises(AircraftError, match="already has spoilers"):
+        add_ground_spoilers(_model("737"))
+
+
+def test_the_a320s_nose_is_flown_down_not_let_fall(fly_cached):
+    """After the mains touch, the A320 lowers its nose no faster than 4.7 deg/s. On 30 seeded pattern
+    landings the fastest nose-down pitch rate was 4.9-6.4 deg/s before the ground spoilers and the
+    kept elevator (its wing held the weight and its elevator stepped back at touchdown), and 2.7-4.5
+    deg/s after; 4.7 lies between the two populations. The pitch rate is averaged over 0.25 s (the
+    gear's bounce on the runway's roughness is faster)."""
+    sc, tr = fly_cached("gva-lhr-a320")
+    assert sc.aircraft == "A320"
+    t_td = tr.event_time("touchdown")
+    w = int(0.25 * tr.fs_hz)
+    q_dps = np.degrees(np.convolve(tr.rates_radps[:, 1], np.ones(w) / w, mode="same"))
+    after = (tr.t_s >= t_td) & (tr.t_s <= t_td + 8.0)
+    assert q_dps[after].min() > -4.7
+    # and the nose is down (below 1.5 deg, the rollout's nose-wheel test) within 3-6 s
+    theta_deg = np.degrees(tr.euler_rad[:, 1])
+    t_nose = tr.t_s[after][np.argmax(theta_deg[after] < 1.5)] - t_td
+    assert 3.0 <= t_nose <= 6.0
