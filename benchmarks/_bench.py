@@ -46,17 +46,19 @@ def fly_scenario(name: str):
 
 def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
     """The baseline of the flight benchmarks: the scenario's JSBSim model (loaded through flightmode's
-    adapter: the same private copy and settings) placed at the origin and stepped with bare
+    adapter: the same private copy, edits and settings) placed at the origin and stepped with bare
     ``fdm.run()`` ``steps`` times, no property reads, no pilot; loading is not timed. Best of
     ``repeats``."""
     from flightmode.sim.flight.aircraft_profiles import get_profile
     from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.model_edits import edits_for
 
     plan = scenario.plan
     prof = get_profile(plan.aircraft)
 
     def bare() -> float:
-        ac = JSBSimAircraft(plan.aircraft, 1.0 / plan.fdm_hz, prof.n_engines)
+        # the model as flown: flightmode's edits to the stock model applied (gear, elevator, spoilers)
+        ac = JSBSimAircraft(plan.aircraft, 1.0 / plan.fdm_hz, prof.n_engines, edits=edits_for(prof))
         ac.init_on_ground(plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg)
         run = ac.fdm.run
         t0 = time.perf_counter()
