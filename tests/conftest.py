@@ -187,3 +187,11 @@ def default_run(tmp_path_factory, fly_cached):
     out = tmp_path_factory.mktemp("runs")
     r = pipeline.run(sc, out=out, track=track)
     return r.written["run_json"].parent, r
+
+
+def pytest_collection_modifyitems(config, items):
+    """The slow tests first (longest processing time first, as a scheduler packs jobs): pytest-xdist hands
+    the tests out in collection order, and a slow one collected last (the browser's, under tests/viz)
+    ran alone for 40 s after the other worker had finished. The sort is stable: the order within each
+    kind stays the collection's."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
