@@ -57,7 +57,6 @@ def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
     prof = get_profile(plan.aircraft)
 
     def bare() -> float:
-        # the model as flown: flightmode's edits to the stock model applied (gear, elevator, spoilers)
         ac = JSBSimAircraft(plan.aircraft, 1.0 / plan.fdm_hz, prof.n_engines, edits=edits_for(prof))
         ac.init_on_ground(plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg)
         run = ac.fdm.run

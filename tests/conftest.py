@@ -190,8 +190,10 @@ def default_run(tmp_path_factory, fly_cached):
 
 
 def pytest_collection_modifyitems(config, items):
-    """The slow tests first (longest processing time first, as a scheduler packs jobs): pytest-xdist hands
-    the tests out in collection order, and a slow one collected last (the browser's, under tests/viz)
-    ran alone for 40 s after the other worker had finished. The sort is stable: the order within each
-    kind stays the collection's."""
+    """The slow tests first, the quick ones after (a coarse longest-first, as a scheduler packs jobs):
+    pytest-xdist hands the ungrouped tests out in collection order, and a slow one collected last (the
+    browser's, under tests/viz) ran alone for 40 s after the other worker had finished. The sort is
+    stable: within each kind the order stays the collection's, so a module's slow tests stay together
+    (its module-scoped fixtures are made once). The ``dataset`` group is one unit that xdist schedules
+    by its own size."""
     items.sort(key=lambda item: item.get_closest_marker("slow") is None)

@@ -24,10 +24,11 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
   travel and makes it grow linearly to there.
 - A320: ground spoilers (:func:`add_ground_spoilers`). The stock model has a speedbrake (drag only)
   and no spoiler lift term, so its wing kept lifting after touchdown and its nose could only be let
-  fall (5-6 deg/s) or held up by the elevator. The real A320 extends all its spoiler panels as ground
-  spoilers at touchdown (Airbus A320 FCOM, flight controls: ground spoiler function); the edit gives the
-  model the stock 737's: the same 0.6 s travel and 40 % of the wing's lift lost at full travel, grown
-  linearly (as :func:`spread_spoiler_lift_loss` makes the 737's).
+  fall (4.9-6.4 deg/s) or held up by the elevator. The real A320 extends all its spoiler panels as
+  ground spoilers at touchdown (Airbus A320 FCOM, flight controls: ground spoiler function); the edit
+  gives the model the stock 737's lift dump: the same 0.6 s travel and 40 % of the wing's lift lost at
+  full travel, grown linearly (as :func:`spread_spoiler_lift_loss` makes the 737's). Lift only: the
+  737's spoiler drag is not added (the A320's speedbrake already gives its rollout drag).
 """
 
 from __future__ import annotations
@@ -82,33 +83,36 @@ GROUND_SPOILER_TRAVEL_S = 0.6  # the panels' full travel: the stock 737 model's
 
 
 def add_ground_spoilers(root: ET.Element) -> None:
-    """Give a model without ground spoilers the 737's: a spoiler channel (``fcs/spoiler-cmd-norm`` to
-    ``fcs/spoiler-pos-norm`` over ``GROUND_SPOILER_TRAVEL_S``) and a lift factor falling linearly with
-    their position to ``GROUND_SPOILER_LIFT_FACTOR`` at full travel, applied to the wing's lift (the
-    LIFT axis's ``CLalpha``, as the 737 applies its own to its wing terms, not to the elevator's)."""
-    if any((out.text or "").strip() == "fcs/spoiler-pos-norm" for out in root.iterfind(".//flight_control//output")):
-        raise AircraftError("the model already has spoilers (fcs/spoiler-pos-norm): edit its table instead")
-    fcs = root.find("flight_control")
-    lift = root.find(".//aerodynamics/axis[@name='LIFT']")
-    wing = None if lift is None else lift.find("function[@name='aero/coefficient/CLalpha']/product")
+    """Give a model without ground spoilers the 737's lift dump: a spoiler channel
+    (``fcs/spoiler-cmd-norm`` to ``fcs/spoiler-pos-norm`` over ``GROUND_SPOILER_TRAVEL_S``) and a lift
+    factor falling linearly with their position to ``GROUND_SPOILER_LIFT_FACTOR`` at full travel,
+    applied to the wing's lift (the LIFT axis's ``CLalpha``, as the 737 applies its own to its wing
+    terms, not to the elevator's). Lift only: no drag term is added (the A320's rollout drag stays its
+    speedbrake's)."""
+    if any((el.text or "").strip() == "fcs/spoiler-pos-norm" for el in root.iter("output")) or any(
+        fn.get("name") == "aero/function/kCLsp" for fn in root.iter("function")
+    ):
+        raise AircraftError("the model already has spoilers (fcs/spoiler-pos-norm or aero/function/kCLsp): "
+                            "edit its own instead of adding a second set")
+    fcs, aero = root.find("flight_control"), root.find("aerodynamics")
+    wing = None if aero is None else aero.find("axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']/product")
     if fcs is None or wing is None:
         raise AircraftError("no flight_control, or no LIFT axis with a CLalpha product, to add ground spoilers to")
-    channel = ET.SubElement(fcs, "channel", name="Ground spoilers (flightmode)")
-    kin = ET.SubElement(channel, "kinematic", name="Ground spoilers")
+    kin = ET.SubElement(ET.SubElement(fcs, "channel", name="Ground spoilers (flightmode)"), "kinematic",
+                        name="Ground spoilers")
     ET.SubElement(kin, "input").text = "fcs/spoiler-cmd-norm"
-    trav = ET.SubElement(kin, "traverse")
+    traverse = ET.SubElement(kin, "traverse")
     for pos, t in ((0, 0), (1, GROUND_SPOILER_TRAVEL_S)):
-        setting = ET.SubElement(trav, "setting")
+        setting = ET.SubElement(traverse, "setting")
         ET.SubElement(setting, "position").text = str(pos)
         ET.SubElement(setting, "time").text = str(t)
     ET.SubElement(kin, "output").text = "fcs/spoiler-pos-norm"
-    aero = root.find("aerodynamics")
     fn = ET.Element("function", name="aero/function/kCLsp")
     ET.SubElement(fn, "description").text = "Change_in_lift_due_to_ground_spoilers (flightmode)"
     table = ET.SubElement(fn, "table")
     ET.SubElement(table, "independentVar").text = "fcs/spoiler-pos-norm"
     ET.SubElement(table, "tableData").text = f"\n0.0\t1.0\n1.0\t{GROUND_SPOILER_LIFT_FACTOR}\n"
-    aero.insert(0, fn)
+    aero.insert(0, fn)  # before the axes that use it, where the 737 keeps its own
     ET.SubElement(wing, "property").text = "aero/function/kCLsp"
 
 

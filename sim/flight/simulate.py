@@ -117,7 +117,7 @@ def fly(
     streams = as_streams(streams)
     fdm_hz = float(plan.fdm_hz)
     prof = get_profile(plan.aircraft)
-    # flightmode's changes to the stock model: the gear's struts, the A320's elevator travel
+    # flightmode's changes to the stock model, each with its reason (sim.flight.model_edits)
     ac = JSBSimAircraft(plan.aircraft, 1.0 / fdm_hz, prof.n_engines, workdir=workdir, edits=edits_for(prof))
     origin = RunwayFrame(plan.origin)
     taxi = draw_taxi(plan, prof, streams.rng("taxi"))  # the taxi routes and the departure stand
