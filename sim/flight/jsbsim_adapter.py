@@ -107,6 +107,16 @@ def available_models() -> list[str]:
     return sorted(p.name for p in root.iterdir() if (p / f"{p.name}.xml").is_file())
 
 
+def xml_sub(parent: ET.Element, tag: str, text: str | None = None, **attrib) -> ET.Element:
+    """A new child ``tag`` of ``parent`` with ``attrib`` and, if given, ``text``: one way for the model
+    edits (the adapter's pushback force, :mod:`~flightmode.sim.flight.roughness`,
+    :mod:`~flightmode.sim.flight.model_edits`) to write JSBSim XML."""
+    el = ET.SubElement(parent, tag, attrib)
+    if text is not None:
+        el.text = text
+    return el
+
+
 def stock_model_xml(model: str) -> Path:
     """The main XML file of the stock JSBSim ``model`` shipped in the installed wheel (an
     :class:`AircraftError` naming the installed models if there is none)."""
@@ -143,13 +153,13 @@ def _private_model_copy(model: str, workdir: Path, edits=()) -> Path:
     if root.find("external_reactions") is None:
         nose_x_in = _nose_gear_x_in(root)
         ext = ET.Element("external_reactions")
-        force = ET.SubElement(ext, "force", name="pushback", frame="BODY")
-        loc = ET.SubElement(force, "location", unit="IN")
+        force = xml_sub(ext, "force", name="pushback", frame="BODY")
+        loc = xml_sub(force, "location", unit="IN")
         for axis, val in (("x", nose_x_in), ("y", 0.0), ("z", -60.0)):
-            ET.SubElement(loc, axis).text = f"{val:.3f}"
-        direc = ET.SubElement(force, "direction")
+            xml_sub(loc, axis, f"{val:.3f}")
+        direc = xml_sub(force, "direction")
         for axis, val in (("x", 1.0), ("y", 0.0), ("z", 0.0)):
-            ET.SubElement(direc, axis).text = f"{val:.1f}"
+            xml_sub(direc, axis, f"{val:.1f}")
         # external_reactions must come after ground_reactions in the document
         children = list(root)
         idx = next(

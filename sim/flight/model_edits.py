@@ -38,6 +38,7 @@ import xml.etree.ElementTree as ET
 
 from flightmode.errors import AircraftError
 from flightmode.sim.flight.gear import soften_main_gear, soften_nose_gear
+from flightmode.sim.flight.jsbsim_adapter import xml_sub
 
 
 def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:
@@ -98,22 +99,21 @@ def add_ground_spoilers(root: ET.Element) -> None:
     wing = None if aero is None else aero.find("axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']/product")
     if fcs is None or wing is None:
         raise AircraftError("no flight_control, or no LIFT axis with a CLalpha product, to add ground spoilers to")
-    kin = ET.SubElement(ET.SubElement(fcs, "channel", name="Ground spoilers (flightmode)"), "kinematic",
-                        name="Ground spoilers")
-    ET.SubElement(kin, "input").text = "fcs/spoiler-cmd-norm"
-    traverse = ET.SubElement(kin, "traverse")
+    kin = xml_sub(xml_sub(fcs, "channel", name="Ground spoilers (flightmode)"), "kinematic", name="Ground spoilers")
+    xml_sub(kin, "input", "fcs/spoiler-cmd-norm")
+    traverse = xml_sub(kin, "traverse")
     for pos, t in ((0, 0), (1, GROUND_SPOILER_TRAVEL_S)):
-        setting = ET.SubElement(traverse, "setting")
-        ET.SubElement(setting, "position").text = str(pos)
-        ET.SubElement(setting, "time").text = str(t)
-    ET.SubElement(kin, "output").text = "fcs/spoiler-pos-norm"
+        setting = xml_sub(traverse, "setting")
+        xml_sub(setting, "position", str(pos))
+        xml_sub(setting, "time", str(t))
+    xml_sub(kin, "output", "fcs/spoiler-pos-norm")
     fn = ET.Element("function", name="aero/function/kCLsp")
-    ET.SubElement(fn, "description").text = "Change_in_lift_due_to_ground_spoilers (flightmode)"
-    table = ET.SubElement(fn, "table")
-    ET.SubElement(table, "independentVar").text = "fcs/spoiler-pos-norm"
-    ET.SubElement(table, "tableData").text = f"\n0.0\t1.0\n1.0\t{GROUND_SPOILER_LIFT_FACTOR}\n"
+    xml_sub(fn, "description", "Change_in_lift_due_to_ground_spoilers (flightmode)")
+    table = xml_sub(fn, "table")
+    xml_sub(table, "independentVar", "fcs/spoiler-pos-norm")
+    xml_sub(table, "tableData", f"\n0.0\t1.0\n1.0\t{GROUND_SPOILER_LIFT_FACTOR}\n")
     aero.insert(0, fn)  # before the axes that use it, where the 737 keeps its own
-    ET.SubElement(wing, "property").text = "aero/function/kCLsp"
+    xml_sub(wing, "property", "aero/function/kCLsp")
 
 
 def edits_for(profile) -> tuple:

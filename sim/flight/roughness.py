@@ -78,6 +78,7 @@ import numpy as np
 
 from flightmode.errors import AircraftError, ScenarioError, did_you_mean
 from flightmode.labels import FLIGHT_PHASES
+from flightmode.sim.flight.jsbsim_adapter import xml_sub
 from flightmode.units import FT_M, LBF_N
 
 # ISO 8608:2016 Table C.2: geometric mean of each class's Gd(n0), m^3 (n0 = 0.1 cycle/m)
@@ -285,33 +286,26 @@ def gear_groups(root: ET.Element) -> dict[str, dict]:
     return out
 
 
-def _sub(parent: ET.Element, tag: str, text: str | None = None, **attrib) -> ET.Element:
-    el = ET.SubElement(parent, tag, attrib)
-    if text is not None:
-        el.text = text
-    return el
-
-
 def _prop(parent: ET.Element, name: str) -> None:
-    _sub(parent, "property", name)
+    xml_sub(parent, "property", name)
 
 
 def _knot_index(parent: ET.Element) -> None:
     """u mod RING, u = (sim time - t0) / knot spacing (JSBSim's ``mod`` is an integer modulo)."""
     def u(p: ET.Element) -> None:
-        q = _sub(p, "quotient")
-        dt = _sub(q, "difference")
+        q = xml_sub(p, "quotient")
+        dt = xml_sub(q, "difference")
         _prop(dt, "simulation/sim-time-sec")
         _prop(dt, "roughness/t0-sec")
         _prop(q, "roughness/knot-sec")
 
-    diff = _sub(parent, "difference")
+    diff = xml_sub(parent, "difference")
     u(diff)
-    prod = _sub(diff, "product")
-    _sub(prod, "value", str(RING))
-    q = _sub(_sub(prod, "floor"), "quotient")
+    prod = xml_sub(diff, "product")
+    xml_sub(prod, "value", str(RING))
+    q = xml_sub(xml_sub(prod, "floor"), "quotient")
     u(q)
-    _sub(q, "value", str(RING))
+    xml_sub(q, "value", str(RING))
 
 
 def add_gear_roughness(root: ET.Element) -> None:
@@ -342,25 +336,25 @@ def add_gear_roughness(root: ET.Element) -> None:
         el.text = name
         ext.insert(i, el)  # declarations first
     for g, d in groups.items():
-        force = _sub(ext, "force", name=f"roughness-{g}", frame="LOCAL")
-        ifthen = _sub(_sub(force, "function", name=f"roughness/{g}/force-lbf"), "ifthen")
-        cond = _sub(ifthen, "product")
+        force = xml_sub(ext, "force", name=f"roughness-{g}", frame="LOCAL")
+        ifthen = xml_sub(xml_sub(force, "function", name=f"roughness/{g}/force-lbf"), "ifthen")
+        cond = xml_sub(ifthen, "product")
         _prop(cond, "roughness/active")
-        wow = cond if len(d["units"]) == 1 else _sub(cond, "max")
+        wow = cond if len(d["units"]) == 1 else xml_sub(cond, "max")
         for i in d["units"]:
             _prop(wow, f"gear/unit[{i}]/WOW")
-        interp = _sub(ifthen, "interpolate1d")  # the ring of knots, linearly, round from the last to the first
+        interp = xml_sub(ifthen, "interpolate1d")  # the ring of knots, linearly, round from the last to the first
         _knot_index(interp)
         for j in range(RING + 1):
-            _sub(interp, "value", str(j))
+            xml_sub(interp, "value", str(j))
             _prop(interp, f"roughness/{g}/f{j % RING}-lbf")
-        _sub(ifthen, "value", "0")
-        loc = _sub(force, "location", unit="M")
+        xml_sub(ifthen, "value", "0")
+        loc = xml_sub(force, "location", unit="M")
         for a in "xyz":
-            _sub(loc, a, f"{d[a]:.4f}")
-        direc = _sub(force, "direction")
+            xml_sub(loc, a, f"{d[a]:.4f}")
+        direc = xml_sub(force, "direction")
         for a, v in zip("xyz", ("0", "0", "-1")):  # LOCAL (north, east, down): up
-            _sub(direc, a, v)
+            xml_sub(direc, a, v)
 
 
 # ------------------------------------------------------------------------------ in the step loop
