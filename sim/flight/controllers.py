@@ -305,7 +305,10 @@ class EnRoute(Controller):
             self.ref = (ap.ac.get("inertia/weight-lbs"), ap.cruise_alt_m)
         if p.phase == "cruise" and h_tgt < ap.cruise_alt_m - 1.0:
             p.fire("top_of_descent")
-        if p.phase in ("descent", "approach"):
+        if p.phase != "climb":
+            # wherever the speed target follows the approach gates (phase != climb above), the flaps
+            # and gear follow them too: a pattern, or a short hop, may reach the 20 nm gate still in
+            # cruise, and slowing there clean flew the 737 to a stall (pattern at 0.78 takeoff thrust)
             ap.configure_approach(d, x[ix["ias_mps"]])
         # vertical: altitude error -> vertical speed -> flight-path angle -> pitch
         gs = ap.gs(x)
