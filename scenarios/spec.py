@@ -82,7 +82,8 @@ SPEC: dict[str, dict[str, Key]] = {
     "taxi_out": _taxi_keys(),
     "taxi_in": _taxi_keys(),
     "takeoff": {
-        "thrust_norm": Key(float, "takeoff throttle (1 = maximum)", 0.95, lo=0.7, hi=1.0),
+        "thrust_norm": Key(float, "takeoff throttle (1 = maximum); absent: drawn per flight so that the takeoff "
+                           "acceleration follows the type's real traffic (OpenAP WRAP)", optional=True, lo=0.7, hi=1.0),
         "flaps_norm": Key(float, "takeoff flap command; absent: the type's default", optional=True, lo=0, hi=1),
     },
     "cruise": {

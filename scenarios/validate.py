@@ -141,6 +141,14 @@ def _mean_rate_between(t: np.ndarray, h: np.ndarray, h0: float, h1: float) -> fl
     return float((h[i1] - h[i0]) / (t[i1] - t[i0])) if t[i1] > t[i0] else math.nan
 
 
+def _takeoff_note(conditions: dict) -> str:
+    """The takeoff's throttle, and the acceleration it was drawn for (sim.flight.draws) if it was."""
+    thr, target = conditions.get("takeoff_thrust_norm"), conditions.get("takeoff_accel_target_mps2")
+    if thr is None:
+        return ""
+    return f"throttle {thr:.3f}" + (f", drawn for {target:.2f} m/s^2" if target is not None else " (the scenario's)")
+
+
 def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
     """Takeoff, climb, cruise, descent and landing figures against WRAP (module docstring); ``m``: the
     track's :func:`~flightmode.sim.flight.flight_metrics.flight_metrics`."""
@@ -151,7 +159,7 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
     out = [
         Check("takeoff", "liftoff ground speed", "m/s", m["liftoff_gs_mps"], *_wrap_range(w, "takeoff_speed"), src),
         Check("takeoff", "takeoff acceleration", "m/s^2", m["takeoff_accel_mps2"],
-              *_wrap_range(w, "takeoff_acceleration"), src),
+              *_wrap_range(w, "takeoff_acceleration"), src, _takeoff_note(track.conditions)),
         Check("climb", "initial climb rate (to 1,500 ft)", "m/s", m["initial_climb_vs_mps"],
               *_wrap_range(w, "initclimb_vs"), src),
     ]

@@ -106,6 +106,36 @@ class ClimbSchedule:
 
 
 @dataclass(frozen=True, slots=True)
+class TakeoffThrust:
+    """How hard a type accelerates down the runway, and the throttle that gives it.
+
+    ``accel`` is WRAP's takeoff acceleration (``takeoff_acceleration``: the mean from brake release to
+    liftoff on real ADS-B traffic; Sun, Ellerbroek and Hoekstra 2019, as :class:`ClimbSchedule`); each
+    flight draws its own from it (:mod:`flightmode.sim.flight.draws`). ``curve`` is the model's answer:
+    (takeoff throttle, mean acceleration brake release to liftoff in m/s^2) measured on the JSBSim
+    model at its profile's gate fuel, so the draw is turned into a throttle by interpolation, clipped to
+    the curve's ends.
+
+    The JSBSim models fly at their stock weights, near the real operating empty weight (the 737's
+    83,000 lb is the 737-700's OEW; the Fokker 100's 54,217 lb its OEW), without passengers. With the
+    real airline payload their approach speeds, already at the top of the real range, would rise
+    further: measured on 12 pattern flights each, 10.4 t more on the 737 (126 seats at IATA's 2019
+    82.6 % load factor, 100 kg each) raised its median touchdown speed from 131 to 143 kt (and at the
+    old speeds it stalled on approach, 3 of 12), 8.3 t more on the Fokker 100 from 152 to 156 kt. So a light
+    aircraft at a deeper reduced thrust stands in for a loaded one at its usual flex thrust: the
+    thrust-to-weight ratio, which sets the acceleration the accelerometer records, is the real one."""
+
+    accel: Spread  # m/s^2, WRAP takeoff_acceleration
+    curve: tuple[tuple[float, float], ...]  # (throttle, m/s^2), throttle increasing
+
+    def throttle_for(self, accel_mps2: float) -> float:
+        import numpy as np
+
+        thr, acc = zip(*self.curve)
+        return float(np.interp(accel_mps2, acc, thr))
+
+
+@dataclass(frozen=True, slots=True)
 class ApproachStep:
     """At ``dist_nm`` to the threshold: select ``flaps_norm`` (and gear if ``gear_down``) and slow to ``speed_kt``."""
 
@@ -142,6 +172,7 @@ class AircraftProfile:
     flare_height_ft: float
     flare_pitch_kp: float  # elevator (normalised) per rad of attitude error in the flare, on top of the pitch loop
     climb: ClimbSchedule
+    takeoff: TakeoffThrust
     # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
     # sim.flight.controllers.FLARE_PITCH_GAIN
     flare_accel_gain: float = 1.0
@@ -241,6 +272,10 @@ PROFILES: dict[str, AircraftProfile] = {
         # WRAP B737
         climb=ClimbSchedule(Spread(11.41, 2.07, 8.01, 14.82), Spread(11.71, 1.96, 8.49, 14.93),
                             Spread(6.74, 1.42, 4.4, 9.08), 3400.0, 8900.0, 151.95),
+        # WRAP B737 takeoff_acceleration; the curve measured on the pattern (LSGG, 46.5 t at brake release)
+        takeoff=TakeoffThrust(Spread(1.77, 0.28, 1.31, 2.23),
+                              ((0.70, 1.264), (0.75, 1.465), (0.80, 1.674), (0.85, 1.890), (0.90, 2.112),
+                               (0.95, 2.337), (1.00, 2.568))),
     ),
     "A320": AircraftProfile(
         model="A320",
@@ -302,6 +337,11 @@ PROFILES: dict[str, AircraftProfile] = {
         # WRAP A320
         climb=ClimbSchedule(Spread(10.25, 1.59, 7.63, 12.87), Spread(8.44, 1.31, 6.28, 10.6),
                             Spread(5.29, 1.03, 3.6, 6.97), 3700.0, 8800.0, 151.04),
+        # WRAP A320 takeoff_acceleration; the curve measured on the pattern (LSGG, 55.7 t at brake release;
+        # at 0.70 this model does not reach its rotation speed until the runway's end, so the curve stops at 0.75)
+        takeoff=TakeoffThrust(Spread(1.93, 0.27, 1.5, 2.37),
+                              ((0.75, 1.263), (0.80, 1.570), (0.85, 1.833), (0.90, 2.124), (0.95, 2.370),
+                               (1.00, 2.629))),
     ),
     "fokker100": AircraftProfile(
         model="fokker100",
@@ -347,6 +387,11 @@ PROFILES: dict[str, AircraftProfile] = {
         # WRAP E190 (the nearest type WRAP models)
         climb=ClimbSchedule(Spread(10.44, 1.98, 7.18, 13.71), Spread(8.93, 1.62, 6.27, 11.6),
                             Spread(4.82, 1.14, 2.95, 6.7), 3000.0, 9200.0, 140.0),
+        # WRAP E190 takeoff_acceleration (the stand-in, as above); the curve measured on the pattern
+        # (LSGG, 33.9 t at brake release)
+        takeoff=TakeoffThrust(Spread(1.83, 0.27, 1.38, 2.28),
+                              ((0.70, 1.340), (0.75, 1.541), (0.80, 1.752), (0.85, 1.972), (0.90, 2.199),
+                               (0.95, 2.434), (1.00, 2.676))),
     ),
     "787-8": AircraftProfile(
         model="787-8",
@@ -389,6 +434,10 @@ PROFILES: dict[str, AircraftProfile] = {
         # WRAP B788
         climb=ClimbSchedule(Spread(9.58, 1.38, 7.32, 11.85), Spread(9.02, 1.77, 6.12, 11.93),
                             Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68),
+        # WRAP B788 takeoff_acceleration; the curve measured on lhr-jfk-787 (EGLL, 180 t at brake release)
+        takeoff=TakeoffThrust(Spread(1.61, 0.28, 1.16, 2.07),
+                              ((0.75, 1.234), (0.80, 1.411), (0.85, 1.591), (0.90, 1.773), (0.95, 1.955),
+                               (1.00, 2.139))),
     ),
 }
 

@@ -209,7 +209,7 @@ class TakeoffRoll(Controller):
         ap = self.ap
         ap.brake_pid.reset()
         ap.brakes(0.0)
-        ap.throttle(self.p.plan.takeoff_thrust_norm)
+        ap.throttle(ap.draws.takeoff_thrust_norm)  # the plan's, or drawn (sim.flight.draws)
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
         ap.pitch_pid.reset()
         self.rotating = False

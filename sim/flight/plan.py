@@ -66,7 +66,7 @@ class FlightPlan:
     cruise_alt_m: float
     cruise_mach: float
     gate_wait_s: float = 120.0
-    takeoff_thrust_norm: float = 0.95
+    takeoff_thrust_norm: float | None = None  # None: drawn per flight (sim.flight.draws)
     takeoff_flaps_norm: float | None = None  # None: the aircraft profile's value
     landing_flaps_norm: float | None = None
     waypoints: tuple[tuple[float, float], ...] = ()

@@ -121,6 +121,9 @@ def test_cli_prints_one_table_and_json(pattern_run):
     assert doc["passed"] + doc["failed"] == len(doc["checks"]) > 10
     # a circuit at 2,500 ft: no cruise-level check, no climb bands beyond the initial climb
     figures = [c["figure"] for c in doc["checks"]]
+    # the takeoff's throttle beside its acceleration: pattern.toml sets it, so nothing was drawn
+    note = next(c["note"] for c in doc["checks"] if c["figure"] == "takeoff acceleration")
+    assert note == "throttle 0.880 (the scenario's)"
     assert "cruise altitude" not in figures and not any(f.startswith("time to") for f in figures)
     strict = CliRunner().invoke(app, ["validate", str(run), "--strict"])
     assert strict.exit_code == (1 if doc["failed"] else 0)

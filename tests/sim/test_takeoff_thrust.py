@@ -1,0 +1,56 @@
+"""The takeoff thrust drawn per flight (sim.flight.draws, aircraft_profiles.TakeoffThrust): the drawn
+acceleration follows OpenAP WRAP's real traffic, and the flown takeoff gives it."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from flightmode.scenarios.scenario import Scenario
+from flightmode.sim.flight.aircraft_profiles import PROFILES
+from flightmode.sim.flight.draws import draw_flight
+from flightmode.streams import Streams
+
+
+@pytest.mark.parametrize("model", sorted(PROFILES))
+def test_each_curve_rises_and_spans_the_middle_of_wrap(model):
+    """The throttle-to-acceleration curve must rise (np.interp inverts it) and reach WRAP's mean
+    +- one standard deviation, so that clipping touches only the draws in the tails."""
+    t = PROFILES[model].takeoff
+    thr, acc = np.array(t.curve).T
+    assert np.all(np.diff(thr) > 0) and np.all(np.diff(acc) > 0)
+    assert acc[0] <= t.accel.mean - t.accel.std and acc[-1] >= t.accel.mean + t.accel.std
+    assert t.throttle_for(acc[2]) == pytest.approx(thr[2], abs=1e-12)
+
+
+def test_the_draw_follows_wrap_and_a_plan_throttle_replaces_it():
+    sc = Scenario.builtin("pattern").replace(**{"takeoff.thrust_norm": None})
+    prof = PROFILES[sc.plan.aircraft]
+    draws = [draw_flight(sc.plan, prof, Streams(s).child("flight")) for s in range(400)]
+    accel = np.array([d.takeoff_accel_target_mps2 for d in draws])
+    w = prof.takeoff.accel
+    assert accel.min() >= w.lo and accel.max() <= w.hi
+    # 400 clipped normal draws: the mean within 4 standard errors (0.28 / sqrt(400) = 0.014) of WRAP's
+    assert abs(accel.mean() - w.mean) < 4 * w.std / np.sqrt(400)
+    assert [d.takeoff_thrust_norm for d in draws] == [prof.takeoff.throttle_for(a) for a in accel]
+    fixed = draw_flight(Scenario.builtin("pattern").plan, prof, Streams(3).child("flight"))
+    assert fixed.takeoff_thrust_norm == 0.88 and fixed.takeoff_accel_target_mps2 is None  # pattern.toml's
+    # the plan's throttle moves no other draw (its own named stream)
+    same = draw_flight(sc.plan, prof, Streams(3).child("flight"))
+    assert fixed.climb_vs_mps == same.climb_vs_mps and fixed.touchdown_sink_mps == same.touchdown_sink_mps
+
+
+@pytest.mark.parametrize("model", ["737", "A320", "fokker100"])
+def test_a_flown_takeoff_gives_the_drawn_acceleration(fly_cached, model):
+    """Mean acceleration from brake release to liftoff (WRAP's definition, sim.flight.flight_metrics)
+    against the drawn one. The curve was measured on this scenario (the pattern at LSGG, its gate
+    fuel), so what is left is this flight's wind and gusts and the curve's bend between its points
+    0.05 throttle apart (under 0.02 m/s^2): 0.05 m/s^2, a sixth of WRAP's standard deviation."""
+    sc, track = fly_cached("pattern", seed=4, stop_after_s=430.0, aircraft=model, **{"takeoff.thrust_norm": None})
+    t_roll, t_lo = track.event_time("takeoff_roll"), track.event_time("liftoff")
+    i_lo = int(np.searchsorted(track.t_s, t_lo))
+    accel = track.ground_speed_mps[i_lo] / (track.t_s[i_lo] - t_roll)
+    target = track.conditions["takeoff_accel_target_mps2"]
+    w = PROFILES[model].takeoff.accel
+    assert w.lo <= target <= w.hi
+    assert accel == pytest.approx(target, abs=0.05)
