@@ -20,5 +20,7 @@ KMH_MPS: float = 1000.0 / 3600.0  # km/h -> m/s
 FPS_MPS: float = FT_M  # ft/s -> m/s
 LB_KG: float = 0.45359237  # international avoirdupois pound, exactly
 LBF_N: float = LB_KG * G0_MPS2  # pound-force: 4.4482216152605 N
+SLUG_KG: float = LBF_N / FT_M  # slug: the mass a pound-force accelerates at 1 ft/s^2 (14.594 kg)
+SLUG_FT3_KGM3: float = SLUG_KG / FT_M**3  # slug/ft^3 (JSBSim's density unit) -> kg/m^3 (515.38)
 HPA_PA: float = _c.hecto  # hectopascal -> Pa (100)
 PSI_PA: float = _c.psi  # 6894.757 Pa

@@ -13,7 +13,7 @@ import math
 from flightmode.sim.flight.control import clamp, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
-from flightmode.units import FT_M, G0_MPS2, KT_MPS
+from flightmode.units import FT_M, G0_MPS2, KT_MPS, LB_KG, SLUG_FT3_KGM3
 
 
 class Controller:
@@ -209,7 +209,14 @@ class TakeoffRoll(Controller):
         ap = self.ap
         ap.brake_pid.reset()
         ap.brakes(0.0)
-        ap.throttle(ap.draws.takeoff_thrust_norm)  # the plan's, or drawn (sim.flight.draws)
+        target = ap.draws.takeoff_accel_target_mps2
+        if target is None:
+            thr = self.p.plan.takeoff_thrust_norm
+        else:  # the drawn acceleration at this weight and field (TakeoffThrust)
+            thr = self.p.prof.takeoff.throttle_for(target, ap.ac.get("inertia/weight-lbs") * LB_KG,
+                                                   ap.ac.get("atmosphere/rho-slugs_ft3") * SLUG_FT3_KGM3)
+        self.p.takeoff_thrust_norm = thr
+        ap.throttle(thr)
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
         ap.pitch_pid.reset()
         self.rotating = False

@@ -1,6 +1,6 @@
 """What varies from flight to flight, drawn once per flight from its ``flight`` streams: the climb's
 vertical rates (per type, :class:`~flightmode.sim.flight.aircraft_profiles.ClimbSchedule`), the
-takeoff thrust (the type's real-traffic takeoff acceleration turned into a throttle,
+takeoff acceleration (the type's real traffic, which the pilot turns into a throttle at brake release:
 :class:`~flightmode.sim.flight.aircraft_profiles.TakeoffThrust`), the touchdown sink speed the flare
 aims at, and the turbulence (:mod:`flightmode.sim.flight.turbulence`).
 Each draw has its own named stream, so adding one never moves another.
@@ -39,8 +39,7 @@ SINK_BANDS_FPS = {"firm": (4.5, 7.0), "hard": (7.0, 9.5)}  # module docstring
 @dataclass(frozen=True, slots=True)
 class FlightDraws:
     climb_vs_mps: tuple[float, float, float]  # below the CAS crossover, constant CAS, constant Mach
-    takeoff_thrust_norm: float  # the takeoff throttle: the plan's, or the drawn acceleration's
-    takeoff_accel_target_mps2: float | None  # the drawn takeoff acceleration (None: the plan set the throttle)
+    takeoff_accel_target_mps2: float | None  # the drawn takeoff acceleration (None: the plan sets the throttle)
     touchdown_sink_mps: float  # what the flare aims at
     atmosphere: Atmosphere
     departure_weather: Weather  # the airports' QNH and ISA deviation (sim.flight.cabin)
@@ -48,8 +47,7 @@ class FlightDraws:
 
     def as_dict(self) -> dict:
         a = self.atmosphere
-        return {"climb_vs_mps": list(self.climb_vs_mps), "takeoff_thrust_norm": self.takeoff_thrust_norm,
-                "takeoff_accel_target_mps2": self.takeoff_accel_target_mps2,
+        return {"climb_vs_mps": list(self.climb_vs_mps), "takeoff_accel_target_mps2": self.takeoff_accel_target_mps2,
                 "touchdown_sink_target_mps": self.touchdown_sink_mps,
                 "surface_wind_mps": a.w20_mps, "background_edr_mid": a.edr_mid, "background_edr_upper": a.edr_upper,
                 "patch_edr": list(a.patch_edr), "departure_weather": self.departure_weather.as_dict(),
@@ -71,7 +69,6 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
     r = streams.rng("climb")
     climb = (c.vs_pre_cas.draw(r), c.vs_cas.draw(r), c.vs_mach.draw(r))
     accel = profile.takeoff.accel.draw(streams.rng("takeoff"))  # drawn even when unused: no other draw moves
-    thrust = profile.takeoff.throttle_for(accel) if plan.takeoff_thrust_norm is None else plan.takeoff_thrust_norm
     accel_target = accel if plan.takeoff_thrust_norm is None else None
     sink = draw_sink_mps(plan.landing_quality, streams.rng("landing"))
     if plan.touchdown_sink_mps is not None:
@@ -82,7 +79,7 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
     arr = _weather(plan, plan.arrival_qnh_hpa, streams.rng("weather/arrival"))
     if plan.origin.icao == plan.destination.icao and plan.arrival_qnh_hpa is None:
         arr = dep  # back where it started (a pattern): one airport, one weather (a flight's hour moves QNH ~1 hPa)
-    return FlightDraws(climb, thrust, accel_target, float(sink), atm, dep, arr)
+    return FlightDraws(climb, accel_target, float(sink), atm, dep, arr)
 
 
 def _weather(plan: FlightPlan, qnh_hpa: float | None, rng: np.random.Generator) -> Weather:

@@ -45,6 +45,7 @@ class Pilot:
         self.t_phase = 0.0
         self.t_liftoff: float | None = None
         self.t_engines_off: float | None = None
+        self.takeoff_thrust_norm: float | None = None  # set at brake release (controllers.TakeoffRoll)
         self.events: list[tuple[float, str, str]] = [(0.0, START, "start")]  # (t_s, name, detail)
         self.phase = START
         self.phase_code = PHASE_CODE[START]

@@ -246,7 +246,8 @@ def fly(
     track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events, rates_after)
     fuel = {"fuel_planned_kg": fuel_kg, "fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
     cab = pressure_truth(track, plan, draws)
-    return dataclasses.replace(track, conditions=draws.as_dict() | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m}
+    return dataclasses.replace(track, conditions=draws.as_dict() | {"takeoff_thrust_norm": pilot.takeoff_thrust_norm}
+                               | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m}
                                | fuel | {"cruise_cabin_altitude_m": cab.cruise_cabin_altitude_m,
                                          "cabin_descent_rate_fpm": cab.descent_rate_fpm, "hold": cab.hold},
                                ambient_pressure_pa=cab.ambient_pressure_pa, cabin_pressure_pa=cab.cabin_pressure_pa,
