@@ -115,18 +115,20 @@ class TakeoffThrust:
     (takeoff throttle, mean acceleration brake release to liftoff in m/s^2) measured on the JSBSim
     model at ``mass_kg`` and a field air density ``rho_kgm3``. At brake release the pilot turns the
     drawn acceleration into a throttle (:meth:`throttle_for`), as a crew's takeoff performance is
-    computed for the actual weight and field: the acceleration is scaled to the curve's conditions,
-    by ``(mass / mass_kg) ** mass_exp`` (measured on each model with 4-20 t more fuel at 0.90 throttle;
-    the A320's fitted on route flights)
-    and by the inverse of the density ratio (:data:`TAKEOFF_DENSITY_EXP`), then interpolated on the
-    curve, clipped to its ends.
+    computed for the actual weight and field: the acceleration is scaled to the curve's conditions by
+    ``(mass / mass_kg) ** mass_exp`` (measured on each model with 4-20 t more fuel at 0.90 throttle;
+    the A320's fitted on route flights) and by the density ratio (:data:`TAKEOFF_DENSITY_EXP`), then
+    interpolated on the curve, clipped to its ends.
 
-    The JSBSim models fly at their stock weights, near the real operating empty weight (the 737's
-    83,000 lb is the 737-700's OEW; the Fokker 100's 54,217 lb its OEW), without passengers. With the
-    real airline payload their approach speeds, already at the top of the real range, would rise
-    further: measured on 12 pattern flights each, 10.4 t more on the 737 (126 seats at IATA's 2019
-    82.6 % load factor, 100 kg each) raised its median touchdown speed from 131 to 143 kt (and at the
-    old speeds it stalled on approach, 3 of 12), 8.3 t more on the Fokker 100 from 152 to 156 kt. So a light
+    The JSBSim models fly at their stock weights, without passengers: the 737 at 83,000 lb, the
+    published operating empty weight of the 737-700 (37,648 kg); the Fokker 100 at 54,217 lb, within
+    1 % of its published 24,375 kg; the A320 at 111,000 lb, 7.7 t above the A320ceo's typical 42.6 t
+    (the manufacturers' figures as Wikipedia tabulates them); only the 787-8's model carries its
+    passengers and cargo (22 t of point masses). With the real airline payload their
+    approach speeds, already at the top of the real range, would rise further: measured on 12
+    pattern flights each, 10.4 t more on the 737 (126 seats at IATA's 2019 82.6 % passenger load
+    factor, 100 kg each) raised its median touchdown speed from 131 to 143 kt (and at the old speeds
+    it stalled on approach, 3 of 12), 8.3 t more on the Fokker 100 from 152 to 156 kt. So a light
     aircraft at a deeper reduced thrust stands in for a loaded one at its usual flex thrust: the
     thrust-to-weight ratio, which sets the acceleration the accelerometer records, is the real one."""
 
