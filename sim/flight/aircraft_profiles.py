@@ -154,7 +154,7 @@ class TakeoffThrust:
 
 # the mean takeoff acceleration scales with the field's air density to this power: measured on the
 # pattern flown at 10 and 900 m field elevation (density 1.224 and 1.122 kg/m^3) at 0.90 throttle:
-# A320 1.05, 737 0.91, Fokker 100 0.92 (the engines' thrust lapse with density)
+# A320 1.05, 737 0.91, Fokker 100 0.90 (the engines' thrust lapse with density)
 TAKEOFF_DENSITY_EXP = 0.95
 
 
