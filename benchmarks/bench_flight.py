@@ -3,8 +3,8 @@
     python benchmarks/bench_flight.py [SCENARIO]
 
 Baseline: the same JSBSim model (loaded through flightmode's adapter, so the same private copy, edits
-and settings: benchmarks/_bench.py ``bare_stepping_s``) stepped with bare ``fdm.run()`` for exactly as many steps as the flight took, with no
-property reads and no pilot. Reported: both wall times (best of 3 each) and their ratio
+and settings: benchmarks/_bench.py ``bare_stepping_s``) stepped with bare ``fdm.run()`` for exactly as
+many steps as the flight took, with no property reads and no pilot. Reported: both wall times (best of 3 each) and their ratio
 (goal <= 1.5).
 """
 

@@ -29,6 +29,14 @@ def _phase_span(track: FlightTrack, phase: str) -> tuple[int, int]:
     return int(idx[0]), int(idx[-1])
 
 
+def takeoff_accel_mps2(track: FlightTrack) -> float:
+    """WRAP's takeoff acceleration: the mean along the ground roll, brake release to liftoff (ground
+    speed at liftoff over the roll's time). Needs only the track up to liftoff."""
+    t_roll = track.event_time("takeoff_roll")
+    i_lo = int(np.searchsorted(track.t_s, track.event_time("liftoff")))
+    return float(track.ground_speed_mps[i_lo] / (track.t_s[i_lo] - t_roll))
+
+
 def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     """Figures of one gate-to-gate flight; see the module docstring. Keys carry their units."""
     t = track.t_s
@@ -42,8 +50,7 @@ def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     m["taxi_out_s"] = t_roll - t_push
     m["liftoff_ias_mps"] = float(track.ias_mps[i_lo])
     m["liftoff_gs_mps"] = float(gs[i_lo])
-    # takeoff acceleration: mean along the ground roll, brake release to liftoff
-    m["takeoff_accel_mps2"] = float(gs[i_lo] / (t[i_lo] - t_roll))
+    m["takeoff_accel_mps2"] = takeoff_accel_mps2(track)
     # initial climb: mean vertical rate from liftoff to 1500 ft above the runway
     agl_o = track.alt_m - plan.origin.elevation_m
     i_1500 = i_lo + int(np.argmax(agl_o[i_lo:] > 1500 * FT_M))
