@@ -199,6 +199,11 @@ class AircraftProfile:
     # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
     # sim.flight.controllers.FLARE_PITCH_GAIN
     flare_accel_gain: float = 1.0
+    # the flare's guidance law (sim.flight.controllers.Flare): "constant_deceleration" or "exponential"
+    flare_law: str = "constant_deceleration"
+    # the exponential law's proportional gain: attitude change per sink-rate error, times the true
+    # airspeed (rad per rad of flight-path angle; sim.flight.controllers.FLARE_EXP_INTEGRAL_PER_S)
+    flare_path_gain: float = 1.5
     # the share of the flare's elevator the attitude loop keeps at touchdown (sim.flight.controllers.Rollout):
     # 0 relaxes it to the loop's own (half its integrator), 1 keeps it all
     touchdown_elevator_keep: float = 0.0
@@ -289,6 +294,7 @@ PROFILES: dict[str, AircraftProfile] = {
         reverse_throttle=0.6,
         flare_height_ft=55.0,
         flare_pitch_kp=4.0,
+        flare_law="exponential",  # it balloons and drops under the constant-deceleration law (Flare)
         # the 737's nose fell at 3-4 deg/s after its elevator relaxed at touchdown (the nose wheels
         # down 0.8-1.9 s after the mains, 8 pattern landings); kept: 2.0-4.0 s, at most 0.9-2.6 deg/s
         touchdown_elevator_keep=1.0,

@@ -1,0 +1,56 @@
+"""The exponential flare's guidance (sim.flight.controllers.exponential_flare_*): its path, flown exactly,
+meets the runway at the drawn touchdown sink at the time the closed form gives, begins at the sink the
+aircraft has at the flare height, and never asks a firm or hard landing for more sink than its approach's."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from flightmode.sim.flight.controllers import (
+    FLARE_TAU_MAX_S,
+    FLARE_TAU_MIN_S,
+    exponential_flare_sink_cmd_mps,
+    exponential_flare_tau_s,
+)
+from flightmode.units import FPS_MPS
+
+
+@pytest.mark.parametrize(("h0_ft", "sink0_fps", "td_fps"), [(50.0, 11.0, 2.0), (40.0, 12.5, 1.3), (50.0, 13.5, 3.0)])
+def test_the_path_meets_the_runway_at_the_touchdown_sink_when_the_closed_form_says(h0_ft, sink0_fps, td_fps):
+    h0, v0, vtd = h0_ft * 0.3048, sink0_fps * FPS_MPS, td_fps * FPS_MPS
+    tau = exponential_flare_tau_s(h0, v0, vtd)
+    assert FLARE_TAU_MIN_S < tau < FLARE_TAU_MAX_S  # these approaches are inside the bounds (3.6-5.6 s)
+    # no jump at the flare height: the command there is the sink the aircraft has
+    assert exponential_flare_sink_cmd_mps(h0, vtd, tau, v0) == pytest.approx(v0, rel=1e-12)
+    # fly the command exactly: dh/dt = -v_cmd(h) until h = 0
+    ground = lambda t, h: h[0]  # noqa: E731
+    ground.terminal, ground.direction = True, -1
+    sol = solve_ivp(lambda t, h: [-exponential_flare_sink_cmd_mps(h[0], vtd, tau, v0)], (0.0, 60.0), [h0],
+                    events=ground, rtol=1e-10, atol=1e-12)
+    t_td = sol.t_events[0][0]
+    # h(t) = (h0 + tau v_td) exp(-t / tau) - tau v_td reaches 0 at t = tau ln(1 + h0 / (tau v_td));
+    # the integrator's tolerances above make 1e-6 s far more than its error
+    assert t_td == pytest.approx(tau * math.log(1.0 + h0 / (tau * vtd)), abs=1e-6)
+    # and the sink there is the drawn touchdown sink (the path's asymptote lies tau v_td below the runway)
+    assert exponential_flare_sink_cmd_mps(0.0, vtd, tau, v0) == pytest.approx(vtd, rel=1e-12)
+
+
+def test_a_hard_landing_is_never_asked_for_more_sink_than_its_approach():
+    # a 9 ft/s target from a 10.5 ft/s approach at 55 ft: tau at its longest, and the exponential
+    # path alone would ask for 9 + 55 / 6 = 18 ft/s at the flare height
+    h0, v0, vtd = 55.0 * 0.3048, 10.5 * FPS_MPS, 9.0 * FPS_MPS
+    tau = exponential_flare_tau_s(h0, v0, vtd)
+    assert tau == FLARE_TAU_MAX_S
+    h = np.linspace(h0, 0.0, 200)
+    cmd = np.array([exponential_flare_sink_cmd_mps(x, vtd, tau, v0) for x in h])
+    assert cmd.max() == pytest.approx(v0, rel=1e-12) and cmd[-1] == pytest.approx(vtd, rel=1e-12)
+    assert np.all(np.diff(cmd) <= 0.0)  # the command only ever eases as the runway nears
+    # an approach already at or below its target sink: the longest tau, and the command is the target
+    # all the way down (no push towards more sink than the landing asks for)
+    assert exponential_flare_tau_s(h0, 2.0 * FPS_MPS, 2.5 * FPS_MPS) == FLARE_TAU_MAX_S
+    for x in (h0, 1.0, 0.0):
+        assert exponential_flare_sink_cmd_mps(x, 2.5 * FPS_MPS, FLARE_TAU_MAX_S, 2.0 * FPS_MPS) == 2.5 * FPS_MPS
