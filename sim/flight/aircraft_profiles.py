@@ -168,6 +168,9 @@ class ApproachStep:
     gear_down: bool = False
 
 
+FLARE_LAWS = ("constant_deceleration", "exponential")  # sim.flight.controllers.Flare
+
+
 @dataclass(frozen=True, slots=True)
 class AircraftProfile:
     model: str  # JSBSim aircraft directory
@@ -199,7 +202,7 @@ class AircraftProfile:
     # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
     # sim.flight.controllers.FLARE_PITCH_GAIN
     flare_accel_gain: float = 1.0
-    # the flare's guidance law (sim.flight.controllers.Flare): "constant_deceleration" or "exponential"
+    # the flare's guidance law (sim.flight.controllers.Flare), one of FLARE_LAWS
     flare_law: str = "constant_deceleration"
     # the exponential law's proportional gain: attitude change per sink-rate error, times the true
     # airspeed (rad per rad of flight-path angle; sim.flight.controllers.FLARE_EXP_INTEGRAL_PER_S)
@@ -229,6 +232,11 @@ class AircraftProfile:
     spd_ki: float = 0.005
     turn_bank_deg: float = 25.0
     cabin_half_width_m: float = 1.8
+
+    def __post_init__(self) -> None:
+        if self.flare_law not in FLARE_LAWS:
+            raise AircraftError(f"aircraft profile '{self.model}': unknown flare_law {self.flare_law!r}; "
+                                f"use one of {', '.join(FLARE_LAWS)}")
 
     @property
     def locations_m(self) -> dict[str, tuple[float, float, float]]:

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 
-from flightmode.errors import AircraftError
 from flightmode.sim.flight.control import clamp, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
@@ -428,9 +427,6 @@ class Flare(Controller):
         self.tau_s = exponential_flare_tau_s(x[ix["agl_m"]] - prof.cg_height_m, self.sink_0,
                                              self.ap.draws.touchdown_sink_mps)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
-        if prof.flare_law not in FLARE_LAWS:
-            raise AircraftError(f"aircraft profile '{prof.model}': unknown flare_law {prof.flare_law!r}; "
-                                f"use one of {', '.join(FLARE_LAWS)}")
 
     def _rate_decel(self, x, sink: float, target: float) -> float:
         """The constant-deceleration law: the pitch rate (rad/s) it asks for."""
@@ -524,13 +520,12 @@ FLARE_MIN_H_M = 0.3  # the guidance's height floor (a_req stays finite at contac
 FLARE_HOLD_PER_S = 1.0  # below the aim height: upward acceleration per m/s of sink above the target
 FLARE_PITCH_UP_RADPS = math.radians(3.0)  # the flare's attitude command moves at most this fast up
 FLARE_PITCH_DOWN_RADPS = math.radians(2.0)  # and down
-# the exponential flare (Flare): its time constant's bounds (a 40-70 ft flare height and 10-14 ft/s of
-# approach sink give 4-7 s); the integral's rate per second relative to the proportional gain (the
+# the exponential flare (Flare): its time constant's bounds (a 40-70 ft flare height and 8-12 ft/s of
+# sink above the target give 3-9 s; the longest flares are cut to 6 s); the integral's rate per second relative to the proportional gain (the
 # profile's flare_path_gain) and its largest share of the attitude. Chosen on 16 pattern landings of the
 # 737 (seeds 0-15) among proportional gains 1.0-2.5 and integral rates 0.1-0.6 /s: a gain of 2.5, or an
 # integral rate of 0.6, oscillated into 7-9 ft/s touchdowns (three of them over the 10 ft/s limit);
 # 1.0-2.0 with 0.1-0.15 gave medians of 2.2-2.5 ft/s and at most 4.0-5.2 ft/s
-FLARE_LAWS = ("constant_deceleration", "exponential")
 FLARE_TAU_MIN_S = 1.5
 FLARE_TAU_MAX_S = 6.0
 FLARE_EXP_INTEGRAL_PER_S = 0.15

@@ -54,3 +54,13 @@ def test_a_hard_landing_is_never_asked_for_more_sink_than_its_approach():
     assert exponential_flare_tau_s(h0, 2.0 * FPS_MPS, 2.5 * FPS_MPS) == FLARE_TAU_MAX_S
     for x in (h0, 1.0, 0.0):
         assert exponential_flare_sink_cmd_mps(x, 2.5 * FPS_MPS, FLARE_TAU_MAX_S, 2.0 * FPS_MPS) == 2.5 * FPS_MPS
+
+
+def test_an_unknown_flare_law_is_refused_when_the_profile_is_made():
+    import dataclasses
+
+    from flightmode.errors import AircraftError
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+
+    with pytest.raises(AircraftError, match=r"unknown flare_law 'linear'; use one of constant_deceleration, exponential"):
+        dataclasses.replace(get_profile("737"), flare_law="linear")
