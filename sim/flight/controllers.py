@@ -428,10 +428,10 @@ class Flare(Controller):
                                              self.ap.draws.touchdown_sink_mps)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
 
-    def _rate_decel(self, x, sink: float, target: float) -> float:
+    def _rate_decel(self, x, gear_h_m: float, sink: float, target: float) -> float:
         """The constant-deceleration law: the pitch rate (rad/s) it asks for."""
         ix, prof = self.p.ix, self.p.prof
-        h_m = x[ix["agl_m"]] - prof.cg_height_m - FLARE_AIM_M
+        h_m = gear_h_m - FLARE_AIM_M
         if h_m > FLARE_MIN_H_M:
             a_req = (sink * abs(sink) - target * target) / (2.0 * h_m)
         else:  # at the aim height: hold the touchdown sink until the wheels meet the runway
@@ -442,12 +442,11 @@ class Flare(Controller):
         return clamp(prof.flare_accel_gain * FLARE_PITCH_GAIN * (a_req - a_up), -FLARE_PITCH_DOWN_RADPS,
                      FLARE_PITCH_UP_RADPS)
 
-    def _rate_exponential(self, x, sink: float, target: float) -> float:
+    def _rate_exponential(self, x, gear_h_m: float, sink: float, target: float) -> float:
         """The exponential law: the pitch rate (rad/s) that moves the attitude command towards its
         goal, within the flare's pitch-rate limits."""
         ix, prof, dt = self.p.ix, self.p.prof, self.ap.dt
-        sink_cmd = exponential_flare_sink_cmd_mps(x[ix["agl_m"]] - prof.cg_height_m, target, self.tau_s,
-                                                  self.sink_0)
+        sink_cmd = exponential_flare_sink_cmd_mps(gear_h_m, target, self.tau_s, self.sink_0)
         v = max(x[ix["tas_mps"]], 30.0)
         kp = prof.flare_path_gain / v  # rad per m/s of sink-rate error
         ki = FLARE_EXP_INTEGRAL_PER_S * kp
@@ -461,10 +460,11 @@ class Flare(Controller):
         ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
         sink = x[ix["v_down_mps"]]
         target = ap.draws.touchdown_sink_mps
+        gear_h_m = x[ix["agl_m"]] - prof.cg_height_m  # the main gear's height above the runway
         if prof.flare_law == "exponential":
-            rate = self._rate_exponential(x, sink, target)
+            rate = self._rate_exponential(x, gear_h_m, sink, target)
         else:
-            rate = self._rate_decel(x, sink, target)
+            rate = self._rate_decel(x, gear_h_m, sink, target)
         if math.degrees(x[ix["alpha_rad"]]) > prof.alpha_stall_deg - FLARE_ALPHA_MARGIN_DEG:
             rate = min(rate, 0.0)  # a float that bleeds speed: never pull towards the stall
         lo = math.radians(-3.0 if ap.theta_final is None else ap.theta_final - 1.0)
@@ -473,8 +473,7 @@ class Flare(Controller):
         # a firmer attitude loop than in flight (the flare is seconds long; the cruise loop's soft
         # gain lags it by degrees)
         ap.pitch_to(x, self.theta_cmd, bias=prof.flare_pitch_kp * (self.theta_cmd - x[ix["theta_rad"]]))
-        mg_ft = (x[ix["agl_m"]] - prof.cg_height_m) / FT_M
-        ap.throttle_smooth(0.0 if mg_ft < 20.0 else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
+        ap.throttle_smooth(0.0 if gear_h_m < 20.0 * FT_M else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
         rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         ap.heading_to(x, ap.dest.heading_rad - math.atan2(ry, 1500.0), 5.0)
         if x[ix["wow"]] > 0.5:
