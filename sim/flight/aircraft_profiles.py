@@ -29,12 +29,14 @@ class PilotTuning:
     taxi_speed_out_mps: tuple = (7.5, 10.0)
     taxi_speed_in_mps: tuple = (5.5, 8.0)
     # apron taxilanes and stand lead-ins, where most of a taxi-in's turns are: ADS-B median speed in
-    # turns 3.6-5.7 m/s, taxi-in speed p50 2.7-4.2 m/s
-    taxi_apron_speed_mps: tuple = (3.5, 5.0)
+    # turns 3.6-5.7 m/s (median of the six 4.2), taxi-in speed p50 2.7-4.2 m/s; at 3.5-5.0 m/s, 20
+    # flown A320 routes turned at 3.6-3.8 m/s (medians of taxi-out and taxi-in)
+    taxi_apron_speed_mps: tuple = (4.0, 5.5)
     # turns: lateral acceleration 0.10-0.13 g, below the 0.134 g of the ICAO Doc 9157 curve table;
-    # yaw rate at most 6-9 deg/s (ADS-B yaw-rate maxima 4.8-9.1 deg/s, never above 12)
+    # yaw rate at most 7-10 deg/s (ADS-B yaw-rate maxima 4.8-9.1 deg/s, median 6.9, never above 12:
+    # the flown maxima come out about a quarter under the limit, pure pursuit rounding the turns)
     taxi_lat_acc_mps2: tuple = (0.10 * G0_MPS2, 0.13 * G0_MPS2)
-    taxi_yaw_rate_max_dps: tuple = (6.0, 9.0)
+    taxi_yaw_rate_max_dps: tuple = (7.0, 10.0)
     # slowing before turns and stops, and the rollout's last deceleration: 0.03-0.05 g (ADS-B largest
     # braking 0.029-0.062 g, 9 s smoothed); speeding up 0.02-0.04 g (ADS-B largest 0.014-0.047 g)
     taxi_decel_mps2: tuple = (0.03 * G0_MPS2, 0.05 * G0_MPS2)

@@ -20,7 +20,8 @@ turns onto the runway, lines up and holds.
 taxi-in (destination frame): from where the rollout handed over (20 kt, decelerating), along the
 runway to an exit (a rapid exit at 30 deg on its 550 m curve, or a 45 or 90 deg exit), onto the
 parallel taxiway (forward, or back after a 90 deg exit), jogs, a turn into the apron, and either
-straight into the stand or along an apron taxilane and into the stand's lead-in.
+straight into the stand, or into a stand beside the apron link (its lead-in), or along an apron
+taxilane and into the stand's lead-in (1, 2 or 3 turns on the apron).
 
 The number of turns is drawn from the real tracks' turns per minute (ADS-B anchors of
 :mod:`flightmode.sim.flight.taxi_stats`) and the route's expected duration, and the parallel run is
@@ -61,13 +62,20 @@ TAXIWAY_SEPARATION_M = (44.0, 63.0)
 # 36 m): real 90 deg turns are flown wider than the ICAO table's minimum for their speed (15-20 m at
 # 16-19 km/h).
 JUNCTION_RADIUS_M = (28.0, 60.0)
-LEAD_IN_RADIUS_M = (25.0, 35.0)  # apron taxilane to stand: slower, a little tighter
+LEAD_IN_RADIUS_M = (30.0, 40.0)  # apron taxilane to stand: a little tighter
 # A320 FCOM: at most 20 kt in turns (above 76 t); operators: about 10 kt in 90 deg turns. Between
 # these, the cap falls linearly with the turn's angle (the profile's ``taxi_turn_kt`` at 90 deg).
 TURN_CAP_WIDE_KT = 20.0
 TURN_ANGLE_WIDE_DEG = 30.0
 JOG_STRAIGHT_M = 30.0  # between a jog's two opposite turns
 ARC_SPACING_M = 2.0  # arcs as chords of at most 2 m (sagitta < 2 cm at 25 m radius)
+# turns a taxi-in's exit adds to the count of the real tracks' statistics (taxi_stats): a rapid exit's
+# 30 deg on 550 m is never 30 deg within its 20 s window, but the merge onto the parallel taxiway, 30 deg
+# back in a few seconds on a junction radius, counts with the exit's tail (driven on the speed schedule:
+# tests/sim/test_control_and_routes.py); a 45 or 90 deg exit and its merge are two turns. Flown, pure
+# pursuit rounds the merge a little and a 30 deg turn is the statistics' threshold: in 60 flown
+# taxi-ins (A320, 737, 787-8) the 27 rapid exits lost 12 turns net (every other layout counted exactly)
+EXIT_TURNS_COUNTED = (1, 2, 2)
 TURN_LEAD_M = 12.0  # a turn's speed applies this far before its arc (pure pursuit turns in early)
 GRID_M = 1.0  # the speed schedule's grid
 
@@ -277,11 +285,22 @@ class InLayout:
     jogs: tuple[Jog, ...]
     apron_radius_m: float  # parallel taxiway into the apron
     apron_link_m: float  # from the parallel taxiway to the stand (direct) or to the apron taxilane
-    lane: bool  # along an apron taxilane to the stand (two more turns), or straight in
+    # turns on the apron: 0 none (a 90 deg exit straight across the parallel to the stand), 1 straight
+    # into the stand, 2 into a stand's lead-in beside the apron link, 3 along an apron taxilane and
+    # into the stand's lead-in
+    apron_turns: int
     lane_sign: int  # +1 / -1: the taxilane's direction along x
     lane_run_m: float
     lead_in_radius_m: float
     lead_in_m: float  # the stand's straight lead-in
+
+    @property
+    def n_turns(self) -> int:
+        """The turns the route is drawn to have, as the real tracks' statistics count them."""
+        if self.apron_turns == 0:
+            return 1
+        exit_kind = (RAPID_EXIT_ANGLE_DEG, 45.0, 90.0).index(self.exit_angle_deg)
+        return EXIT_TURNS_COUNTED[exit_kind] + 2 * len(self.jogs) + self.apron_turns
 
 
 @dataclass(frozen=True, slots=True)
@@ -303,7 +322,8 @@ class TaxiDraws:
                 "taxi_apron_speed_mps": s.apron_mps, "taxi_decel_mps2": s.decel_mps2,
                 "taxi_lat_acc_mps2": s.lat_acc_mps2, "taxi_yaw_rate_max_dps": math.degrees(s.yaw_rate_max_radps),
                 "taxi_out_junction_turns": len(self.out.apron_radii_m) + 2 * len(self.out.jogs) + 2,
-                "taxi_in_exit_angle_deg": self.arrival.exit_angle_deg}
+                "taxi_in_exit_angle_deg": self.arrival.exit_angle_deg,
+                "taxi_in_turns": self.arrival.n_turns}
 
 
 def _u(rng: np.random.Generator, lo_hi) -> float:
@@ -338,10 +358,13 @@ def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
     )
     rate_out = _u(rng, tu.taxi_turns_per_min)
     rate_in = _u(rng, tu.taxi_turns_per_min)
-    # expected durations: the route at about 85 % of the straight speed (turns, apron, stops; measured
-    # on the built-in flights), and the holds
-    t_out = plan.taxi_out.length_m / (0.85 * style.straight_out_mps) + sum(plan.taxi_out.holds_s)
-    t_in = plan.taxi_in.length_m / (0.85 * style.straight_in_mps) + sum(plan.taxi_in.holds_s)
+    # expected durations, as the statistics time a segment (taxi-out up to the takeoff roll, its line-up
+    # hold included): the route at 64 % (taxi-out) and 75 % (taxi-in) of the straight speed (turns,
+    # apron, speeding up and slowing down; medians measured on 20 flown A320 routes: 1 / 1.56 and
+    # 1 / 1.33), and the holds
+    t_out = plan.taxi_out.length_m / (0.64 * style.straight_out_mps) + sum(plan.taxi_out.holds_s) \
+        + plan.taxi_out.lineup_hold_s
+    t_in = plan.taxi_in.length_m / (0.75 * style.straight_in_mps) + sum(plan.taxi_in.holds_s)
     n_out = max(3, round(rate_out * t_out / 60.0))  # at least the apron turn and the two at the runway
     n_in = max(1, round(rate_in * t_in / 60.0))
 
@@ -359,16 +382,20 @@ def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
         entry_radius_m=_u(rng, r_j),
         lineup_radius_m=_u(rng, r_j),
     )
-    # taxi-in: exit and merge (0 turns for a rapid exit: 30 deg on 550 m is never 30 deg within the
-    # statistics' 20 s; 2 for 45 and 90 deg exits), apron (1 straight in, 3 by a taxilane), 2 per jog
+    # taxi-in: exit and merge (EXIT_TURNS_COUNTED), apron (0 when a 90 deg exit leads straight to the
+    # stand, 1 straight in, 2 into a stand beside the apron link, 3 by a taxilane), 2 per jog; the apron
+    # takes the count's parity, so that every count is flown (the real tracks' taxi-ins turn 1-4 times)
     exit_kind = int(rng.integers(0, 3))
-    if n_in < 3:
-        exit_kind = 0  # few turns wanted: a rapid exit (none)
+    if n_in == 1:
+        exit_kind = 2  # one turn: off the runway at 90 deg and straight across to the stand
+    elif n_in < 4:
+        exit_kind = 0  # few turns wanted: a rapid exit
     exit_angle = (RAPID_EXIT_ANGLE_DEG, 45.0, 90.0)[exit_kind]
-    n_exit = 0 if exit_kind == 0 else 2
-    lane_in = (n_in - n_exit) >= 3 and bool(rng.random() < 0.7)
-    n_apron_in = 3 if lane_in else 1
-    n_jogs_in = max(0, (n_in - n_exit - n_apron_in) // 2)
+    n_exit = 1 if n_in == 1 else EXIT_TURNS_COUNTED[exit_kind]
+    rest = n_in - n_exit
+    lane_in = rest >= 3 and bool(rng.random() < 0.7)
+    n_apron_in = 0 if rest == 0 else 2 if rest % 2 == 0 else (3 if lane_in else 1)
+    n_jogs_in = max(0, (rest - n_apron_in) // 2)
     arrival = InLayout(
         exit_angle_deg=exit_angle,
         exit_radius_m=RAPID_EXIT_RADIUS_M if exit_kind == 0 else _u(rng, r_j),
@@ -377,7 +404,7 @@ def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
         jogs=_jogs(rng, n_jogs_in, r_j),
         apron_radius_m=_u(rng, r_j),
         apron_link_m=float(rng.uniform(100.0, 160.0)),
-        lane=lane_in,
+        apron_turns=n_apron_in,
         lane_sign=1 if rng.random() < 0.5 else -1,
         lane_run_m=float(rng.uniform(60.0, 150.0)),
         lead_in_radius_m=_u(rng, LEAD_IN_RADIUS_M),
@@ -555,6 +582,12 @@ def taxi_in_route(plan: TaxiPlan, lay: InLayout, style: TaxiStyle, start_x_m: fl
     room = _jogs_room_m(lay.jogs)
 
     def build(par_run: float):
+        if lay.apron_turns == 0:  # off the runway at 90 deg, across the parallel, straight to the stand
+            y_apron = -d - par_run + lay.apron_link_m + lay.lead_in_m  # taxiway speed until the apron
+            corners = [(start_x_m, 0.0), (x_e1, 0.0), (x_e1, y_apron), (x_e1, -d - par_run)]
+            fl = fillet(corners, [lay.exit_radius_m, 0.0])
+            zones = ["taxiway", "taxiway", "apron"]
+            return TaxiRoute(fl, _zone_speeds(fl, zones, style, style.straight_in_mps), style), (x_e1, y_apron)
         x_ap = x_e2 + sgn * par_run
         corners = [(start_x_m, 0.0), (x_e1, 0.0), (x_e2, -d)]
         radii = [lay.exit_radius_m, lay.merge_radius_m]
@@ -562,12 +595,19 @@ def taxi_in_route(plan: TaxiPlan, lay: InLayout, style: TaxiStyle, start_x_m: fl
         corners += jc + [(x_ap, y)]
         radii += jr
         zones = ["taxiway"] * (len(corners) - 1)
-        if lay.lane:
+        if lay.apron_turns == 3:
             y_lane = y - lay.apron_link_m
             x_st = x_ap + lay.lane_sign * lay.lane_run_m
             corners += [(x_ap, y_lane), (x_st, y_lane), (x_st, y_lane - lay.lead_in_m)]
             radii += [lay.apron_radius_m, lay.lead_in_radius_m, lay.lead_in_radius_m]
             zones += ["apron"] * 3
+        elif lay.apron_turns == 2:
+            y_lane = y - lay.apron_link_m
+            # the lead-in turns back to the parallel's direction: two opposite turns, which the real
+            # tracks' statistics (taxi_stats) count as two
+            corners += [(x_ap, y_lane), (x_ap + sgn * lay.lead_in_m, y_lane)]
+            radii += [lay.apron_radius_m, lay.lead_in_radius_m]
+            zones += ["apron"] * 2
         else:
             corners += [(x_ap, y - lay.apron_link_m - lay.lead_in_m)]
             radii += [lay.apron_radius_m]
@@ -576,7 +616,8 @@ def taxi_in_route(plan: TaxiPlan, lay: InLayout, style: TaxiStyle, start_x_m: fl
         return TaxiRoute(fl, _zone_speeds(fl, zones, style, style.straight_in_mps), style), (x_ap, y)
 
     route, _ = build(room + 200.0)
-    par = max(room, room + 200.0 + plan.length_m - route.path.length_m)
+    least = lay.apron_link_m + lay.lead_in_m if lay.apron_turns == 0 else room
+    par = max(least, room + 200.0 + plan.length_m - route.path.length_m)
     route, par_end = build(par)
     path = route.path
     s0, s1 = path.nearest_s(x_e2, -d), path.nearest_s(*par_end)
