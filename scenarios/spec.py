@@ -105,6 +105,8 @@ SPEC: dict[str, dict[str, Key]] = {
                                 optional=True, lo=0, hi=30),
         "background_edr": Key(float, "background turbulence above 2000 ft, EDR m^2/3 s^-1; absent: drawn",
                               optional=True, lo=0.001, hi=0.1),
+        "convective_velocity_mps": Key(float, "the mixed layer's convective velocity scale w* (daytime "
+                                       "thermals; 0: none); absent: drawn", optional=True, lo=0, hi=3),
         "departure_qnh_hpa": Key(float, "the departure airport's QNH (sea-level pressure setting); absent: drawn",
                                  optional=True, lo=QNH_RANGE_HPA[0], hi=QNH_RANGE_HPA[1]),
         "arrival_qnh_hpa": Key(float, "the arrival airport's QNH; absent: drawn", optional=True,

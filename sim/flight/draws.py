@@ -50,7 +50,8 @@ class FlightDraws:
         return {"climb_vs_mps": list(self.climb_vs_mps), "takeoff_accel_target_mps2": self.takeoff_accel_target_mps2,
                 "touchdown_sink_target_mps": self.touchdown_sink_mps,
                 "surface_wind_mps": a.w20_mps, "background_edr_mid": a.edr_mid, "background_edr_upper": a.edr_upper,
-                "patch_edr": list(a.patch_edr), "departure_weather": self.departure_weather.as_dict(),
+                "patch_edr": list(a.patch_edr), "convective_velocity_mps": a.w_star_mps, "mixed_layer_depth_m": a.z_i_m,
+                "departure_weather": self.departure_weather.as_dict(),
                 "arrival_weather": self.arrival_weather.as_dict()}
 
 
@@ -74,7 +75,7 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
     if plan.touchdown_sink_mps is not None:
         sink = plan.touchdown_sink_mps
     atm = draw_atmosphere(streams.rng("turbulence/atmosphere"), plan.turbulence, w20_mps=plan.surface_wind_mps,
-                          background_edr=plan.background_edr)
+                          background_edr=plan.background_edr, w_star_mps=plan.convective_velocity_mps)
     dep = _weather(plan, plan.departure_qnh_hpa, streams.rng("weather/departure"))
     arr = _weather(plan, plan.arrival_qnh_hpa, streams.rng("weather/arrival"))
     if plan.origin.icao == plan.destination.icao and plan.arrival_qnh_hpa is None:

@@ -137,7 +137,7 @@ def fly(
     ac.set("propulsion/cutoff_cmd", 1)
     draws = draw_flight(plan, prof, streams)
     pilot = Pilot(ac, plan, prof, fdm_hz, draws, taxi)
-    gusts = GustFeed(ac, GustField(fdm_hz, streams.rng("turbulence/field")), draws.atmosphere.w20_mps, ac.index)
+    gusts = GustFeed(ac, GustField(fdm_hz, streams.rng("turbulence/field")), draws.atmosphere, ac.index)
     # JSBSim's state straight after run_ic is the requested initial condition, not yet resolved on
     # its gear: its first step moves the aircraft 0.2 m at once, and the gear then settles for about
     # 4 s (0.08 m/s, a few m/s^2). Let it settle before recording, so that the track starts truly at
