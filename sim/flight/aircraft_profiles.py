@@ -209,6 +209,10 @@ class AircraftProfile:
     # the exponential law's proportional gain: attitude change per sink-rate error, times the true
     # airspeed (rad per rad of flight-path angle; sim.flight.controllers.FLARE_EXP_INTEGRAL_PER_S)
     flare_path_gain: float = 1.5
+    # the exponential law's longest time constant (s; sim.flight.controllers.exponential_flare_tau_s):
+    # a flare entered with little sink to lose (a firm or hard landing) is held at its entry sink until
+    # h / tau_max falls under the sink it has to lose
+    flare_tau_max_s: float = 6.0
     # the share of the flare's elevator the attitude loop keeps at touchdown (sim.flight.controllers.Rollout):
     # 0 relaxes it to the loop's own (half its integrator), 1 keeps it all
     touchdown_elevator_keep: float = 0.0
@@ -474,8 +478,25 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_throttle=0.95,
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
-        flare_height_ft=50.0,
+        # the exponential flare from 80 ft, its time constant unbounded in practice (30 s); measured on
+        # route landings (gva-lhr, seeds 0-11; normal / firm / hard landings 12 / 8 / 8):
+        # - the constant-deceleration law from 50 ft ballooned near the runway and floated: 7 of 11
+        #   normal landings past 900 m (up to 1,255 m), one flare begun too late for the 787's slow
+        #   pitch response (10.6 ft/s, a failed flight; a failed firm and hard landing too);
+        # - the exponential law from 50 ft came in late (sink p90 8.6 ft/s), from 65 ft p90 5.9,
+        #   from 80 ft p90 4.5 with 1 float, but with its time constant cut to 6 s a firm or hard
+        #   landing's command is held at the approach's sink down to 6 s x (entry - target sink),
+        #   about 30 ft, too late for this type: 2 of 8 firm and 5 of 8 hard landings over 10 ft/s;
+        # - cut at 30 s the command eases from the flare height on: 0 of 8 firm and 1 of 8 hard
+        #   (10.0 ft/s against an 8.2 target) failed, normal sinks 3.48 / 4.74 / 4.93 ft/s (median,
+        #   p90, max), 4 of 12 past 900 m (up to 1,148 m); at 10 s, 4 of 8 hard landings failed.
+        # On 12 other seeds (12-23), constant deceleration -> this: sink 3.10 / 4.10 / 4.80 ->
+        # 3.15 / 4.39 / 5.82 ft/s, past 900 m 9 -> 6 of 12. The floats left come from the long
+        # flare (13 s from 80 ft) and an approach flown about 10 kt above its target speed
+        flare_height_ft=80.0,
         flare_pitch_kp=4.0,
+        flare_tau_max_s=30.0,
+        flare_law="exponential",
         # WRAP B788
         climb=ClimbSchedule(Spread(9.58, 1.38, 7.32, 11.85), Spread(9.02, 1.77, 6.12, 11.93),
                             Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68),

@@ -415,7 +415,10 @@ class Flare(Controller):
       landings, seeds 16-39: touchdown sink median / p90 / max 3.63 / 5.35 / 6.37 ft/s, 1.87 ft/s over
       the drawn targets; 1,135 m past the threshold at worst); with this law 3.08 / 3.83 / 5.05 ft/s,
       0.74 ft/s over, 799 m at worst; hard landings (7-9.5 ft/s targets) 0.41 ft/s over, 8 of 8 under
-      the 10 ft/s limit. On the A320 the same law flared too little (its flare is
+      the 10 ft/s limit. The 787-8 flies it too, from 80 ft and with its time constant unbounded
+      in practice (its profile's comment has the measurements): under the constant deceleration it
+      ballooned and floated past 900 m in 16 of 23 route landings and one flare came in at 10.6 ft/s.
+      On the A320 the same law flared too little (its flare is
       shorter and its lift answers the attitude more slowly: median 6.5 ft/s on 16 landings, against
       3.7 with the constant deceleration), so each type keeps the law that lands it best.
     """
@@ -425,7 +428,7 @@ class Flare(Controller):
         self.theta_cmd = self.theta_0 = x[ix["theta_rad"]]
         self.sink_0 = x[ix["v_down_mps"]]
         self.tau_s = exponential_flare_tau_s(x[ix["agl_m"]] - prof.cg_height_m, self.sink_0,
-                                             self.ap.draws.touchdown_sink_mps)
+                                             self.ap.draws.touchdown_sink_mps, prof.flare_tau_max_s)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
 
     def _rate_decel(self, x, gear_h_m: float, sink: float, target: float) -> float:
@@ -484,14 +487,16 @@ class Flare(Controller):
             p.fire("touchdown")
 
 
-def exponential_flare_tau_s(gear_height_m: float, sink_mps: float, touchdown_sink_mps: float) -> float:
+def exponential_flare_tau_s(gear_height_m: float, sink_mps: float, touchdown_sink_mps: float,
+                            tau_max_s: float) -> float:
     """The exponential flare's time constant (s), set at the flare height: the one whose command
     v_td + h / tau equals the sink rate there, so the flare begins without a jump in the command,
-    within FLARE_TAU_MIN_S-FLARE_TAU_MAX_S (a flare entered at or below the touchdown sink: the longest)."""
+    within FLARE_TAU_MIN_S-``tau_max_s`` (the type's ``flare_tau_max_s``; a flare entered at or below
+    the touchdown sink: the longest)."""
     excess = sink_mps - touchdown_sink_mps
     if excess <= 0.0:
-        return FLARE_TAU_MAX_S
-    return clamp(max(gear_height_m, 0.0) / excess, FLARE_TAU_MIN_S, FLARE_TAU_MAX_S)
+        return tau_max_s
+    return clamp(max(gear_height_m, 0.0) / excess, FLARE_TAU_MIN_S, tau_max_s)
 
 
 def exponential_flare_sink_cmd_mps(gear_height_m: float, touchdown_sink_mps: float, tau_s: float,
@@ -519,14 +524,14 @@ FLARE_MIN_H_M = 0.3  # the guidance's height floor (a_req stays finite at contac
 FLARE_HOLD_PER_S = 1.0  # below the aim height: upward acceleration per m/s of sink above the target
 FLARE_PITCH_UP_RADPS = math.radians(3.0)  # the flare's attitude command moves at most this fast up
 FLARE_PITCH_DOWN_RADPS = math.radians(2.0)  # and down
-# the exponential flare (Flare): its time constant's bounds (a 40-70 ft flare height and 8-12 ft/s of
-# sink above the target give 3-9 s; the longest flares are cut to 6 s); the integral's rate per second relative to the proportional gain (the
-# profile's flare_path_gain) and its largest share of the attitude. Chosen on 16 pattern landings of the
+# the exponential flare (Flare): its time constant's lower bound (a 40-80 ft flare height and 8-12 ft/s
+# of sink above the target give 3-9 s; the upper bound is the type's flare_tau_max_s); the integral's
+# rate per second relative to the proportional gain (the profile's flare_path_gain) and its largest
+# share of the attitude. Chosen on 16 pattern landings of the
 # 737 (seeds 0-15) among proportional gains 1.0-2.5 and integral rates 0.1-0.6 /s: a gain of 2.5, or an
 # integral rate of 0.6, oscillated into 7-9 ft/s touchdowns (three of them over the 10 ft/s limit);
 # 1.0-2.0 with 0.1-0.15 gave medians of 2.2-2.5 ft/s and at most 4.0-5.2 ft/s
 FLARE_TAU_MIN_S = 1.5
-FLARE_TAU_MAX_S = 6.0
 FLARE_EXP_INTEGRAL_PER_S = 0.15
 FLARE_EXP_INTEGRAL_MAX_RAD = math.radians(3.0)
 FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far above the runway (the lag)

@@ -10,19 +10,21 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.sim.flight.controllers import (
-    FLARE_TAU_MAX_S,
     FLARE_TAU_MIN_S,
     exponential_flare_sink_cmd_mps,
     exponential_flare_tau_s,
 )
 from flightmode.units import FPS_MPS
 
+FLARE_TAU_MAX_S = get_profile("737").flare_tau_max_s  # 6 s
+
 
 @pytest.mark.parametrize(("h0_ft", "sink0_fps", "td_fps"), [(50.0, 11.0, 2.0), (40.0, 12.5, 1.3), (50.0, 13.5, 3.0)])
 def test_the_path_meets_the_runway_at_the_touchdown_sink_when_the_closed_form_says(h0_ft, sink0_fps, td_fps):
     h0, v0, vtd = h0_ft * 0.3048, sink0_fps * FPS_MPS, td_fps * FPS_MPS
-    tau = exponential_flare_tau_s(h0, v0, vtd)
+    tau = exponential_flare_tau_s(h0, v0, vtd, FLARE_TAU_MAX_S)
     assert FLARE_TAU_MIN_S < tau < FLARE_TAU_MAX_S  # these approaches are inside the bounds (3.6-5.6 s)
     # no jump at the flare height: the command there is the sink the aircraft has
     assert exponential_flare_sink_cmd_mps(h0, vtd, tau, v0) == pytest.approx(v0, rel=1e-12)
@@ -43,7 +45,7 @@ def test_a_hard_landing_is_never_asked_for_more_sink_than_its_approach():
     # a 9 ft/s target from a 10.5 ft/s approach at 55 ft: tau at its longest, and the exponential
     # path alone would ask for 9 + 55 / 6 = 18 ft/s at the flare height
     h0, v0, vtd = 55.0 * 0.3048, 10.5 * FPS_MPS, 9.0 * FPS_MPS
-    tau = exponential_flare_tau_s(h0, v0, vtd)
+    tau = exponential_flare_tau_s(h0, v0, vtd, FLARE_TAU_MAX_S)
     assert tau == FLARE_TAU_MAX_S
     h = np.linspace(h0, 0.0, 200)
     cmd = np.array([exponential_flare_sink_cmd_mps(x, vtd, tau, v0) for x in h])
@@ -51,9 +53,29 @@ def test_a_hard_landing_is_never_asked_for_more_sink_than_its_approach():
     assert np.all(np.diff(cmd) <= 0.0)  # the command only ever eases as the runway nears
     # an approach already at or below its target sink: the longest tau, and the command is the target
     # all the way down (no push towards more sink than the landing asks for)
-    assert exponential_flare_tau_s(h0, 2.0 * FPS_MPS, 2.5 * FPS_MPS) == FLARE_TAU_MAX_S
+    assert exponential_flare_tau_s(h0, 2.0 * FPS_MPS, 2.5 * FPS_MPS, FLARE_TAU_MAX_S) == FLARE_TAU_MAX_S
     for x in (h0, 1.0, 0.0):
         assert exponential_flare_sink_cmd_mps(x, 2.5 * FPS_MPS, FLARE_TAU_MAX_S, 2.0 * FPS_MPS) == 2.5 * FPS_MPS
+
+
+def test_a_long_time_constant_eases_a_hard_landing_from_the_flare_height():
+    # the 787's hard landing: 13 ft/s at 80 ft, an 8 ft/s target. With tau cut to 6 s the command is
+    # held at the entry sink down to h = 6 s x 5 ft/s = 30 ft (where v_td + h / tau meets the cap),
+    # too late for the type's pitch response; under the 787's own bound (30 s) tau = 80 / 5 = 16 s
+    # and the command eases from the flare height on
+    h0, v0, vtd = 80.0 * 0.3048, 13.0 * FPS_MPS, 8.0 * FPS_MPS
+    short = exponential_flare_tau_s(h0, v0, vtd, FLARE_TAU_MAX_S)
+    assert short == FLARE_TAU_MAX_S
+    held_below_m = short * (v0 - vtd)
+    assert held_below_m == pytest.approx(30.0 * 0.3048, rel=1e-12)
+    assert exponential_flare_sink_cmd_mps(held_below_m + 0.01, vtd, short, v0) == v0  # still held
+    assert exponential_flare_sink_cmd_mps(held_below_m - 0.01, vtd, short, v0) < v0  # easing
+    tau_787 = get_profile("787-8").flare_tau_max_s
+    long = exponential_flare_tau_s(h0, v0, vtd, tau_787)
+    assert long == pytest.approx(h0 / (v0 - vtd), rel=1e-12) and long < tau_787
+    h = np.linspace(h0, 0.0, 200)
+    cmd = np.array([exponential_flare_sink_cmd_mps(x, vtd, long, v0) for x in h])
+    assert cmd[0] == pytest.approx(v0, rel=1e-12) and np.all(np.diff(cmd) < 0.0)  # eases at once, all the way
 
 
 def test_an_unknown_flare_law_is_refused_when_the_profile_is_made():
