@@ -125,8 +125,10 @@ def test_the_nose_is_flown_down_after_the_mains_not_dropped(fly_cached):
     mains on an A320 (a cabin-floor landing-shock record, Irvine, vibrationdata); the pilot lowers the
     nose over that time. The pattern 737 touches down at about 3 deg: lowered at (3 - 1) / 3.5 deg/s
     with the attitude loop's lag of about a second, its nose reaches the ground attitude 1.5-6 s after
-    the mains and never pitches down faster than 2 deg/s. Before the 737 kept its flare elevator, its
-    nose fell in 0.8 s at 3 deg/s."""
+    the mains and never pitches down as fast as a dropped nose does. Before the 737 kept its flare
+    elevator, its nose fell in 0.8-1.9 s at 3-4 deg/s; flown down, 8 pattern landings gave
+    0.9-2.6 deg/s at most (the rate grows as the nose wheels near the runway), so 2.8 deg/s divides
+    the two (this flight: 2.04 deg/s since the taxi calibration and the convective layer)."""
     sc, tr = fly_cached("pattern")
     th = np.degrees(tr.euler_rad[:, 1])
     t_td = tr.event_time("touchdown")
@@ -136,4 +138,4 @@ def test_the_nose_is_flown_down_after_the_mains_not_dropped(fly_cached):
     k = i0 + int(np.argmax(th[i0:] < ground + 0.3))  # within 0.3 deg of it (the struts' pitch wobble)
     assert 1.5 <= tr.t_s[k] - t_td <= 6.0
     q_dps = np.gradient(th, tr.t_s)[i0 : k + 1]
-    assert q_dps.min() > -2.0
+    assert q_dps.min() > -2.8
