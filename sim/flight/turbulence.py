@@ -156,11 +156,13 @@ class GustField:
         self.state[:] = 0.0
 
     def block(self, h_agl_m: float, tas_mps: float, heading_rad: float, sigma_high_mps: float,
-              w20_mps: float, w_star_mps: float = 0.0, z_i_m: float = 1000.0) -> np.ndarray:
-        """(block_steps, 3) gust velocity, north/east/down, m/s."""
+              atmosphere: Atmosphere) -> np.ndarray:
+        """(block_steps, 3) gust velocity, north/east/down, m/s, in the flight's drawn ``atmosphere``
+        (its surface wind and mixed layer)."""
         from scipy.signal import lfilter
 
-        lu, lw, su, sw = dryden_parameters(h_agl_m, sigma_high_mps, w20_mps, w_star_mps, z_i_m)
+        lu, lw, su, sw = dryden_parameters(h_agl_m, sigma_high_mps, atmosphere.w20_mps, atmosphere.w_star_mps,
+                                           atmosphere.z_i_m)
         v = max(tas_mps, 10.0)
         t = self.dt
         # Yeager (1998) eq. 30-32: u first-order in tau_u; v and w with 2 T / tau
@@ -196,8 +198,7 @@ class GustFeed:
     def __init__(self, ac, field: GustField, atmosphere: Atmosphere, ix: dict):
         self.nodes = [ac._node(p) for p in self.PROPS]
         self.set = type(self.nodes[0]).set_double_value
-        self.field, self.ix = field, ix
-        self.w20, self.w_star, self.z_i = atmosphere.w20_mps, atmosphere.w_star_mps, atmosphere.z_i_m
+        self.field, self.atmosphere, self.ix = field, atmosphere, ix
         self.buffer: tuple[list[float], list[float], list[float]] = ([], [], [])  # ft/s, north, east, down
         self.pos = 0
         self.on = False
@@ -210,8 +211,8 @@ class GustFeed:
         if len(self.buffer[0]) - pos < n:
             rest = [b[pos:] for b in self.buffer]
             while len(rest[0]) < n:
-                g = self.field.block(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps, self.w20,
-                                     self.w_star, self.z_i)
+                g = self.field.block(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps,
+                                     self.atmosphere)
                 for r, col in zip(rest, (g.T / FT_M).tolist()):
                     r.extend(col)
             self.buffer, pos = tuple(rest), 0
