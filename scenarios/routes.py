@@ -96,7 +96,7 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
     except ScenarioError as e:
         raise ScenarioError(f"{e} (nearest that suit: {', '.join(ap.nearest_usable(d.lat_deg, d.lon_deg, prof.min_runway_m))})") from None
     course = float(initial_course_deg(o.lat_deg, o.lon_deg, d.lat_deg, d.lon_deg)) % 360.0
-    descent_deg = 2.8
+    descent_deg = prof.descent_angle_deg
     cruise_m = cruise_altitude_m(dist, course, prof, dep.elevation_m, arr.elevation_m, descent_deg)
     t = rng.rng("taxi")
     lo_out, hi_out = _taxi_range_m("taxi_out")

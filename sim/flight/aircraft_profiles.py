@@ -218,6 +218,12 @@ class AircraftProfile:
     touchdown_elevator_keep: float = 0.0
     # maximum operating altitude (type certificate data sheet): the highest step climb (sim.flight.step_climb)
     ceiling_ft: float = 37_000.0
+    # the descent path's angle from cruise to the glideslope on flights between any two airports
+    # (flightmode.scenarios.routes; a scenario file sets its own). One geometric path: the vertical rate
+    # is the ground speed times its tangent, about 11.7 m/s at 2.8 deg in the constant-Mach band (240 m/s)
+    # and 9-10 m/s at constant CAS, inside WRAP's A320 / B737 / B788 ranges (-13.1 to -14.2 m/s at most
+    # at constant Mach, default -9.1 to -10.0 at constant CAS)
+    descent_angle_deg: float = 2.8
     # flights between any two airports (flightmode.scenarios.routes): the type's usual cruise level
     # and Mach (OpenAP WRAP ``cruise_alt`` / ``cruise_mach`` defaults where WRAP has the type), its
     # range (OpenAP ``prop.aircraft`` "cruise.range"), and the shortest paved runway it is sent to
@@ -400,6 +406,11 @@ PROFILES: dict[str, AircraftProfile] = {
         range_km=2400.0,  # Fokker 100 standard range, about 1,300 NM (manufacturer's brochure)
         min_runway_m=1800.0,  # Fokker 100 airport planning take-off field length at MTOW
         wrap_type="E190",
+        # 2.5 deg: WRAP E190's constant-Mach descent is at most 11.8 m/s, which 2.8 deg exceeds at the
+        # F100's 230-250 m/s ground speeds in cruise winds (12.1-12.9 m/s on 6 of 10 european-trio
+        # routes); at 2.5 deg the same ten flights descend at 9.6-11.5 m/s there and at 8.9-9.1 m/s at
+        # constant CAS, on WRAP E190's default of 9.1 (the built-in hel-zrh-f100 flies 2.5 deg too)
+        descent_angle_deg=2.5,
         rotate_elevator=0.1,  # a light, pitch-sensitive model: a gentle pull (nz < 1.3 g)
         n_engines=2,
         length_m=35.5,

@@ -114,6 +114,28 @@ def test_scenario_between_is_a_valid_deterministic_scenario():
     assert Scenario.from_toml_text(a.to_toml()) == a
 
 
+@pytest.mark.parametrize("model", ["A320", "737", "fokker100", "787-8"])
+def test_a_routes_descent_angle_is_its_types_and_keeps_the_mach_band_inside_wrap(model):
+    """A flight between two airports descends on its type's path angle (profile descent_angle_deg).
+    On one geometric path the vertical rate is the ground speed times the angle's tangent, largest
+    in the constant-Mach band: at WRAP's descent Mach at its crossover altitude (ISA speed of sound),
+    with a 40 kt (20 m/s) tailwind, it must stay under WRAP's largest constant-Mach descent rate for
+    the type (the F100's 2.8 deg did not: 12.4 m/s against E190's 11.8; flown, 6 of 10 routes over)."""
+    from openap import WRAP
+
+    from flightmode.sim.flight import atmosphere
+
+    prof = get_profile(model)
+    sc = scenario_between("LFPG", "LEMD", model, seed=4)
+    assert sc.plan.descent_angle_deg == prof.descent_angle_deg
+    w = WRAP(prof.wrap_type)
+    h_cross_m = float(w.descent_cross_alt_conmach()["default"]) * 1e3
+    a_mps = math.sqrt(1.4 * 287.05 * float(atmosphere.temperature_k(h_cross_m)))
+    gs_mps = float(w.descent_const_mach()["default"]) * a_mps + 20.0
+    vs_mps = gs_mps * math.tan(math.radians(sc.plan.descent_angle_deg))
+    assert vs_mps < -float(w.descent_vs_conmach()["minimum"])
+
+
 def test_cli_pair_options_go_together():
     from typer.testing import CliRunner
 
