@@ -408,7 +408,8 @@ NASA_COCKPIT_G = 0.4  # Morris and Hall (NASA, 1965): runway acceptable while th
 
 def ground_roughness_g(track, lever_arm_m=(0.0, 0.0, 0.0)) -> dict[str, np.ndarray]:
     """The vertical load-factor increment (g, quasi-static part below 0.2 Hz removed) at a point of the
-    airframe, per ground window: the takeoff roll (brake release to 8 s before liftoff: no rotation),
+    airframe, per ground window: the takeoff roll (brake release to the rotation, or to 8 s before
+    liftoff on a track without its rotate event: the rotation's pitching is not the runway's),
     the rollout (8 s after touchdown on: the nose wheel down), both above 10 m/s, and taxiing above
     3 m/s."""
     from scipy.signal import butter, sosfiltfilt
@@ -418,8 +419,10 @@ def ground_roughness_g(track, lever_arm_m=(0.0, 0.0, 0.0)) -> dict[str, np.ndarr
     fz = -track.specific_force_at(lever_arm_m)[:, 2] / G0_MPS2
     dn = sosfiltfilt(butter(2, 0.2, "high", fs=track.fs_hz, output="sos"), fz)
     t, ph, gs = track.t_s, track.phase, track.ground_speed_mps
+    ev = {e.name: e.t_s for e in track.events}
+    roll_end = ev.get("rotate", track.event_time("liftoff") - 8.0)
     win = {
-        "takeoff_roll": (ph == "takeoff_roll") & (gs > 10.0) & (t < track.event_time("liftoff") - 8.0),
+        "takeoff_roll": (ph == "takeoff_roll") & (gs > 10.0) & (t < roll_end),
         "rollout": (ph == "rollout") & (gs > 10.0) & (t > track.event_time("touchdown") + 8.0),
         "taxi": np.isin(ph, ["taxi_out", "taxi_in"]) & (gs > 3.0),
     }

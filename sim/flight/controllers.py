@@ -204,6 +204,13 @@ class TaxiOut(Taxi):
             self.p.fire("lined_up")
 
 
+# The rotation's nose-up elevator bias is applied over this time, not at once: a step of it pitched the
+# A320 and the 787-8 up at 11-17 deg/s^2 (0.36-0.53 g at the cockpit, at 40 % of the length ahead of
+# the CG), where a smooth rotation toward 2-3 deg/s of pitch rate (Boeing 737 FCTM, Airbus A320 FCTM)
+# takes about a second to build it (a few deg/s^2)
+ROTATE_RAMP_S = 1.5
+
+
 class TakeoffRoll(Controller):
     def enter(self, x) -> None:
         ap = self.ap
@@ -220,6 +227,8 @@ class TakeoffRoll(Controller):
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
         ap.pitch_pid.reset()
         self.rotating = False
+        self.t_rotate = None
+        self.bias = 0.0  # the rotation's elevator bias (ramped in: ROTATE_RAMP_S)
 
     def tick(self, x) -> None:
         ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
@@ -229,10 +238,13 @@ class TakeoffRoll(Controller):
         if ias >= prof.vr_kt * KT_MPS:
             if not self.rotating:
                 self.rotating = True
+                self.t_rotate = p.t
                 p.event("rotate", f"{ias / KT_MPS:.0f} kt")
             ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(prof.rotate_pitch_deg), math.radians(3.0) * ap.dt)
-            # nose-up elevator bias while the mains still carry the aircraft (rotation)
-            ap.pitch_to(x, ap.theta_cmd, bias=prof.rotate_elevator)
+            # nose-up elevator bias while the mains still carry the aircraft (rotation), applied
+            # smoothly (ROTATE_RAMP_S)
+            self.bias = prof.rotate_elevator * min(1.0, (p.t - self.t_rotate) / ROTATE_RAMP_S)
+            ap.pitch_to(x, ap.theta_cmd, bias=self.bias)
         else:
             ap.ac.set("fcs/elevator-cmd-norm", 0.0)
         if x[ix["wow"]] < 0.5 and x[ix["agl_m"]] > prof.cg_height_m + 1.0:
@@ -241,7 +253,7 @@ class TakeoffRoll(Controller):
             ap.steer(0.0)
             ap.ac.set("fcs/rudder-cmd-norm", 0.0)
             # hand the rotation bias over to the pitch integrator so the elevator does not jump
-            ap.pitch_pid.integral += prof.rotate_elevator / ap.pitch_pid.ki
+            ap.pitch_pid.integral += self.bias / ap.pitch_pid.ki
             ap.climb_spd_pid.reset(integral=x[ix["theta_rad"]] / ap.climb_spd_pid.ki)
             p.fire("liftoff")
 

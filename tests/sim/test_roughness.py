@@ -251,11 +251,11 @@ def _increments_g(tr, lever_arm_m=(0.0, 0.0, 0.0)) -> np.ndarray:
 
 
 def _windows(tr) -> dict[str, np.ndarray]:
-    """Rolling on the runway (brake release to 8 s before liftoff: no rotation; 8 s after touchdown
-    on: the nose wheel down) and taxiing, above walking pace."""
+    """Rolling on the runway (brake release to the rotation: its pitching is not the runway's; 8 s
+    after touchdown on: the nose wheel down) and taxiing, above walking pace."""
     t, ph, gs = tr.t_s, tr.phase, tr.ground_speed_mps
     return {
-        "takeoff_roll": (ph == "takeoff_roll") & (gs > 10.0) & (t < tr.event_time("liftoff") - 8.0),
+        "takeoff_roll": (ph == "takeoff_roll") & (gs > 10.0) & (t < tr.event_time("rotate")),
         "rollout": (ph == "rollout") & (gs > 10.0) & (t > tr.event_time("touchdown") + 8.0),
         "taxi": np.isin(ph, ["taxi_out", "taxi_in"]) & (gs > 3.0),
     }
