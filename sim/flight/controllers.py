@@ -226,8 +226,7 @@ class TakeoffRoll(Controller):
         ap.throttle(thr)
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
         ap.pitch_pid.reset()
-        self.rotating = False
-        self.t_rotate = None
+        self.t_rotate = None  # when the rotation began (Vr)
         self.bias = 0.0  # the rotation's elevator bias (ramped in: ROTATE_RAMP_S)
 
     def tick(self, x) -> None:
@@ -236,8 +235,7 @@ class TakeoffRoll(Controller):
         ias = x[ix["ias_mps"]]
         ap.bank_to(x, 0.0)
         if ias >= prof.vr_kt * KT_MPS:
-            if not self.rotating:
-                self.rotating = True
+            if self.t_rotate is None:
                 self.t_rotate = p.t
                 p.event("rotate", f"{ias / KT_MPS:.0f} kt")
             ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(prof.rotate_pitch_deg), math.radians(3.0) * ap.dt)

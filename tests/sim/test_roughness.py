@@ -16,11 +16,12 @@ from itertools import pairwise
 
 import numpy as np
 import pytest
-from scipy.signal import butter, csd, sosfiltfilt, welch
+from scipy.signal import csd, welch
 
 from flightmode.errors import AircraftError, ScenarioError
+from flightmode.scenarios.validate import ground_roughness_g
 from flightmode.sim.flight import roughness as R
-from flightmode.units import FT_M, G0_MPS2, LBF_N
+from flightmode.units import FT_M, LBF_N
 
 N_LONG = 2**18  # 26 km of profile: 127 Welch segments of 410 m
 NPERSEG = 4096
@@ -243,31 +244,14 @@ def test_a_stopped_aircraft_rocking_on_its_struts_comes_to_rest_on_its_own_gear(
 
 
 # --------------------------------------------------------------------------- on a flown flight
-def _increments_g(tr, lever_arm_m=(0.0, 0.0, 0.0)) -> np.ndarray:
-    """Vertical load-factor increment (g) at a point: the specific force's body z, up positive, with
-    its quasi-static part (below 0.2 Hz: thrust, braking, the pitch of rotation) removed."""
-    fz = -tr.specific_force_at(lever_arm_m)[:, 2] / G0_MPS2
-    return sosfiltfilt(butter(2, 0.2, "high", fs=tr.fs_hz, output="sos"), fz)
-
-
-def _windows(tr) -> dict[str, np.ndarray]:
-    """Rolling on the runway (brake release to the rotation: its pitching is not the runway's; 8 s
-    after touchdown on: the nose wheel down) and taxiing, above walking pace."""
-    t, ph, gs = tr.t_s, tr.phase, tr.ground_speed_mps
-    return {
-        "takeoff_roll": (ph == "takeoff_roll") & (gs > 10.0) & (t < tr.event_time("rotate")),
-        "rollout": (ph == "rollout") & (gs > 10.0) & (t > tr.event_time("touchdown") + 8.0),
-        "taxi": np.isin(ph, ["taxi_out", "taxi_in"]) & (gs > 3.0),
-    }
-
-
+# the vertical increments and ground windows are validate's (ground_roughness_g): the takeoff roll to
+# the rotation, the rollout from 8 s after touchdown, taxiing above walking pace
 def test_the_runway_roll_is_the_roughest_ground_phase(fly_cached):
     """RMS vertical load factor at the CG: the takeoff roll and the rollout (40-80 m/s) shake more
     than taxiing (5-10 m/s) on the same class of surface, and stay at a few hundredths of g, as on a
     good runway (module docstring of flightmode.sim.flight.roughness)."""
     _, tr = fly_cached("pattern")
-    dn = _increments_g(tr)
-    rms = {name: float(np.sqrt(np.mean(dn[sel] ** 2))) for name, sel in _windows(tr).items()}
+    rms = {name: float(np.sqrt(np.mean(dn**2))) for name, dn in ground_roughness_g(tr).items()}
     assert rms["takeoff_roll"] > 1.5 * rms["taxi"] and rms["rollout"] > 1.5 * rms["taxi"], rms
     for name in ("takeoff_roll", "rollout"):
         assert 0.005 < rms[name] < 0.06, rms
@@ -281,7 +265,7 @@ def test_cockpit_stays_within_the_nasa_criterion(fly_cached):
 
     _, tr = fly_cached("pattern")
     cockpit = (0.4 * get_profile(tr.aircraft).length_m, 0.0, 0.0)
-    dn_ck, dn_cg = _increments_g(tr, cockpit), _increments_g(tr)
-    for name, sel in _windows(tr).items():
-        assert np.abs(dn_ck[sel]).max() < 0.4, name
-        assert np.abs(dn_cg[sel]).max() < 0.4, name
+    dn_ck, dn_cg = ground_roughness_g(tr, cockpit), ground_roughness_g(tr)
+    for name in dn_cg:
+        assert np.abs(dn_ck[name]).max() < 0.4, name
+        assert np.abs(dn_cg[name]).max() < 0.4, name
