@@ -269,6 +269,7 @@ class AircraftProfile:
     elevator_nose_up_deg: float | None = None  # extends the model's elevator travel (sim.flight.model_edits)
     spread_spoiler_lift: bool = False  # the ground spoilers' lift loss over their whole travel (sim.flight.model_edits)
     add_ground_spoilers: bool = False  # ground spoilers for a model without them (sim.flight.model_edits)
+    nose_side_friction: float | None = None  # sets the nose tyre's side-force peak (sim.flight.model_edits)
     tuning: PilotTuning = field(default_factory=PilotTuning)
 
 
@@ -336,12 +337,8 @@ PROFILES: dict[str, AircraftProfile] = {
         range_km=5000.0,  # OpenAP prop A320
         min_runway_m=2100.0,  # Airbus A320 Aircraft Characteristics, Airport and Maintenance Planning
         wrap_type="A320",
-        # the JSBSim A320's nose wheel turns the aircraft slowly: whatever the steering angle, the yaw rate
-        # builds at 1.7 deg/s^2 at most (measured at 3-7 m/s), more slowly beyond 20 deg (the tyre
-        # skids), where the 737's reaches 6 deg/s^2. Its turns are flown at the lower half of the
-        # ADS-B yaw-rate maxima (4.8-9.1 deg/s), steered earlier and at most 30 deg.
-        tuning=PilotTuning(taxi_yaw_rate_max_dps=(5.0, 7.0), taxi_lookahead_s=5.0, taxi_max_steer_deg=30.0,
-                           taxi_brake_mps2=4.2),
+        tuning=PilotTuning(taxi_brake_mps2=4.2),
+        nose_side_friction=0.8,  # the stock 0.5 let the nose wheel turn it at 1.7-2.1 deg/s^2 (sim.flight.model_edits)
         rotate_elevator=0.6,
         elevator_nose_up_deg=35.0,  # no trimmable stabiliser in the model (sim.flight.model_edits)
         n_engines=2,
