@@ -130,7 +130,7 @@ def test_a_routes_descent_angle_is_its_types_and_keeps_the_mach_band_inside_wrap
     assert sc.plan.descent_angle_deg == prof.descent_angle_deg
     w = WRAP(prof.wrap_type)
     h_cross_m = float(w.descent_cross_alt_conmach()["default"]) * 1e3
-    a_mps = math.sqrt(1.4 * 287.05 * float(atmosphere.temperature_k(h_cross_m)))
+    a_mps = math.sqrt(1.4 * atmosphere.R_AIR * float(atmosphere.temperature_k(h_cross_m)))  # gamma 1.4, dry air
     gs_mps = float(w.descent_const_mach()["default"]) * a_mps + 20.0
     vs_mps = gs_mps * math.tan(math.radians(sc.plan.descent_angle_deg))
     assert vs_mps < -float(w.descent_vs_conmach()["minimum"])
