@@ -500,7 +500,9 @@ PROFILES: dict[str, AircraftProfile] = {
         #   p90, max), 4 of 12 past 900 m (up to 1,148 m); at 10 s, 4 of 8 hard landings failed.
         # On 12 other seeds (12-23), constant deceleration -> this: sink 3.10 / 4.10 / 4.80 ->
         # 3.15 / 4.39 / 5.82 ft/s, past 900 m 9 -> 6 of 12. The floats left come from the long
-        # flare (13 s from 80 ft) and an approach flown about 10 kt above its target speed
+        # flare (13 s from 80 ft) and a fast, heavy approach: on short routes the 50 t fuel floor
+        # (fuel_kg) lands it at about 177 t, above the 787-8's 172 t maximum landing mass, and its
+        # mass-scaled Vapp (autopilot.vapp_mps) is then 158 kt, 13 kt over vapp_kt (flown on target)
         flare_height_ft=80.0,
         flare_pitch_kp=4.0,
         flare_tau_max_s=30.0,
