@@ -85,7 +85,8 @@ class Scenario:
             waypoints=tuple((lat, lon) for lat, lon in v["route"]["waypoints"]),
             turbulence=tuple(TurbulenceSegment(t["start_s"], t["duration_s"], t["severity"], t["edr"])
                              for t in v["turbulence"]),
-            descent_angle_deg=v["descent"]["angle_deg"], glideslope_deg=v["approach"]["glideslope_deg"],
+            descent_angle_deg=_descent_angle_deg(v["descent"]["angle_deg"], s["aircraft"]),
+            glideslope_deg=v["approach"]["glideslope_deg"],
             approach_fix_nm=v["approach"]["fix_nm"], autobrake_decel_mps2=v["landing"]["autobrake_decel_mps2"],
             post_shutdown_s=v["shutdown"]["post_shutdown_s"], fdm_hz=s["fdm_hz"],
             landing_quality=v["landing"]["quality"],
@@ -228,6 +229,15 @@ class Scenario:
                                     f"allowed: {', '.join(allowed)}, or 'section.key'")
         src = self.source if self.source.endswith(" (replaced)") else f"{self.source} (replaced)"
         return Scenario.from_doc(doc, src)
+
+
+def _descent_angle_deg(angle_deg: float | None, aircraft: str) -> float:
+    """The scenario's descent path angle, or its aircraft type's when the file gives none."""
+    if angle_deg is not None:
+        return float(angle_deg)
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+
+    return get_profile(aircraft).descent_angle_deg
 
 
 def _drop_none(d: dict[str, Any]) -> dict[str, Any]:

@@ -119,7 +119,8 @@ SPEC: dict[str, dict[str, Key]] = {
                          "unpressurised (ambient: some cargo aircraft's holds)", "pressurised", choices=HOLD_OPTIONS),
     },
     "descent": {
-        "angle_deg": Key(float, "descent path angle from cruise to the glideslope (a flight between two airports takes its type's: 2.8, the Fokker 100 2.5)", 2.8, lo=1.5, hi=4.0),
+        "angle_deg": Key(float, "descent path angle from cruise to the glideslope; absent: the aircraft type's "
+                         "(2.8, the Fokker 100 2.5)", optional=True, lo=1.5, hi=4.0),
     },
     "approach": {
         "glideslope_deg": Key(float, "ILS glideslope angle", 3.0, lo=2.5, hi=4.0),

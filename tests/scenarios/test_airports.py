@@ -136,6 +136,22 @@ def test_a_routes_descent_angle_is_its_types_and_keeps_the_mach_band_inside_wrap
     assert vs_mps < -float(w.descent_vs_conmach()["minimum"])
 
 
+def test_a_scenario_file_without_a_descent_angle_takes_its_types():
+    """[descent] angle_deg absent: the aircraft type's angle (the Fokker 100's 2.5 deg, the others'
+    2.8), written back explicitly so the file round-trips."""
+    import re
+
+    from flightmode.scenarios.scenario import Scenario
+
+    text = re.sub(r"\[descent\]\nangle_deg = [0-9.]+\n", "", Scenario.builtin("pattern").to_toml())
+    assert "[descent]" not in text
+    for model in ("737", "fokker100"):
+        sc = Scenario.from_toml_text(text.replace('aircraft = "737"', f'aircraft = "{model}"'), model)
+        assert sc.plan.descent_angle_deg == get_profile(model).descent_angle_deg
+        assert Scenario.from_toml_text(sc.to_toml(), "again") == sc
+    assert get_profile("fokker100").descent_angle_deg == 2.5 and get_profile("737").descent_angle_deg == 2.8
+
+
 def test_cli_pair_options_go_together():
     from typer.testing import CliRunner
 
