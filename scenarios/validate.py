@@ -180,12 +180,14 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
     bands = (("below the CAS crossover", 1500 * FT_M, x_cas, "climb_vs_pre_concas"),
              ("at constant CAS", x_cas, x_mach, "climb_vs_concas"),
              ("at constant Mach", x_mach, None, "climb_vs_conmach"))
-    cruise_m = float(m["cruise_alt_m"]) - plan.origin.elevation_m
     climb = np.isin(track.phase, ("initial_climb", "climb"))
     tc, hc = t[climb], h[climb]
+    # the climb's top: its first level (a long haul's step climbs come later, in the cruise, and lift
+    # the median cruise altitude above it: measured to there, the constant-Mach band was never crossed)
+    top_m = float(hc.max()) if hc.size else 0.0
     for label, h0, h1, name in bands:
-        # the last 1,000 ft below the cruise level are the level-off, not the band's climb
-        h1 = min(h1, cruise_m - 1000 * FT_M) if h1 is not None else cruise_m - 1000 * FT_M
+        # the last 1,000 ft below the level are the level-off, not the band's climb
+        h1 = min(h1, top_m - 1000 * FT_M) if h1 is not None else top_m - 1000 * FT_M
         if hc.size == 0 or h1 - h0 < 1000 * FT_M:
             continue
         out.append(Check("climb", f"climb rate {label}", "m/s", _mean_rate_between(tc, hc, h0, h1),
@@ -196,6 +198,7 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
     if route_m >= CRUISE_CHECK_MIN_ROUTE_M:
         out.append(Check("cruise", "cruise altitude", "km", m["cruise_alt_m"] / 1e3, *_wrap_range(w, "cruise_alt"), src,
                          f"set by the scenario; route {route_m / 1e3:,.0f} km"))
+    cruise_m = float(m["cruise_alt_m"]) - plan.origin.elevation_m
     hd = track.alt_m - plan.destination.elevation_m
     xd_mach = float(w.descent_cross_alt_conmach()["default"]) * 1e3
     xd_cas = float(w.descent_cross_alt_concas()["default"]) * 1e3
@@ -406,18 +409,23 @@ def turbulence_checks(track) -> list[Check]:
 NASA_COCKPIT_G = 0.4  # Morris and Hall (NASA, 1965): runway acceptable while the cockpit stays within +-0.4 g
 
 
-def ground_roughness_g(track, lever_arm_m=(0.0, 0.0, 0.0)) -> dict[str, np.ndarray]:
-    """The vertical load-factor increment (g, quasi-static part below 0.2 Hz removed) at a point of the
-    airframe, per ground window: the takeoff roll (brake release to the rotation, or to 8 s before
-    liftoff on a track without its rotate event: the rotation's pitching is not the runway's),
-    the rollout (8 s after touchdown on: the nose wheel down), both above 10 m/s, and taxiing above
-    3 m/s."""
+def vertical_increment_g(track, lever_arm_m=(0.0, 0.0, 0.0)) -> np.ndarray:
+    """The vertical load-factor increment (g) at a point of the airframe over the whole track: its
+    quasi-static part below 0.2 Hz removed (zero-phase Butterworth, order 2)."""
     from scipy.signal import butter, sosfiltfilt
 
     from flightmode.units import G0_MPS2
 
     fz = -track.specific_force_at(lever_arm_m)[:, 2] / G0_MPS2
-    dn = sosfiltfilt(butter(2, 0.2, "high", fs=track.fs_hz, output="sos"), fz)
+    return sosfiltfilt(butter(2, 0.2, "high", fs=track.fs_hz, output="sos"), fz)
+
+
+def ground_roughness_g(track, lever_arm_m=(0.0, 0.0, 0.0)) -> dict[str, np.ndarray]:
+    """The vertical load-factor increment (:func:`vertical_increment_g`) at a point of the airframe,
+    per ground window: the takeoff roll (brake release to the rotation, or to 8 s before liftoff on a
+    track without its rotate event: the rotation's pitching is not the runway's), the rollout (8 s
+    after touchdown on: the nose wheel down), both above 10 m/s, and taxiing above 3 m/s."""
+    dn = vertical_increment_g(track, lever_arm_m)
     t, ph, gs = track.t_s, track.phase, track.ground_speed_mps
     ev = {e.name: e.t_s for e in track.events}
     roll_end = ev.get("rotate", track.event_time("liftoff") - 8.0)

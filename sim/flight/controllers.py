@@ -552,6 +552,9 @@ FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far abov
 # over that time (and at no less than DEROTATION_MIN_RATE)
 DEROTATION_S = 3.5
 DEROTATION_MIN_RATE = math.radians(0.5)
+# the nose gear's weight-on-wheels: the first ground contact of every profiled model is its nose gear
+# (tests/sim/test_model_edits.py checks it)
+NOSE_WOW = "gear/unit[0]/WOW"
 
 
 class Rollout(Controller):
@@ -577,6 +580,7 @@ class Rollout(Controller):
         self.derotation_rate = max((theta - math.radians(1.0)) / DEROTATION_S, DEROTATION_MIN_RATE)
         self.rev_thr = prof.reverse_throttle
         self.nose_down = False
+        self.nose_on = False
         ap.brake_pid.reset()
 
     def tick(self, x) -> None:
@@ -584,7 +588,11 @@ class Rollout(Controller):
         ap.runway_track(x, ap.dest)
         ap.ac.set("fcs/aileron-cmd-norm", 0.0)
         ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(-1.0), self.derotation_rate * ap.dt)
-        if x[ix["theta_rad"]] > math.radians(0.5):
+        # the nose is flown down until its wheels carry weight (latched), then held on the runway; a
+        # switch at a fixed attitude (0.5 deg) pushed the 787-8, whose nose wheels meet the runway at
+        # -0.4 deg, into it at 4 deg/s (2.7 g at the cockpit)
+        self.nose_on = self.nose_on or ap.ac.get(NOSE_WOW) > 0.5
+        if not self.nose_on:
             # the flare's firmer attitude loop: the stock models' noses otherwise fall at 3-6 deg/s
             ap.pitch_to(x, ap.theta_cmd, bias=prof.flare_pitch_kp * (ap.theta_cmd - x[ix["theta_rad"]]))
         else:

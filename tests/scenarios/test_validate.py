@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
 import pytest
 
 from flightmode.scenarios.validate import Check, adsb_taxi_ranges, wrap_time_to_altitude_s
@@ -138,3 +139,25 @@ def test_cli_names_a_folder_that_is_not_a_run(tmp_path):
     assert r.exit_code == 2 and "not a flight run folder" in r.output
     r = CliRunner().invoke(app, ["validate", str(tmp_path), "--paper-flight", "3"])
     assert r.exit_code == 2 and "seed 000 has flights 1 (Table 4) and 2 (Table 5)" in r.output
+
+
+@pytest.mark.slow
+def test_a_long_haul_climb_is_measured_to_its_first_level(fly_cached):
+    """lhr-jfk-787 levels at 11.9 km and steps up to about 12.5 km in the cruise, so its median cruise
+    altitude lies above the climb's top; the climb bands end 1,000 ft below that top (measured to the
+    median, the constant-Mach band was never crossed: NaN, a failed check). Every kinematic figure of
+    the long haul lies inside WRAP B788's range."""
+    from flightmode.scenarios.validate import kinematic_checks
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.flight_metrics import flight_metrics
+
+    sc, tr = fly_cached("lhr-jfk-787")
+    m = flight_metrics(tr, sc.plan)
+    climb = np.isin(tr.phase, ("initial_climb", "climb"))
+    assert m["cruise_alt_m"] > tr.alt_m[climb].max() + 300.0  # the step climbs lift the median
+    checks = kinematic_checks(tr, sc.plan, get_profile("787-8").wrap_type, m)
+    bands = [c for c in checks if c.figure.startswith("climb rate ")]
+    assert [c.figure for c in bands] == ["climb rate below the CAS crossover", "climb rate at constant CAS",
+                                         "climb rate at constant Mach"]
+    bad = [f"{c.figure}: {c.value:.4g} not in {c.anchor_text()}" for c in checks if not c.passed]
+    assert not bad, bad
