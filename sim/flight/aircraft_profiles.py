@@ -469,8 +469,8 @@ PROFILES: dict[str, AircraftProfile] = {
         # above the 787-8's 172 t maximum landing mass (OpenAP prop "mlw"), because its flare is tuned
         # at that mass. Planned as an airline would (the real type's burn, OpenAP FuelFlow("B788"): 4.6 t/h
         # over a seven-hour profile; at least 10 t), the same 20 European routes (european-trio's, one
-        # 787 each) landed at about 137 t and 3 of 20 failed in the flare (two ground contacts off the
-        # runway's side, one 10.1 ft/s landing), against 0 of 20 at this floor: retune the flare first
+        # 787 each) landed at about 137 t and 3 of 20 failed in the flare (two touchdowns 23-26 m off the
+        # centreline, one at 10.1 ft/s), against 0 of 20 at this floor: retune the flare first
         fuel_kg=50000.0,
         burn_kg_per_h=3500.0,  # measured on this model: 3.4 t per airborne hour on lhr-jfk-787 (the real 787-8: about 5.4)
         vr_kt=150.0,

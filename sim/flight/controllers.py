@@ -590,7 +590,7 @@ class Rollout(Controller):
         ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(-1.0), self.derotation_rate * ap.dt)
         # the nose is flown down until its wheels carry weight (latched), then held on the runway; a
         # switch at a fixed attitude (0.5 deg) pushed the 787-8, whose nose wheels meet the runway at
-        # -0.4 deg, into it at 4 deg/s (2.7 g at the cockpit)
+        # -0.4 deg, into it at 4 deg/s (a 1.7 g increment at the cockpit on lhr-jfk-787)
         self.nose_on = self.nose_on or ap.ac.get(NOSE_WOW) > 0.5
         if not self.nose_on:
             # the flare's firmer attitude loop: the stock models' noses otherwise fall at 3-6 deg/s
