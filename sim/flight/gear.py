@@ -22,7 +22,8 @@ Each main-gear contact (the braked ones) of the private model copy gets:
 - rebound damping as the model had it (linear): a strut damps its extension hard and must not bounce.
 
 The nose gear keeps its stock spring and gets the same quadratic damping, scaled to the weight it
-carries (:func:`soften_nose_gear`).
+carries (:func:`soften_nose_gear`); a type whose stock nose spring is too stiff for its length gets
+a softer one at the same stance (:func:`set_nose_strut`, the 787-8).
 
 The aircraft then sits lower on its gear than the stock model: the pilot measures its settled height
 after the gear has settled (:func:`flightmode.sim.flight.simulate.fly`).
@@ -126,6 +127,28 @@ def soften_nose_gear(root: ET.Element, landing_mass_kg: float) -> float:
     c2 = c2_main * (1.0 - MAIN_SHARE) / (MAIN_SHARE / len(mains))
     _set_damper(nose_gear(root), c2)
     return c2
+
+
+def set_nose_strut(root: ET.Element, landing_mass_kg: float, static_deflection_m: float) -> float:
+    """Give the model's nose gear a spring of ``static_deflection_m`` under its share (1 - ``MAIN_SHARE``)
+    of the reference landing weight, in place, and lower its contact point by the added deflection, so
+    the aircraft stands at the stock model's attitude at that weight (a longer strut with a longer
+    stroke). For a model whose stock nose spring is too stiff for its length (aircraft_profiles
+    ``nose_static_deflection_m``). Returns the spring (lbf/ft)."""
+    nose = nose_gear(root)
+    spring = nose.find("spring_coeff")
+    if spring.get("unit", "LBS/FT") != "LBS/FT":
+        raise AircraftError(f"nose spring in {spring.get('unit')}, not LBS/FT: cannot resize it")
+    load_lbf = landing_mass_kg * (1.0 - MAIN_SHARE) * G0_MPS2 / LBF_N
+    k = load_lbf / (static_deflection_m / FT_M)
+    added_m = static_deflection_m - load_lbf / float(spring.text) * FT_M
+    z = nose.find("location/z")
+    unit = nose.find("location").get("unit", "IN")
+    per_m = {"IN": 1.0 / 0.0254, "FT": 1.0 / FT_M, "M": 1.0}[unit]
+    z.text = f"{float(z.text) - added_m * per_m:.5f}"
+    spring.attrib = {"unit": "LBS/FT"}
+    spring.text = f"{k:.3f}"
+    return k
 
 
 def _set_damper(contact: ET.Element, c2: float) -> None:

@@ -6,6 +6,9 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
   quadratic like the mains', scaled to its share of the weight, its stock spring kept
   (:func:`flightmode.sim.flight.gear.soften_nose_gear`): the stock linear one turned the nose wheels'
   contact into the landing's highest load (2.2 g on the 787-8);
+- 787-8: a softer nose strut at the stock stance (:func:`flightmode.sim.flight.gear.set_nose_strut`,
+  profile ``nose_static_deflection_m``): its stiff stock spring put the cockpit, 23 m ahead of the CG,
+  over NASA's 0.4 g on class A runways;
 - A320: the elevator's nose-up travel from 25 to 35 degrees. The stock model has no trimmable
   horizontal stabiliser and trims with its elevator alone: on a 3-degree approach with 25 degrees of
   flap it already needs 22 of its 25 degrees of nose-up elevator, so it cannot flare. The real
@@ -45,7 +48,7 @@ import functools
 import xml.etree.ElementTree as ET
 
 from flightmode.errors import AircraftError
-from flightmode.sim.flight.gear import nose_gear, soften_main_gear, soften_nose_gear
+from flightmode.sim.flight.gear import nose_gear, set_nose_strut, soften_main_gear, soften_nose_gear
 from flightmode.sim.flight.jsbsim_adapter import xml_sub
 
 
@@ -142,6 +145,9 @@ def edits_for(profile) -> tuple:
         edits.append(spread_spoiler_lift_loss)
     if profile.add_ground_spoilers:
         edits.append(add_ground_spoilers)
+    if profile.nose_static_deflection_m is not None:
+        edits.append(functools.partial(set_nose_strut, landing_mass_kg=profile.ref_landing_mass_kg,
+                                       static_deflection_m=profile.nose_static_deflection_m))
     if profile.nose_side_friction is not None:
         edits.append(functools.partial(set_nose_side_friction, peak=profile.nose_side_friction))
     return tuple(edits)

@@ -214,3 +214,49 @@ def test_the_787s_nose_is_flown_onto_the_runway(fly_cached):
     dn = vertical_increment_g(tr, (0.4 * get_profile("787-8").length_m, 0.0, 0.0))
     sel = (tr.t_s >= t_td + 1.0) & (tr.t_s <= t_td + 8.0)
     assert np.abs(dn[sel]).max() < 1.0
+
+
+def test_the_787s_nose_strut_is_softened_at_its_stock_stance():
+    """gear.set_nose_strut: the spring gives the profile's static deflection under the nose's share of
+    the reference landing weight, and the contact point moves down by the deflection added, so at
+    that weight the nose stands where the stock strut held it (the stock 160,000 lbf/ft sits 5 cm
+    down under it)."""
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.gear import MAIN_SHARE, nose_gear
+    from flightmode.sim.flight.model_edits import edits_for
+    from flightmode.units import FT_M, G0_MPS2, LBF_N
+
+    prof = get_profile("787-8")
+    stock = _model("787-8")
+    root = _model("787-8")
+    for edit in edits_for(prof):
+        edit(root)
+    load_lbf = prof.ref_landing_mass_kg * (1.0 - MAIN_SHARE) * G0_MPS2 / LBF_N
+    k_stock, k = (float(nose_gear(r).findtext("spring_coeff")) for r in (stock, root))
+    z_stock, z = (float(nose_gear(r).findtext("location/z")) for r in (stock, root))  # inches
+    assert k_stock == 160_000.0
+    # the file holds k to 0.001 lbf/ft (of about 35,000) and z to 1e-5 in
+    assert load_lbf / k * FT_M == pytest.approx(prof.nose_static_deflection_m, rel=1e-7)
+    # at rest the contact point sits its static compression below the ground (JSBSim's structural z
+    # points up), so the airframe's height there is -(z + compression): the same before and after
+    assert z + load_lbf / k * 12.0 == pytest.approx(z_stock + load_lbf / k_stock * 12.0, abs=1e-4)
+    assert z < z_stock - 7.0  # 0.25 m - 5 cm lower: about 7.8 in
+    for model in ("737", "A320", "fokker100"):  # the others keep their stock nose spring
+        r = _model(model)
+        before = nose_gear(r).findtext("spring_coeff")
+        for edit in edits_for(get_profile(model)):
+            edit(r)
+        assert nose_gear(r).findtext("spring_coeff") == before
+
+
+def test_the_787s_cockpit_stays_within_nasas_runway_bound(fly_cached):
+    """NASA's criterion for an acceptable runway (Morris and Hall 1965): the cockpit within +-0.4 g. On
+    ISO 8608 class A runways and taxiways, the stock nose strut gave lhr-jfk-787 a cockpit peak of
+    0.46 g (0.40-0.52 g, p5-p95, over 20 route flights); the softer strut gives 0.20 g here (0.17-0.29 g
+    on 4 seeded pattern flights). Validate's own check (the takeoff roll, the rollout, taxiing)."""
+    from flightmode.scenarios.validate import ground_checks
+
+    _, tr = fly_cached("lhr-jfk-787")
+    check = next(c for c in ground_checks(tr) if c.figure.startswith("cockpit peak"))
+    assert check.passed, check
+    assert check.value < 0.3
