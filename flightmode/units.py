@@ -13,6 +13,7 @@ from scipy import constants as _c
 
 G0_MPS2: float = _c.g  # standard gravity, 9.80665 m/s^2 (the g of accelerometer outputs)
 FT_M: float = 0.3048  # international foot, exactly
+IN_M: float = 0.0254  # inch, exactly
 NM_M: float = 1852.0  # nautical mile, exactly
 KT_MPS: float = NM_M / 3600.0  # knot: one nautical mile per hour
 FPM_MPS: float = FT_M / 60.0  # ft/min -> m/s

@@ -35,6 +35,7 @@ import xml.etree.ElementTree as ET
 from functools import lru_cache
 
 from flightmode.errors import AircraftError
+from flightmode.sim.flight.jsbsim_adapter import LENGTH_UNITS_M
 from flightmode.units import FT_M, G0_MPS2, LBF_N
 
 DESIGN_SINK_FPS = 10.0  # 14 CFR 25.473(a): limit descent velocity at the design landing weight
@@ -144,8 +145,9 @@ def set_nose_strut(root: ET.Element, landing_mass_kg: float, static_deflection_m
     added_m = static_deflection_m - load_lbf / float(spring.text) * FT_M
     z = nose.find("location/z")
     unit = nose.find("location").get("unit", "IN")
-    per_m = {"IN": 1.0 / 0.0254, "FT": 1.0 / FT_M, "M": 1.0}[unit]
-    z.text = f"{float(z.text) - added_m * per_m:.5f}"
+    if unit not in LENGTH_UNITS_M:
+        raise AircraftError(f"nose gear location in '{unit}'; allowed: {', '.join(LENGTH_UNITS_M)}")
+    z.text = f"{float(z.text) - added_m / LENGTH_UNITS_M[unit]:.5f}"
     spring.attrib = {"unit": "LBS/FT"}
     spring.text = f"{k:.3f}"
     return k

@@ -28,7 +28,7 @@ import numpy as np
 
 from flightmode.errors import AircraftError, did_you_mean
 
-from flightmode.units import FT_M, G0_MPS2, KT_MPS, LBF_N
+from flightmode.units import FT_M, G0_MPS2, IN_M, KT_MPS, LBF_N
 
 
 @dataclass(frozen=True, slots=True)
@@ -105,6 +105,9 @@ def available_models() -> list[str]:
 
     root = Path(jsbsim.get_default_root_dir()) / "aircraft"
     return sorted(p.name for p in root.iterdir() if (p / f"{p.name}.xml").is_file())
+
+
+LENGTH_UNITS_M = {"IN": IN_M, "FT": FT_M, "M": 1.0}  # the length units of a JSBSim model file, in metres
 
 
 def xml_sub(parent: ET.Element, tag: str, text: str | None = None, **attrib) -> ET.Element:

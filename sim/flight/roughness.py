@@ -78,7 +78,7 @@ import numpy as np
 
 from flightmode.errors import AircraftError, ScenarioError, did_you_mean
 from flightmode.labels import FLIGHT_PHASES
-from flightmode.sim.flight.jsbsim_adapter import xml_sub
+from flightmode.sim.flight.jsbsim_adapter import LENGTH_UNITS_M, xml_sub
 from flightmode.units import FT_M, LBF_N
 
 # ISO 8608:2016 Table C.2: geometric mean of each class's Gd(n0), m^3 (n0 = 0.1 cycle/m)
@@ -206,7 +206,6 @@ def synthesize_tracks(gd_n0_m3: float, rng: np.random.Generator, track_m: float,
 _SPRING_UNITS = {"LBS/FT": LBF_N / FT_M, "N/M": 1.0}
 _DAMP_UNITS = {"LBS/FT/SEC": LBF_N / FT_M, "N/M/SEC": 1.0}
 _DAMP2_UNITS = {"LBS/FT2/SEC2": LBF_N / FT_M**2, "N/M2/SEC2": 1.0}
-_LENGTH_M = {"IN": 0.0254, "FT": FT_M, "M": 1.0}
 
 
 def _number(el: ET.Element | None, what: str) -> float:
@@ -249,9 +248,9 @@ def gear_groups(root: ET.Element) -> dict[str, dict]:
         loc = c.find("location")
         if loc is None:
             raise AircraftError(f"gear contact '{c.get('name')}' has no location")
-        scale = _LENGTH_M.get(loc.get("unit", "IN"))
+        scale = LENGTH_UNITS_M.get(loc.get("unit", "IN"))
         if scale is None:
-            raise AircraftError(f"gear contact location unit '{loc.get('unit')}'; allowed: {', '.join(_LENGTH_M)}")
+            raise AircraftError(f"gear contact location unit '{loc.get('unit')}'; allowed: {', '.join(LENGTH_UNITS_M)}")
         xyz = [_number(loc.find(a), f"location {a}") * scale for a in "xyz"]
         rows.append((i, c, xyz))
     if not rows:
