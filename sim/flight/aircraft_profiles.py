@@ -184,7 +184,7 @@ class AircraftProfile:
     cg_height_m: float  # settled reference height on the gear (JSBSim ground trim, measured)
     wheelbase_m: float
     fuel_kg: float  # the least loaded at the gate (sim.flight.simulate.planned_fuel_kg adds trip fuel), over the tanks by capacity
-    vr_kt: float
+    vr_kt: float  # rotation speed; at vr_ref_mass_kg when that is set, scaled by sqrt(mass / ref)
     v2_kt: float
     descent_ias_kt: float
     vapp_kt: float  # final approach speed at ref_landing_mass_kg; scaled by sqrt(mass / ref)
@@ -270,6 +270,7 @@ class AircraftProfile:
     spread_spoiler_lift: bool = False  # the ground spoilers' lift loss over their whole travel (sim.flight.model_edits)
     add_ground_spoilers: bool = False  # ground spoilers for a model without them (sim.flight.model_edits)
     nose_side_friction: float | None = None  # sets the nose tyre's side-force peak (sim.flight.model_edits)
+    vr_ref_mass_kg: float | None = None  # the mass vr_kt holds at (None: vr_kt at any mass)
     nose_static_deflection_m: float | None = None  # a softer nose strut at the same stance (sim.flight.gear.set_nose_strut)
     tuning: PilotTuning = field(default_factory=PilotTuning)
 
@@ -352,7 +353,14 @@ PROFILES: dict[str, AircraftProfile] = {
         # flights; with its fuel planned it burns 3.5 t (a 2.5 h airline-mix flight) to 3.9 t
         # (gva-lhr-a320) per airborne hour, above the real A320's 2.5 t/h
         burn_kg_per_h=3900.0,
-        vr_kt=138.0,
+        # rotated at a fixed 138 kt, this model (which lifts off near 150 kt at 55.7 t and 159-163 kt
+        # at the 60-65 t of 900-2,000 km routes, 9-10 deg of pitch) sat 8-18 s on its mains at
+        # rotation attitude: 7 route takeoffs 7.9-15.0 s from Vr to liftoff, the pattern's 4-18 s by
+        # throttle, where the 737 and Fokker 100 take 3.4-4.6 s and a rotation at 3 deg/s to about
+        # 10 deg lifts off in some 4 s (Airbus A320 FCTM, takeoff). Vr scales with sqrt(mass), as the
+        # stall speed does: 143 kt at the pattern's 55.7 t gives 3.1-4.4 s at every throttle there
+        vr_kt=143.0,
+        vr_ref_mass_kg=55_690.0,
         v2_kt=148.0,
         descent_ias_kt=280.0,
         vapp_kt=145.0,
@@ -385,15 +393,14 @@ PROFILES: dict[str, AircraftProfile] = {
         # WRAP A320
         climb=ClimbSchedule(Spread(10.25, 1.59, 7.63, 12.87), Spread(8.44, 1.31, 6.28, 10.6),
                             Spread(5.29, 1.03, 3.6, 6.97), 3700.0, 8800.0, 151.04),
-        # WRAP A320 takeoff_acceleration; the curve measured on the pattern (LSGG, 55.7 t at brake release;
-        # at 0.70 this model does not reach its rotation speed until the runway's end, so the curve stops at 0.75)
+        # WRAP A320 takeoff_acceleration; the curve measured on the pattern (LSGG, 55.7 t at brake release,
+        # mean of seeds 1 and 4, Vr 143 kt; at 0.70 it does not lift off before the runway's end). The mass
+        # exponent 1.2 fits 16 european-trio A320 takeoffs (60-65 t): flown minus drawn acceleration
+        # +0.007 m/s^2 on average, sd 0.065 (1.0: -0.049; 1.4: +0.060)
         takeoff=TakeoffThrust(Spread(1.93, 0.27, 1.5, 2.37),
-                              ((0.75, 1.263), (0.80, 1.570), (0.85, 1.833), (0.90, 2.124), (0.95, 2.370),
-                               (1.00, 2.629)),
-                              # 1.6 on the pattern with 6 t more fuel at 0.90 throttle, 2.5 at 0.80 (heavier, this
-                              # model lifts off later in its roll); 1.4 fits 16 flights of 900-2000 km routes
-                              # (8-13 % heavier than the curve; 1.3 and 1.8 left them -0.02 and +0.11 m/s^2 off)
-                              mass_kg=55_690.0, rho_kgm3=1.1766, mass_exp=1.4),
+                              ((0.75, 1.542), (0.80, 1.772), (0.85, 1.999), (0.90, 2.234), (0.95, 2.468),
+                               (1.00, 2.708)),
+                              mass_kg=55_690.0, rho_kgm3=1.1766, mass_exp=1.2),
     ),
     "fokker100": AircraftProfile(
         model="fokker100",

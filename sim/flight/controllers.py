@@ -227,6 +227,10 @@ class TakeoffRoll(Controller):
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
         ap.pitch_pid.reset()
         self.t_rotate = None  # when the rotation began (Vr)
+        prof = self.p.prof
+        self.vr_mps = prof.vr_kt * KT_MPS
+        if prof.vr_ref_mass_kg is not None:  # at this weight (the roll burns little)
+            self.vr_mps *= math.sqrt(ap.ac.get("inertia/weight-lbs") * LB_KG / prof.vr_ref_mass_kg)
         self.bias = 0.0  # the rotation's elevator bias (ramped in: ROTATE_RAMP_S)
 
     def tick(self, x) -> None:
@@ -234,7 +238,7 @@ class TakeoffRoll(Controller):
         ap.runway_track(x, ap.origin)
         ias = x[ix["ias_mps"]]
         ap.bank_to(x, 0.0)
-        if ias >= prof.vr_kt * KT_MPS:
+        if ias >= self.vr_mps:
             if self.t_rotate is None:
                 self.t_rotate = p.t
                 p.event("rotate", f"{ias / KT_MPS:.0f} kt")
