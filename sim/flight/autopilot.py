@@ -237,11 +237,22 @@ class Autopilot:
         pre, cas, mach = self.draws.climb_vs_mps
         return pre if alt_m < c.cross_cas_m else cas if alt_m < c.cross_mach_m else mach
 
+    def mass_kg(self) -> float:
+        """The aircraft's mass now (JSBSim's weight, fuel burnt included)."""
+        return self.ac.get("inertia/weight-lbs") * LB_KG
+
     def vapp_mps(self) -> float:
         """Final approach speed for the current mass (stall speed scales with sqrt(mass))."""
-        mass_kg = self.ac.get("inertia/weight-lbs") * LB_KG
-        k = clamp(math.sqrt(mass_kg / self.prof.ref_landing_mass_kg), 0.95, 1.1)
+        k = clamp(math.sqrt(self.mass_kg() / self.prof.ref_landing_mass_kg), 0.95, 1.1)
         return self.prof.vapp_kt * k * KT_MPS
+
+    def vr_mps(self) -> float:
+        """Rotation speed for the current mass: the profile's, scaled with sqrt(mass) as the stall
+        speed is when the profile gives the mass it holds at (``vr_ref_mass_kg``)."""
+        vr = self.prof.vr_kt * KT_MPS
+        if self.prof.vr_ref_mass_kg is None:
+            return vr
+        return vr * math.sqrt(self.mass_kg() / self.prof.vr_ref_mass_kg)
 
     def configure_approach(self, d_m: float, ias_mps: float) -> None:
         for step in self.prof.approach_steps:

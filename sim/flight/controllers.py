@@ -13,7 +13,7 @@ import math
 from flightmode.sim.flight.control import clamp, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
-from flightmode.units import FT_M, G0_MPS2, KT_MPS, LB_KG, SLUG_FT3_KGM3
+from flightmode.units import FT_M, G0_MPS2, KT_MPS, SLUG_FT3_KGM3
 
 
 class Controller:
@@ -220,17 +220,14 @@ class TakeoffRoll(Controller):
         if target is None:
             thr = self.p.plan.takeoff_thrust_norm
         else:  # the drawn acceleration at this weight and field (TakeoffThrust)
-            thr = self.p.prof.takeoff.throttle_for(target, ap.ac.get("inertia/weight-lbs") * LB_KG,
+            thr = self.p.prof.takeoff.throttle_for(target, ap.mass_kg(),
                                                    ap.ac.get("atmosphere/rho-slugs_ft3") * SLUG_FT3_KGM3)
         self.p.takeoff_thrust_norm = thr
         ap.throttle(thr)
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
         ap.pitch_pid.reset()
         self.t_rotate = None  # when the rotation began (Vr)
-        prof = self.p.prof
-        self.vr_mps = prof.vr_kt * KT_MPS
-        if prof.vr_ref_mass_kg is not None:  # at this weight (the roll burns little)
-            self.vr_mps *= math.sqrt(ap.ac.get("inertia/weight-lbs") * LB_KG / prof.vr_ref_mass_kg)
+        self.vr_mps = ap.vr_mps()  # at brake release (the roll burns little)
         self.bias = 0.0  # the rotation's elevator bias (ramped in: ROTATE_RAMP_S)
 
     def tick(self, x) -> None:
