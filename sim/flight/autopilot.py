@@ -242,9 +242,20 @@ class Autopilot:
         return self.ac.get("inertia/weight-lbs") * LB_KG
 
     def vapp_mps(self) -> float:
-        """Final approach speed for the current mass (stall speed scales with sqrt(mass))."""
+        """Final approach speed for the current mass (stall speed scales with sqrt(mass)), plus the
+        type's wind additive (:meth:`vapp_wind_additive_mps`)."""
         k = clamp(math.sqrt(self.mass_kg() / self.prof.ref_landing_mass_kg), 0.95, 1.1)
-        return self.prof.vapp_kt * k * KT_MPS
+        return self.prof.vapp_kt * k * KT_MPS + self.vapp_wind_additive_mps()
+
+    def vapp_wind_additive_mps(self) -> float:
+        """The approach speed's wind additive beyond what the profile's ``vapp_kt`` holds: the
+        profile's fraction of this flight's wind at 20 ft (the drawn surface wind, taken as all
+        headwind), less ``vapp_wind_included_kt``, within 0 and ``vapp_wind_max_kt`` in all."""
+        p = self.prof
+        if p.vapp_wind_fraction == 0.0:
+            return 0.0
+        total = min(p.vapp_wind_max_kt * KT_MPS, p.vapp_wind_fraction * self.draws.atmosphere.w20_mps)
+        return max(0.0, total - p.vapp_wind_included_kt * KT_MPS)
 
     def vr_mps(self) -> float:
         """Rotation speed for the current mass: the profile's, scaled with sqrt(mass) as the stall
