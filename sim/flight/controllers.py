@@ -487,7 +487,7 @@ class Flare(Controller):
         # a firmer attitude loop than in flight (the flare is seconds long; the cruise loop's soft
         # gain lags it by degrees)
         ap.pitch_to(x, self.theta_cmd, bias=prof.flare_pitch_kp * (self.theta_cmd - x[ix["theta_rad"]]))
-        retard = gear_h_m < prof.retard_height_ft * FT_M
+        retard = gear_h_m < prof.retard_height_ft * FT_M  # thrust to idle (the type's "retard" height)
         ap.throttle_smooth(0.0 if retard else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
         rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         ap.heading_to(x, ap.dest.heading_rad - math.atan2(ry, 1500.0), 5.0)
