@@ -119,3 +119,17 @@ def test_the_a320_lands_in_a_27_kt_wind(fly_cached):
     sc, tr = fly_cached("pattern", seed=4, aircraft="A320", **{"atmosphere.surface_wind_mps": 27.0 * KT_MPS})
     i = np.searchsorted(tr.t_s, tr.event_time("touchdown"))
     assert -tr.vertical_speed_mps[i - 1] / FPS_MPS < 8.0
+
+
+@pytest.mark.parametrize(("changes", "message"), [
+    ({"retard_height_ft": -1.0}, r"retard_height_ft -1 is negative; give the main gear's height \(ft\)"),
+    ({"vapp_wind_fraction": 1.5}, r"the approach wind additive needs 0 <= vapp_wind_fraction <= 1"),
+    ({"vapp_wind_included_kt": 20.0}, r"0 <= vapp_wind_included_kt <= vapp_wind_max_kt"),
+])
+def test_a_bad_retard_height_or_wind_additive_is_refused_when_the_profile_is_made(changes, message):
+    import dataclasses
+
+    from flightmode.errors import AircraftError
+
+    with pytest.raises(AircraftError, match=message):
+        dataclasses.replace(get_profile("A320"), **changes)
