@@ -260,8 +260,7 @@ class AircraftProfile:
         if self.retard_height_ft < 0.0:
             raise AircraftError(f"aircraft profile '{self.model}': retard_height_ft {self.retard_height_ft:g} is "
                                 "negative; give the main gear's height (ft) at which the flare pulls the thrust to idle")
-        if not (0.0 <= self.vapp_wind_fraction <= 1.0 and 0.0 <= self.vapp_wind_included_kt <= self.vapp_wind_max_kt
-                or self.vapp_wind_fraction == 0.0):
+        if not (0.0 <= self.vapp_wind_fraction <= 1.0 and 0.0 <= self.vapp_wind_included_kt <= self.vapp_wind_max_kt):
             raise AircraftError(f"aircraft profile '{self.model}': the approach wind additive needs 0 <= "
                                 "vapp_wind_fraction <= 1 and 0 <= vapp_wind_included_kt <= vapp_wind_max_kt")
 

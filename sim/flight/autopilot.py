@@ -250,12 +250,11 @@ class Autopilot:
     def vapp_wind_additive_mps(self) -> float:
         """The approach speed's wind additive beyond what the profile's ``vapp_kt`` holds: the
         profile's fraction of this flight's wind at 20 ft (the drawn surface wind, taken as all
-        headwind), less ``vapp_wind_included_kt``, within 0 and ``vapp_wind_max_kt`` in all."""
+        headwind), less ``vapp_wind_included_kt``, within 0 and ``vapp_wind_max_kt`` in all (a type
+        without the rule has all three at 0)."""
         p = self.prof
-        if p.vapp_wind_fraction == 0.0:
-            return 0.0
-        total = min(p.vapp_wind_max_kt * KT_MPS, p.vapp_wind_fraction * self.draws.atmosphere.w20_mps)
-        return max(0.0, total - p.vapp_wind_included_kt * KT_MPS)
+        return clamp(p.vapp_wind_fraction * self.draws.atmosphere.w20_mps - p.vapp_wind_included_kt * KT_MPS,
+                     0.0, (p.vapp_wind_max_kt - p.vapp_wind_included_kt) * KT_MPS)
 
     def vr_mps(self) -> float:
         """Rotation speed for the current mass: the profile's, scaled with sqrt(mass) as the stall
