@@ -17,7 +17,8 @@ Groups and anchors:
 - **touchdown**: the sink speed against the scenario's landing quality (the distributions of
   :mod:`flightmode.sim.flight.draws`: FAA DOT/FAA/AR-97/106 video surveys, NACA TN 3194, 14 CFR
   25.473) and the peak load factor at the centre of gravity (normal landings well under 1.5 g;
-  Boeing 737 AMM inspection at 2.1 g; Airbus A320 AMM hard landing at 2.6 g).
+  Boeing 737 AMM inspection at 2.1 g; Airbus A320 AMM hard landing at 2.6 g), and the distance from the
+  runway's centreline (an autoland's runway track within 22 ft: FAA Order 8900.1, vol. 4, ch. 2, sec. 8).
 - **taxi**: :func:`flightmode.sim.flight.taxi_stats.flight_taxi_statistics` against the smallest and
   largest value of the same figure over the six real ADS-B taxi segments
   (:data:`~flightmode.sim.flight.taxi_stats.ADSB_TAXI_ANCHORS`), and no braking step above 0.1 g.
@@ -231,12 +232,17 @@ TOUCHDOWN_PEAK_G = {
     "hard": (1.6, 2.6, "hard: up to the Airbus A320 AMM hard-landing mark, 2.6 g at the CG"),
 }
 
+# the autoland's runway track: an aircraft that does not hold it within 22 ft (6.7 m) of the centreline
+# is written up (FAA Order 8900.1, vol. 4, ch. 2, sec. 8, autoland discrepancy items)
+TOUCHDOWN_CENTRELINE_FT = 22.0
+TOUCHDOWN_CENTRELINE_SRC = "an autoland holds the runway track within 22 ft of the centreline (FAA Order 8900.1 4-2-8)"
+
 
 def touchdown_checks(track, plan, m: dict) -> list[Check]:
-    """Sink speed and peak CG load factor at touchdown against the landing quality's anchors (``m``:
-    the track's flight metrics)."""
+    """Sink speed and peak CG load factor at touchdown against the landing quality's anchors, and the
+    distance from the centreline (``m``: the track's flight metrics)."""
     from flightmode.sim.flight import draws
-    from flightmode.units import FPS_MPS, G0_MPS2
+    from flightmode.units import FPS_MPS, FT_M, G0_MPS2
 
     q = plan.landing_quality
     if q == "normal":
@@ -256,6 +262,8 @@ def touchdown_checks(track, plan, m: dict) -> list[Check]:
               f"drawn target {track.conditions.get('touchdown_sink_target_mps', math.nan) / FPS_MPS:.2f} ft/s"
               if "touchdown_sink_target_mps" in track.conditions else ""),
         Check("touchdown", f"peak load factor at the CG ({q} landing)", "g", peak, glo, ghi, gsrc),
+        Check("touchdown", "distance from the runway centreline", "m", abs(m["touchdown_centreline_offset_m"]),
+              0.0, TOUCHDOWN_CENTRELINE_FT * FT_M, TOUCHDOWN_CENTRELINE_SRC),
     ]
 
 

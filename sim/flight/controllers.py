@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from flightmode.sim.flight.autopilot import LOC_LOOK_MIN_M
 from flightmode.sim.flight.control import clamp, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
@@ -441,6 +442,7 @@ class Flare(Controller):
         self.tau_s = exponential_flare_tau_s(x[ix["agl_m"]] - prof.cg_height_m, self.sink_0,
                                              self.ap.draws.touchdown_sink_mps, prof.flare_tau_max_s)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
+        self.retarded = False  # the thrust pulled to idle at the type's retard height: for good
 
     def _rate_decel(self, x, gear_h_m: float, sink: float, target: float) -> float:
         """The constant-deceleration law: the pitch rate (rad/s) it asks for."""
@@ -487,10 +489,14 @@ class Flare(Controller):
         # a firmer attitude loop than in flight (the flare is seconds long; the cruise loop's soft
         # gain lags it by degrees)
         ap.pitch_to(x, self.theta_cmd, bias=prof.flare_pitch_kp * (self.theta_cmd - x[ix["theta_rad"]]))
-        retard = gear_h_m < prof.retard_height_ft * FT_M  # thrust to idle (the type's "retard" height)
-        ap.throttle_smooth(0.0 if retard else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
+        # thrust to idle at the type's "retard" height, and kept there: a flare that floats back above
+        # it does not take the thrust back (an A320 pattern flight in a 10 m/s wind, seed 0, floated
+        # about the 10 ft retard height with the speed loop's 0.7 throttle, rose and climbed away in
+        # its flare)
+        self.retarded = self.retarded or gear_h_m < prof.retard_height_ft * FT_M
+        ap.throttle_smooth(0.0 if self.retarded else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
         rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
-        ap.heading_to(x, ap.dest.heading_rad - math.atan2(ry, 1500.0), 5.0)
+        ap.track_centreline(x, ry, LOC_LOOK_MIN_M, FLARE_MAX_BANK_DEG)
         if x[ix["wow"]] > 0.5:
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
             if sink > ap.tune.max_touchdown_sink_mps:
@@ -547,6 +553,8 @@ FLARE_TAU_MIN_S = 1.5
 FLARE_EXP_INTEGRAL_PER_S = 0.15
 FLARE_EXP_INTEGRAL_MAX_RAD = math.radians(3.0)
 FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far above the runway (the lag)
+# the flare's bank limit (deg): wings nearly level at touchdown (its value before the track law too)
+FLARE_MAX_BANK_DEG = 5.0
 
 
 # derotation: the nose wheels meet the runway about 3.5 s after the mains (A320 cabin-floor landing

@@ -99,6 +99,9 @@ def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name
         assert not bad, bad
     # the climb reaches 10,000 ft on every airliner route, so its time is checked
     assert any(c.figure.startswith("time to 10,000 ft") for c in by_group["climb"])
+    # the autoland keeps to the runway: touchdown within 22 ft of the centreline (FAA Order 8900.1)
+    centre = [c for c in by_group["touchdown"] if "centreline" in c.figure]
+    assert len(centre) == 1 and centre[0].passed, centre
     # air never perfectly still in cruise
     calm = [c for c in by_group["turbulence"] if "calm cruise" in c.figure]
     assert calm and calm[0].passed, calm
