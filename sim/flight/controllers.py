@@ -477,6 +477,12 @@ class Flare(Controller):
         sink = x[ix["v_down_mps"]]
         target = ap.draws.touchdown_sink_mps
         gear_h_m = x[ix["agl_m"]] - prof.cg_height_m  # the main gear's height above the runway
+        if gear_h_m > FLARE_BALLOON_FACTOR * prof.flare_height_ft * FT_M:
+            # a crew would go around; none is flown, so the flight fails here rather than climb on in
+            # its flare until the flight's time limit (a 787-8 pattern flight in a 27 kt wind with
+            # Boeing's wind additive, 165 kt on approach, climbed to 570 ft within a minute)
+            p.fail(f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway (flare height "
+                   f"{prof.flare_height_ft:.0f} ft); no go-around is flown")
         if prof.flare_law == "exponential":
             rate = self._rate_exponential(x, gear_h_m, sink, target)
         else:
@@ -552,6 +558,7 @@ FLARE_PITCH_DOWN_RADPS = math.radians(2.0)  # and down
 FLARE_TAU_MIN_S = 1.5
 FLARE_EXP_INTEGRAL_PER_S = 0.15
 FLARE_EXP_INTEGRAL_MAX_RAD = math.radians(3.0)
+FLARE_BALLOON_FACTOR = 2.0  # a flare that climbs above twice its height is a balloon (Flare.tick)
 FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far above the runway (the lag)
 # the flare's bank limit (deg): wings nearly level at touchdown (its value before the track law too)
 FLARE_MAX_BANK_DEG = 5.0
