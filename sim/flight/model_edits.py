@@ -6,6 +6,11 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
   quadratic like the mains', scaled to its share of the weight, its stock spring kept
   (:func:`flightmode.sim.flight.gear.soften_nose_gear`): the stock linear one turned the nose wheels'
   contact into the landing's highest load (2.2 g on the 787-8);
+- every type: wing-tip contact points inside the span (:func:`place_wing_tip_contacts`). The stock
+  Fokker 100 puts its wing's STRUCTURE contacts 1,105 in (28.1 m) either side of the centreline, its
+  whole span (the model's own wingspan: 92.13 ft), so its "wing tip" met the runway at 3.8 deg of bank
+  in a gusty flare, a one-step 3.75 g spike; at the tip (14.0 m) it needs about twice the bank. The
+  other models' tips are at their half spans and unchanged;
 - 787-8: a softer nose strut at the stock stance (:func:`flightmode.sim.flight.gear.set_nose_strut`,
   profile ``nose_static_deflection_m``): its stiff stock spring put the cockpit, 23 m ahead of the CG,
   over NASA's 0.4 g on class A runways;
@@ -45,6 +50,7 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
 from __future__ import annotations
 
 import functools
+import math
 import xml.etree.ElementTree as ET
 
 from flightmode.errors import AircraftError
@@ -135,10 +141,28 @@ def add_ground_spoilers(root: ET.Element) -> None:
     xml_sub(wing, "property", "aero/function/kCLsp")
 
 
+def place_wing_tip_contacts(root: ET.Element) -> None:
+    """Bring any STRUCTURE contact point beyond the wing tips (more than 5 % outside half the model's
+    ``wingspan``) to the tip, keeping its side: a contact there is the wing tip's, placed at the full
+    span instead of half of it."""
+    span = root.find("metrics/wingspan")
+    if span is None or span.get("unit", "FT").upper() != "FT":
+        raise AircraftError("the model has no metrics/wingspan in FT to place the wing-tip contacts by")
+    half_in = float(span.text) * 12.0 / 2.0
+    for contact in root.iterfind("ground_reactions/contact[@type='STRUCTURE']"):
+        loc = contact.find("location")
+        y = None if loc is None else loc.find("y")
+        if loc is None or y is None or loc.get("unit", "IN").upper() != "IN":
+            raise AircraftError(f"contact {contact.get('name')!r}: no location in IN to check against the span")
+        if abs(float(y.text)) > 1.05 * half_in:
+            y.text = f" {math.copysign(half_in, float(y.text)):.2f} "
+
+
 def edits_for(profile) -> tuple:
     """The model edits of a type (module docstring), as functions of the XML root."""
     edits = [functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg),
-             functools.partial(soften_nose_gear, landing_mass_kg=profile.ref_landing_mass_kg)]
+             functools.partial(soften_nose_gear, landing_mass_kg=profile.ref_landing_mass_kg),
+             place_wing_tip_contacts]
     if profile.elevator_nose_up_deg is not None:
         edits.append(functools.partial(extend_elevator_nose_up, nose_up_deg=profile.elevator_nose_up_deg))
     if profile.spread_spoiler_lift:

@@ -261,3 +261,27 @@ def test_the_787s_cockpit_stays_within_nasas_runway_bound(fly_cached):
     check = next(c for c in ground_checks(tr) if c.figure.startswith("cockpit peak"))
     assert check.passed, check
     assert check.value < 0.3
+
+
+@pytest.mark.parametrize("model", ["fokker100", "787-8"])
+def test_wing_tip_contacts_sit_at_the_wing_tips(model):
+    """The stock Fokker 100's wing STRUCTURE contacts are 1,105.4 in either side, its whole span (92.13 ft
+    = 1,105.6 in) rather than half of it; the edit moves them to the tip, 552.78 in (exact arithmetic:
+    0.01 in, the value's printed precision). The 787-8's sit at 1,173.5 in against its 1,152 in half span
+    (2 % outside, its model's rounded 192 ft span): left as they are."""
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.model_edits import edits_for
+
+    root = _model(model)
+    before = {c.get("name"): float(c.findtext("location/y")) for c in root.iterfind("ground_reactions/contact[@type='STRUCTURE']")}
+    half_in = float(root.findtext("metrics/wingspan")) * 6.0
+    for edit in edits_for(get_profile(model)):
+        edit(root)
+    after = {c.get("name"): float(c.findtext("location/y")) for c in root.iterfind("ground_reactions/contact[@type='STRUCTURE']")}
+    for name, y in before.items():
+        if abs(y) > 1.05 * half_in:
+            assert after[name] == pytest.approx(np.copysign(half_in, y), abs=0.01)
+        else:
+            assert after[name] == y
+    if model == "fokker100":
+        assert after["LEFT_WING"] == pytest.approx(-552.78, abs=0.01) and after["RIGHT_WING"] == pytest.approx(552.78, abs=0.01)
