@@ -32,8 +32,8 @@ HEADING_BANK_GAIN = 2.0
 # the localizer's shortest look-ahead (m; the look-ahead is a quarter of the distance to the threshold
 # between this and 6 km). Steering the track at a point L ahead through that turn makes the
 # cross-track offset y a second-order loop: y'' + (2 g / V) y' + (2 g / L) y = 0, omega = sqrt(2 g / L)
-# whatever the speed, damping g / (V omega). At 600 m: omega 0.18 rad/s (a 35 s period), damping 0.8 at
-# 140 kt. The heading-steered law with 1500 m before it (omega 0.11 rad/s) let the boundary layer's
+# whatever the speed, damping g / (V omega). At 600 m: omega 0.18 rad/s (a 35 s period), damping 0.75
+# at 140 kt. The heading-steered law with 1500 m before it (omega 0.11 rad/s) let the boundary layer's
 # lateral gusts (sim.flight.turbulence, 1-2 m/s over seconds) carry a 787 15 m either side of the
 # centreline on short final and, in the flare, 24-26 m off it onto the runway's edge: 2 of 20 route
 # landings of the 787-8 at an airline's landing mass (european-trio's routes), which now land 6.5 m
