@@ -233,7 +233,8 @@ TOUCHDOWN_PEAK_G = {
 }
 
 # the autoland's runway track: an aircraft that does not hold it within 22 ft (6.7 m) of the centreline
-# is written up (FAA Order 8900.1, vol. 4, ch. 2, sec. 8, autoland discrepancy items)
+# is written up (FAA Order 8900.1, vol. 4, ch. 2, sec. 8: an item of a sample 737 autoland discrepancy
+# form, about the runway track, taken here for the touchdown point; not a certification criterion)
 TOUCHDOWN_CENTRELINE_FT = 22.0
 TOUCHDOWN_CENTRELINE_SRC = "an autoland holds the runway track within 22 ft of the centreline (FAA Order 8900.1 4-2-8)"
 

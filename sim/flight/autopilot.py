@@ -26,14 +26,14 @@ from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import Path2D, pure_pursuit_steer_rad
 from flightmode.units import FT_M, KT_MPS, LB_KG, NM_M
 
-# bank per radian of heading (or track) error: a first-order turn of time constant V / (2 g), 3.6 s at
+# bank per radian of heading (or track) error: a first-order turn of time constant V / (2 g), 3.7 s at
 # 140 kt
 HEADING_BANK_GAIN = 2.0
 # the localizer's shortest look-ahead (m; the look-ahead is a quarter of the distance to the threshold
 # between this and 6 km). Steering the track at a point L ahead through that turn makes the
 # cross-track offset y a second-order loop: y'' + (2 g / V) y' + (2 g / L) y = 0, omega = sqrt(2 g / L)
-# whatever the speed, damping g / (V omega). At 600 m: omega 0.18 rad/s (a 35 s period), damping 0.75
-# at 140 kt. The heading-steered law with 1500 m before it (omega 0.11 rad/s) let the boundary layer's
+# whatever the speed, damping g / (V omega). At 600 m: omega 0.18 rad/s (a 35 s undamped period),
+# damping 0.75 at 140 kt. The heading-steered law with 1500 m before it (omega 0.11 rad/s) let the boundary layer's
 # lateral gusts (sim.flight.turbulence, 1-2 m/s over seconds) carry a 787 15 m either side of the
 # centreline on short final and, in the flare, 24-26 m off it onto the runway's edge: 2 of 20 route
 # landings of the 787-8 at an airline's landing mass (european-trio's routes), which now land 6.5 m
@@ -145,14 +145,16 @@ class Autopilot:
         lim = math.radians(max_bank_deg)
         self.bank_to(x, clamp(HEADING_BANK_GAIN * err, -lim, lim))
 
-    def track_centreline(self, x, ry_m: float, look_m: float, max_bank_deg: float) -> None:
+    def track_centreline(self, x, rx_m: float, ry_m: float, max_bank_deg: float) -> None:
         """Steer the ground track (not the heading) at the destination runway's extended centreline,
-        ``look_m`` ahead, from ``ry_m`` (m right of it). A lateral gust drifts the aircraft with the
-        air: the drift is in the track at once, where a heading law sees it only as the offset grows
-        (LOC_LOOK_MIN_M)."""
+        from (``rx_m``, ``ry_m``) in its runway frame (m past the threshold, m right of the line), at a
+        point a quarter of the distance to go ahead, between LOC_LOOK_MIN_M and 6 km. A lateral gust
+        drifts the aircraft with the air: the drift is in the track at once, where a heading law sees
+        it only as the offset grows (LOC_LOOK_MIN_M)."""
         ix = self.ix
+        look = max(LOC_LOOK_MIN_M, min(6000.0, -rx_m * 0.25))
         track = math.atan2(x[ix["v_east_mps"]], x[ix["v_north_mps"]])
-        self._turn(x, self.dest.heading_rad - math.atan2(ry_m, look_m) - track, max_bank_deg)
+        self._turn(x, self.dest.heading_rad - math.atan2(ry_m, look) - track, max_bank_deg)
 
     def speed_on_pitch(self, x, target_mps: float, lo_deg: float, hi_deg: float, rate_dps: float) -> None:
         """Too fast -> pitch up: PI from IAS error to the pitch command (integrator = trim pitch),
@@ -233,9 +235,8 @@ class Autopilot:
                 self.heading_to(x, geodesy.gc_course_rad(lat, lon, *wp), self.prof.turn_bank_deg)
                 return captured
         rx, ry = self.dest.to_xy(lat, lon)
-        look = max(LOC_LOOK_MIN_M, min(6000.0, -rx * 0.25))
         bank = self.prof.turn_bank_deg if x[ix["agl_m"]] > 500 * FT_M else 8.0
-        self.track_centreline(x, ry, look, bank)
+        self.track_centreline(x, rx, ry, bank)
         return captured
 
     def speed_target_mps(self, x, d_m: float, climbing: bool, on_approach_legs: bool) -> float:

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 
-from flightmode.sim.flight.autopilot import LOC_LOOK_MIN_M
 from flightmode.sim.flight.control import clamp, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
@@ -502,7 +501,7 @@ class Flare(Controller):
         self.retarded = self.retarded or gear_h_m < prof.retard_height_ft * FT_M
         ap.throttle_smooth(0.0 if self.retarded else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
         rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
-        ap.track_centreline(x, ry, LOC_LOOK_MIN_M, FLARE_MAX_BANK_DEG)
+        ap.track_centreline(x, rx, ry, FLARE_MAX_BANK_DEG)
         if x[ix["wow"]] > 0.5:
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
             if sink > ap.tune.max_touchdown_sink_mps:

@@ -10,7 +10,8 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
   Fokker 100 puts its wing's STRUCTURE contacts 1,105 in (28.1 m) either side of the centreline, its
   whole span (the model's own wingspan: 92.13 ft), so its "wing tip" met the runway at 3.8 deg of bank
   in a gusty flare, a one-step 3.75 g spike; at the tip (14.0 m) it needs about twice the bank. The
-  other models' tips are at their half spans and unchanged;
+  787-8's sit at its half span (2 % outside) and stay; the 737 model has no wing contacts and the
+  A320's wing tips are BOGEY contacts, which this does not look at;
 - 787-8: a softer nose strut at the stock stance (:func:`flightmode.sim.flight.gear.set_nose_strut`,
   profile ``nose_static_deflection_m``): its stiff stock spring put the cockpit, 23 m ahead of the CG,
   over NASA's 0.4 g on class A runways;
@@ -55,7 +56,7 @@ import xml.etree.ElementTree as ET
 
 from flightmode.errors import AircraftError
 from flightmode.sim.flight.gear import nose_gear, set_nose_strut, soften_main_gear, soften_nose_gear
-from flightmode.sim.flight.jsbsim_adapter import xml_sub
+from flightmode.sim.flight.jsbsim_adapter import LENGTH_UNITS_M, xml_sub
 
 
 def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:
@@ -146,16 +147,19 @@ def place_wing_tip_contacts(root: ET.Element) -> None:
     ``wingspan``) to the tip, keeping its side: a contact there is the wing tip's, placed at the full
     span instead of half of it."""
     span = root.find("metrics/wingspan")
-    if span is None or span.get("unit", "FT").upper() != "FT":
-        raise AircraftError("the model has no metrics/wingspan in FT to place the wing-tip contacts by")
-    half_in = float(span.text) * 12.0 / 2.0
+    unit = None if span is None else span.get("unit", "FT").upper()
+    if unit not in LENGTH_UNITS_M:
+        raise AircraftError(f"the model's metrics/wingspan is missing or in '{unit}'; allowed: {', '.join(LENGTH_UNITS_M)}")
+    half_m = float(span.text) * LENGTH_UNITS_M[unit] / 2.0
     for contact in root.iterfind("ground_reactions/contact[@type='STRUCTURE']"):
         loc = contact.find("location")
         y = None if loc is None else loc.find("y")
-        if loc is None or y is None or loc.get("unit", "IN").upper() != "IN":
-            raise AircraftError(f"contact {contact.get('name')!r}: no location in IN to check against the span")
-        if abs(float(y.text)) > 1.05 * half_in:
-            y.text = f" {math.copysign(half_in, float(y.text)):.2f} "
+        loc_unit = None if loc is None else loc.get("unit", "IN").upper()
+        if y is None or loc_unit not in LENGTH_UNITS_M:
+            raise AircraftError(f"contact {contact.get('name')!r}: no location y in {', '.join(LENGTH_UNITS_M)}")
+        y_m = float(y.text) * LENGTH_UNITS_M[loc_unit]
+        if abs(y_m) > 1.05 * half_m:
+            y.text = f" {math.copysign(half_m, y_m) / LENGTH_UNITS_M[loc_unit]:.2f} "
 
 
 def edits_for(profile) -> tuple:

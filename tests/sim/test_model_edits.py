@@ -274,6 +274,7 @@ def test_wing_tip_contacts_sit_at_the_wing_tips(model):
 
     root = _model(model)
     before = {c.get("name"): float(c.findtext("location/y")) for c in root.iterfind("ground_reactions/contact[@type='STRUCTURE']")}
+    assert before, f"{model}: no STRUCTURE contacts to check"
     half_in = float(root.findtext("metrics/wingspan")) * 6.0
     for edit in edits_for(get_profile(model)):
         edit(root)
