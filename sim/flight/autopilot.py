@@ -4,8 +4,8 @@ navigation, runway tracking and taxiing. No JSBSim airliner has a usable autopil
 Loops (PID blocks of :mod:`flightmode.sim.flight.control`): pitch on elevator with pitch-rate
 damping; vertical speed -> flight-path angle -> pitch; speed on pitch in the climb; heading -> bank ->
 aileron; IAS/Mach -> throttle (speedbrake when idle is not enough); great-circle course to each
-waypoint; localizer (on the ground track) and glideslope by geometry to the destination runway; nose-wheel steering by
-pure pursuit on the ground, with yaw-rate feedback and differential braking. Gains and procedures
+waypoint; localizer (on the ground track) and glideslope by geometry to the destination runway;
+nose-wheel steering by pure pursuit on the ground, with yaw-rate feedback and differential braking. Gains and procedures
 come from the aircraft profile (:class:`~flightmode.sim.flight.aircraft_profiles.PilotTuning`).
 
 Each control tick the pilot hands the loops ``x``, the SI state row of
@@ -33,11 +33,11 @@ HEADING_BANK_GAIN = 2.0
 # between this and 6 km). Steering the track at a point L ahead through that turn makes the
 # cross-track offset y a second-order loop: y'' + (2 g / V) y' + (2 g / L) y = 0, omega = sqrt(2 g / L)
 # whatever the speed, damping g / (V omega). At 600 m: omega 0.18 rad/s (a 35 s undamped period),
-# damping 0.75 at 140 kt. The heading-steered law with 1500 m before it (omega 0.11 rad/s) let the boundary layer's
-# lateral gusts (sim.flight.turbulence, 1-2 m/s over seconds) carry a 787 15 m either side of the
-# centreline on short final and, in the flare, 24-26 m off it onto the runway's edge: 2 of 20 route
-# landings of the 787-8 at an airline's landing mass (european-trio's routes), which now land 6.5 m
-# from it at most
+# damping 0.75 at 140 kt. The heading-steered law with 1500 m before it (omega 0.11 rad/s) let the
+# boundary layer's lateral gusts (sim.flight.turbulence, 1-2 m/s over seconds) carry a 787 15 m either
+# side of the centreline on short final and, in the flare, 24-26 m off it onto the runway's edge: 2 of
+# 20 route landings of the 787-8 planned with the real type's burn (european-trio's routes), which now
+# land 6.5 m from it at most
 LOC_LOOK_MIN_M = 600.0
 
 
