@@ -19,6 +19,7 @@ FLIGHT_PHASES = (
     "descent",
     "approach",
     "flare",
+    "go_around",
     "rollout",
     "taxi_in",
     "shutdown",
@@ -28,7 +29,7 @@ CARRIER_PHASES = ("terminal_walk", "terminal_rest", "boarding", "deplaning", "ar
 PHASES = FLIGHT_PHASES + CARRIER_PHASES
 PHASE_CODE = {name: i for i, name in enumerate(PHASES)}
 
-AIRBORNE_PHASES = frozenset({"initial_climb", "climb", "cruise", "descent", "approach", "flare"})
+AIRBORNE_PHASES = frozenset({"initial_climb", "climb", "cruise", "descent", "approach", "flare", "go_around"})
 
 SEVERITIES = ("none", "light", "moderate", "severe")
 SEVERITY_CODE = {name: i for i, name in enumerate(SEVERITIES)}

@@ -133,6 +133,8 @@ SPEC: dict[str, dict[str, Key]] = {
                        choices=LANDING_QUALITIES),
         "sink_mps": Key(float, "touchdown sink speed the flare aims at (1 ft/s = 0.3048 m/s); absent: drawn by "
                         "quality", optional=True, lo=0.15, hi=2.9),
+        "go_arounds": Key(int, "go-arounds ordered at the flare height (air traffic control, an occupied runway) "
+                          "before the landing, each followed by a circuit and another approach", 0, lo=0, hi=2),
     },
     "shutdown": {
         "post_shutdown_s": Key(float, "time recorded after engines off", 30.0, lo=0, hi=86400),

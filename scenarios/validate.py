@@ -18,7 +18,8 @@ Groups and anchors:
   :mod:`flightmode.sim.flight.draws`: FAA DOT/FAA/AR-97/106 video surveys, NACA TN 3194, 14 CFR
   25.473) and the peak load factor at the centre of gravity (normal landings well under 1.5 g;
   Boeing 737 AMM inspection at 2.1 g; Airbus A320 AMM hard landing at 2.6 g), and the distance from the
-  runway's centreline (an autoland's runway track within 22 ft: FAA Order 8900.1, vol. 4, ch. 2, sec. 8).
+  runway's centreline (an autoland's runway track within 22 ft: FAA Order 8900.1, vol. 4, ch. 2, sec. 8)
+  and past the threshold (inside the touchdown zone: FAA AIM 2-1-5, 14 CFR 91.175(c)(1)).
 - **taxi**: :func:`flightmode.sim.flight.taxi_stats.flight_taxi_statistics` against the smallest and
   largest value of the same figure over the six real ADS-B taxi segments
   (:data:`~flightmode.sim.flight.taxi_stats.ADSB_TAXI_ANCHORS`), and no braking step above 0.1 g.
@@ -239,9 +240,13 @@ TOUCHDOWN_CENTRELINE_FT = 22.0
 TOUCHDOWN_CENTRELINE_SRC = "an autoland holds the runway track within 22 ft of the centreline (FAA Order 8900.1 4-2-8)"
 
 
+TOUCHDOWN_ZONE_SRC = ("FAA AIM 2-1-5: the touchdown zone, 3,000 ft or the runway's midpoint; "
+                      "14 CFR 91.175(c)(1): airline crews land inside it")
+
+
 def touchdown_checks(track, plan, m: dict) -> list[Check]:
-    """Sink speed and peak CG load factor at touchdown against the landing quality's anchors, and the
-    distance from the centreline (``m``: the track's flight metrics)."""
+    """Sink speed and peak CG load factor at touchdown against the landing quality's anchors, the
+    distance from the centreline and past the threshold (``m``: the track's flight metrics)."""
     from flightmode.sim.flight import draws
     from flightmode.units import FPS_MPS, FT_M, G0_MPS2
 
@@ -265,6 +270,8 @@ def touchdown_checks(track, plan, m: dict) -> list[Check]:
         Check("touchdown", f"peak load factor at the CG ({q} landing)", "g", peak, glo, ghi, gsrc),
         Check("touchdown", "distance from the runway centreline", "m", abs(m["touchdown_centreline_offset_m"]),
               0.0, TOUCHDOWN_CENTRELINE_FT * FT_M, TOUCHDOWN_CENTRELINE_SRC),
+        Check("touchdown", "distance past the threshold", "m", m["touchdown_past_threshold_m"], 0.0,
+              plan.destination.touchdown_zone_end_m, TOUCHDOWN_ZONE_SRC),
     ]
 
 

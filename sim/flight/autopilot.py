@@ -77,12 +77,10 @@ class Autopilot:
         self.taxi_brake_int = 0.0
         self.decel_f = 0.0  # filtered ground deceleration (m/s^2)
         self._gs_prev = 0.0
-        self.waypoints = list(plan.waypoints) + [self.approach_fix()]
-        self.wp = 0
-        # distance from each waypoint to the threshold along the remaining legs (constant)
-        legs = [geodesy.gc_distance_m(*a, *b) for a, b in zip(self.waypoints, self.waypoints[1:])]
-        self.legs_after_m = [sum(legs[i:]) + plan.approach_fix_nm * NM_M for i in range(len(self.waypoints))]
+        self.fix_nm = plan.approach_fix_nm  # the approach fix, nm before the threshold (a circuit's: its own)
+        self.set_route(list(plan.waypoints))
         self.loc_mode = False  # on the localizer
+        self.approaches = 0  # approaches flown to the flare height, this one included (sim.flight.controllers)
         self.theta_final: float | None = None  # pitch held on short final (deg)
         self.v_tgt: float | None = None
         self.vs_cmd: float | None = None
@@ -184,9 +182,18 @@ class Autopilot:
     # ------------------------------------------------------------------ navigation
     def approach_fix(self) -> tuple[float, float]:
         d = self.plan.destination
-        return geodesy.destination_point(
-            d.lat_deg, d.lon_deg, (d.heading_deg + 180.0) % 360.0, self.plan.approach_fix_nm * NM_M
-        )
+        return geodesy.destination_point(d.lat_deg, d.lon_deg, (d.heading_deg + 180.0) % 360.0, self.fix_nm * NM_M)
+
+    def set_route(self, waypoints: list[tuple[float, float]], fix_nm: float | None = None) -> None:
+        """Fly ``waypoints`` (lat, lon), then the approach fix ``fix_nm`` before the destination's
+        threshold (default: the current one), then the localizer."""
+        if fix_nm is not None:
+            self.fix_nm = fix_nm
+        self.waypoints = list(waypoints) + [self.approach_fix()]
+        self.wp = 0
+        # distance from each waypoint to the threshold along the remaining legs (constant)
+        legs = [geodesy.gc_distance_m(*a, *b) for a, b in zip(self.waypoints, self.waypoints[1:])]
+        self.legs_after_m = [sum(legs[i:]) + self.fix_nm * NM_M for i in range(len(self.waypoints))]
 
     def distance_to_go_m(self, x) -> float:
         lat, lon = x[self.ix["lat_deg"]], x[self.ix["lon_deg"]]
@@ -224,7 +231,7 @@ class Autopilot:
                 # approach fix: engage the localizer once close, or once abeam inside the cone
                 rx, ry = self.dest.to_xy(lat, lon)
                 hdg_err = abs((x[ix["psi_rad"]] - self.dest.heading_rad + math.pi) % (2 * math.pi) - math.pi)
-                inside_cone = -(self.plan.approach_fix_nm + 2.0) * NM_M < rx < -3.0 * NM_M and abs(ry) < 1.5 * NM_M
+                inside_cone = -(self.fix_nm + 2.0) * NM_M < rx < -3.0 * NM_M and abs(ry) < 1.5 * NM_M
                 if may_capture and (d < 2.5 * NM_M or inside_cone) and hdg_err < math.radians(75.0):
                     self.loc_mode = captured = True
                     self.event("localizer_capture", "")

@@ -13,7 +13,7 @@ import math
 from flightmode.sim.flight.control import clamp, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
-from flightmode.units import FT_M, G0_MPS2, KT_MPS, SLUG_FT3_KGM3
+from flightmode.units import FT_M, G0_MPS2, KT_MPS, NM_M, SLUG_FT3_KGM3
 
 
 class Controller:
@@ -305,12 +305,13 @@ class EnRoute(Controller):
         if phase == "cruise":
             self._step_climb(x, d)
         h_tgt = min(ap.cruise_alt_m, ap.path_alt_m(d))
-        v_new = ap.speed_target_mps(x, d, climbing=phase == "climb", on_approach_legs=phase != "climb")
+        v_new = min(ap.speed_target_mps(x, d, climbing=phase == "climb", on_approach_legs=phase != "climb"),
+                    self.speed_cap_mps())
         if ap.v_tgt is None:
             ap.v_tgt = v_new
         ap.v_tgt = rate_limit(ap.v_tgt, v_new, KT_MPS * ap.dt)
         v_tgt = ap.v_tgt
-        if ap.lateral(x, may_capture=phase in ("cruise", "descent")):
+        if ap.lateral(x, may_capture=phase in ("cruise", "descent", "go_around")):
             p.fire("localizer_capture")
         if phase == "climb":
             ap.retract_flaps(x)
@@ -356,9 +357,16 @@ class EnRoute(Controller):
         agl = x[ix["agl_m"]]
         sb = clamp((-err - 4.0) / 10.0, 0.0, 1.0) if thr <= 0.01 and agl > 1000 * FT_M else 0.0
         ap.ac.set("fcs/speedbrake-cmd-norm", sb)
-        if ap.loc_mode and agl - prof.cg_height_m < prof.flare_height_ft * FT_M:
+        if ap.loc_mode and (agl - prof.cg_height_m < prof.flare_height_ft * FT_M
+                            or -d > FLOAT_LIMIT_FRACTION * ap.dest.rwy.length_m):
+            # over the runway's second half still above the flare height (a float in gusts on the
+            # approach's speed): the flare's first tick goes around (Flare._go_around)
             p.fire("flare_height")
 
+
+    def speed_cap_mps(self) -> float:
+        """A ceiling on the speed target beyond the route's (none en route; :class:`GoAround`'s circuit)."""
+        return math.inf
 
     ref: tuple[float, float] | None = None  # (weight lbs, altitude m) at the first level-off
     next_check_s = 0.0
@@ -442,6 +450,8 @@ class Flare(Controller):
                                              self.ap.draws.touchdown_sink_mps, prof.flare_tau_max_s)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
         self.retarded = False  # the thrust pulled to idle at the type's retard height: for good
+        self.ap.approaches += 1
+        self.float_limit_m = FLOAT_LIMIT_FRACTION * self.ap.dest.rwy.length_m
 
     def _rate_decel(self, x, gear_h_m: float, sink: float, target: float) -> float:
         """The constant-deceleration law: the pitch rate (rad/s) it asks for."""
@@ -476,12 +486,9 @@ class Flare(Controller):
         sink = x[ix["v_down_mps"]]
         target = ap.draws.touchdown_sink_mps
         gear_h_m = x[ix["agl_m"]] - prof.cg_height_m  # the main gear's height above the runway
-        if gear_h_m > FLARE_BALLOON_FACTOR * prof.flare_height_ft * FT_M:
-            # a crew would go around; none is flown, so the flight fails here rather than climb on in
-            # its flare until the flight's time limit (a 787-8 pattern flight in a 27 kt wind with
-            # Boeing's wind additive, 165 kt on approach, climbed to 570 ft within a minute)
-            p.fail(f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway (flare height "
-                   f"{prof.flare_height_ft:.0f} ft); no go-around is flown")
+        rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
+        if self._go_around(x, gear_h_m, rx):
+            return
         if prof.flare_law == "exponential":
             rate = self._rate_exponential(x, gear_h_m, sink, target)
         else:
@@ -500,7 +507,6 @@ class Flare(Controller):
         # its flare)
         self.retarded = self.retarded or gear_h_m < prof.retard_height_ft * FT_M
         ap.throttle_smooth(0.0 if self.retarded else ap.spd_pid(ap.vapp_mps() - x[ix["ias_mps"]], ap.dt))
-        rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         ap.track_centreline(x, rx, ry, FLARE_MAX_BANK_DEG)
         if x[ix["wow"]] > 0.5:
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
@@ -508,6 +514,120 @@ class Flare(Controller):
                 p.fail(f"hard landing: touchdown sink rate {sink / FT_M:.1f} ft/s exceeds "
                        f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s")
             p.fire("touchdown")
+
+
+    def _go_around(self, x, gear_h_m: float, rx_m: float) -> bool:
+        """Go around (True: the phase has changed) when the scenario orders it (on the flare's first
+        tick), when the flare balloons (FLARE_BALLOON_FACTOR) or when it floats over the runway's second
+        half (FLOAT_LIMIT_FRACTION; rejected landings: a crew goes around rather than land long). After
+        MAX_APPROACHES approaches a balloon fails the flight (a crew would divert; none is flown) and a
+        float lands long."""
+        ap, p, prof = self.ap, self.p, self.p.prof
+        if ap.approaches <= p.plan.go_arounds:
+            cause = f"ordered ({ap.approaches} of {p.plan.go_arounds})"
+        elif gear_h_m > FLARE_BALLOON_FACTOR * prof.flare_height_ft * FT_M:
+            # a 787-8 pattern flight in a 27 kt wind flown with Boeing's wind additive (165 kt on
+            # approach) climbed to 570 ft in its flare within a minute
+            cause = (f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway (flare height "
+                     f"{prof.flare_height_ft:.0f} ft)")
+            if ap.approaches >= MAX_APPROACHES:
+                p.fail(f"{cause} on approach {ap.approaches}; no diversion is flown after {MAX_APPROACHES}")
+        elif rx_m > self.float_limit_m and x[p.ix["wow"]] < 0.5 and ap.approaches < MAX_APPROACHES:
+            cause = (f"long flare: still airborne {rx_m:.0f} m past the threshold, over the runway's second half "
+                     f"({self.float_limit_m:.0f} m)")
+        else:
+            return False
+        p.event("go_around_call", cause)
+        p.fire("go_around")
+        return True
+
+
+# rejected landings (Flare._go_around, GoAround). Airline procedures go around when the touchdown
+# cannot be made inside the touchdown zone (Runway.touchdown_zone_end_m: 3,000 ft on a long runway).
+# The pilot here goes around only from a float over the runway's second half: the 787-8's flare (from
+# 80 ft, 11 s) touches down past 3,000 ft on 4-8 of 20 route landings (fuel floors 40-50 t; median
+# 690-780 m past the threshold), and going around on each would make go-arounds about a hundred times
+# as frequent as the 1-3 per 1,000 approaches of real operations (Go-around Safety Forum, Brussels,
+# 2013, finding F1); validate reports those long touchdowns against the touchdown zone instead
+FLOAT_LIMIT_FRACTION = 0.5
+MAX_APPROACHES = 3  # approaches flown before a balloon fails the flight and a float lands long
+# the circuit after a go-around: a left-hand circuit (ICAO's standard direction) through the pattern
+# built-in's corners, in the destination runway's frame (nm past the threshold, nm right of the line),
+# then the localizer from a fix GO_AROUND_FIX_NM out (its glideslope height, about 2,500 ft, is the
+# circuit's altitude)
+CIRCUIT_CORNERS_NM = ((3.0, -3.0), (-5.0, -3.0))
+GO_AROUND_FIX_NM = 8.0
+# the go-around's rotation: towards 15 deg at 2-3 deg/s (Boeing 737 FCTM, go-around and missed approach;
+# Airbus's SRS commands up to 17.5 deg)
+GO_AROUND_PITCH_DEG = 15.0
+GO_AROUND_PITCH_RATE_DPS = 3.0
+
+
+class GoAround(EnRoute):
+    """A go-around from the flare and the circuit back to the localizer. First, as the go-around modes
+    of airliner flight directors fly it (Airbus SRS, Boeing TO/GA): climb thrust at once, the pitch
+    holding the speed of the moment (the approach speed at least) up to 15 deg, flaps one setting up,
+    gear up with a positive climb, the runway's track to 400 ft. From the acceleration height on,
+    the en-route loops fly the circuit (:data:`CIRCUIT_CORNERS_NM`) at its altitude, the speed capped
+    at the first approach setting's, flaps up on schedule until the approach gates extend them
+    again; the localizer is captured at the circuit's fix as on any approach."""
+
+    def enter(self, x) -> None:
+        ap, ix, prof = self.ap, self.p.ix, self.p.prof
+        self.srs = True
+        self.rotating = True  # pitching up to GO_AROUND_PITCH_DEG (then the pitch holds the speed)
+        ap.loc_mode = False
+        ap.theta_final = None
+        ap.set_route([ap.dest.to_latlon(a * NM_M, b * NM_M) for a, b in CIRCUIT_CORNERS_NM], GO_AROUND_FIX_NM)
+        ap.cruise_alt_m = ap.path_alt_m(GO_AROUND_FIX_NM * NM_M)  # the glideslope's height at the fix
+        ap.v_tgt = None
+        self.v_srs = max(ap.vapp_mps(), x[ix["ias_mps"]])
+        ap.thr = prof.climb_throttle
+        ap.throttle(ap.thr)
+        ap.ac.set("fcs/speedbrake-cmd-norm", 0.0)
+        settings = sorted({s.flaps_norm for s in prof.approach_steps if s.flaps_norm < ap.flaps})
+        if settings:
+            ap.set_flaps(settings[-1])
+        ap.theta_cmd = x[ix["theta_rad"]]
+        ap.climb_spd_pid.reset(integral=x[ix["theta_rad"]] / ap.climb_spd_pid.ki)
+
+    def speed_cap_mps(self) -> float:
+        return self.p.prof.approach_steps[0].speed_kt * KT_MPS
+
+    def tick(self, x) -> None:
+        ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
+        agl = x[ix["agl_m"]]
+        if self.srs:
+            if ap.ac.get("gear/gear-cmd-norm") > 0.5 and agl > 15.0 and -x[ix["v_down_mps"]] > 1.0:
+                ap.ac.set("gear/gear-cmd-norm", 0.0)
+                p.event("gear_up")
+            if self.rotating:
+                # rotate at once towards the go-around attitude: waiting for the speed to ask for it
+                # sank a 737 pattern flight from 57 ft onto the runway at 2.5 g
+                ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(GO_AROUND_PITCH_DEG),
+                                          math.radians(GO_AROUND_PITCH_RATE_DPS) * ap.dt)
+                ap.pitch_to(x, ap.theta_cmd)
+                if ap.theta_cmd >= math.radians(GO_AROUND_PITCH_DEG) - 1e-9:
+                    self.rotating = False
+                    ap.climb_spd_pid.reset(integral=ap.theta_cmd / ap.climb_spd_pid.ki)
+            else:
+                ap.speed_on_pitch(x, self.v_srs, lo_deg=0.0, hi_deg=GO_AROUND_PITCH_DEG, rate_dps=2.0)
+            if agl < 400.0 * FT_M:
+                ap.heading_to(x, ap.dest.heading_rad, 5.0)
+            else:
+                ap.lateral(x)
+            if agl < ap.tune.accel_height_m:
+                return
+            # bumpless hand-over to the en-route loops, as after the initial climb
+            self.srs = False
+            p.event("acceleration_height")
+            ap.gamma_pid.reset(integral=x[ix["theta_rad"]] / ap.gamma_pid.ki)
+            ap.spd_pid.reset(integral=ap.thr / prof.spd_ki)
+            ap.spd_pid.hi = 1.0
+            ap.vs_cmd = -x[ix["v_down_mps"]]
+        if ap.distance_to_go_m(x) > prof.approach_steps[0].dist_nm * NM_M:
+            ap.retract_flaps(x)
+        super().tick(x)
 
 
 def exponential_flare_tau_s(gear_height_m: float, sink_mps: float, touchdown_sink_mps: float,
@@ -711,6 +831,7 @@ CONTROLLERS: dict[str, type[Controller]] = {
     "descent": EnRoute,
     "approach": EnRoute,
     "flare": Flare,
+    "go_around": GoAround,
     "rollout": Rollout,
     "taxi_in": TaxiIn,
     "shutdown": Shutdown,

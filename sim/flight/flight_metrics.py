@@ -29,6 +29,13 @@ def _phase_span(track: FlightTrack, phase: str) -> tuple[int, int]:
     return int(idx[0]), int(idx[-1])
 
 
+def _last_span_start(track: FlightTrack, phase: str) -> int:
+    """The first sample of the phase's last span (a go-around flies a second approach and flare)."""
+    first, last = _phase_span(track, phase)
+    idx = np.flatnonzero(track.phase_code[first : last + 1] != PHASE_CODE[phase])
+    return first if idx.size == 0 else first + int(idx[-1]) + 1
+
+
 def takeoff_accel_mps2(track: FlightTrack) -> float:
     """WRAP's takeoff acceleration: the mean along the ground roll, brake release to liftoff (ground
     speed at liftoff over the roll's time). Needs only the track up to liftoff."""
@@ -58,8 +65,8 @@ def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     c0, c1 = _phase_span(track, "cruise")
     m["cruise_alt_m"] = float(np.median(track.alt_m[c0 : c1 + 1]))
     m["max_alt_m"] = float(track.alt_m.max())
-    # touchdown: first weight-on-wheels sample after the flare
-    f0, _ = _phase_span(track, "flare")
+    # touchdown: first weight-on-wheels sample after the (last) flare
+    f0 = _last_span_start(track, "flare")
     i_td = f0 + int(np.argmax(track.wow[f0:]))
     m["touchdown_sink_mps"] = float(-vs[i_td - 1])
     m["touchdown_ias_mps"] = float(track.ias_mps[i_td])
@@ -70,7 +77,7 @@ def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     m["touchdown_centreline_offset_m"] = y_td
     # final approach: mean vertical rate from 1000 ft to 100 ft above the destination
     h_d = track.alt_m[:i_td] - plan.destination.elevation_m
-    a0, _ = _phase_span(track, "approach")
+    a0 = _last_span_start(track, "approach")
     sel = np.flatnonzero((h_d[a0:] < 1000 * FT_M) & (h_d[a0:] > 100 * FT_M)) + a0
     m["final_approach_vs_mps"] = float(np.mean(vs[sel]))
     # rollout: touchdown to the runway exit (start of taxi-in)

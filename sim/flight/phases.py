@@ -37,8 +37,14 @@ TRANSITIONS: tuple[Transition, ...] = (
     Transition("cruise", "top_of_descent", "descent", "the planned descent path falls below the cruise altitude"),
     Transition("cruise", "localizer_capture", "approach", "localizer captured at the cruise altitude"),
     Transition("descent", "localizer_capture", "approach", "on the approach fix's leg, aligned: localizer captured"),
-    Transition("approach", "flare_height", "flare", "main gear below the type's flare height on the localizer"),
+    Transition("approach", "flare_height", "flare",
+               "main gear below the type's flare height on the localizer (or over the runway's second half "
+               "still above it: the flare then goes around)"),
     Transition("flare", "touchdown", "rollout", "weight on wheels (spoilers, reversers, autobrake)"),
+    Transition("flare", "go_around", "go_around",
+               "a go-around ordered at the flare height, or the flare floats over the runway's second half or "
+               "balloons (go-around thrust, a circuit)"),
+    Transition("go_around", "localizer_capture", "approach", "back on the localizer after the circuit"),
     Transition("rollout", "exit_speed", "taxi_in", "below the runway exit speed (20 kt): flaps in, exit"),
     Transition("taxi_in", "at_stand", "shutdown", "stopped at the stand (fuel cut off)"),
     Transition("shutdown", "engines_off", "parked", "every engine's N2 below 5 %: the in-flight window ends"),

@@ -160,7 +160,7 @@ class Pilot:
         if x[ix["alt_m"]] > 16000.0 or x[ix["mach"]] > 0.95:
             self.fail(f"divergence: altitude {x[ix['alt_m']]:.0f} m, Mach {x[ix['mach']]:.2f}")
         if airborne_phase and on_wheels and self.phase != "initial_climb":
-            fr = self.ap.dest if self.ap.loc_mode else self.ap.origin
+            fr = self.ap.dest if self.ap.loc_mode or self.phase == "go_around" else self.ap.origin
             rx, ry = fr.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
             if abs(ry) > fr.rwy.width_m / 2 or not (-50.0 < rx < fr.rwy.length_m):
                 self.fail(f"ground contact off the runway at x = {rx:.0f} m, y = {ry:.0f} m from the threshold")

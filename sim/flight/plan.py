@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from flightmode.labels import SEVERITIES  # noqa: F401  (re-exported for validation)
+from flightmode.units import FT_M
 
 
 @dataclass(frozen=True, slots=True)
@@ -23,6 +24,13 @@ class Runway:
     heading_deg: float
     length_m: float
     width_m: float = 45.0
+
+    @property
+    def touchdown_zone_end_m(self) -> float:
+        """Where the touchdown zone ends, m past the threshold: 3,000 ft or the runway's midpoint,
+        whichever is less (FAA AIM 2-1-5, touchdown zone lighting). 14 CFR 91.175(c)(1) lets an
+        airline crew continue below the decision height only to a touchdown inside it."""
+        return min(3000.0 * FT_M, self.length_m / 2.0)
 
 
 @dataclass(frozen=True, slots=True)
@@ -79,6 +87,7 @@ class FlightPlan:
     fdm_hz: int = 120  # JSBSim's integration rate and the FlightTrack's sample rate
     landing_quality: str = "normal"  # normal, firm, hard: the touchdown sink speed's distribution
     touchdown_sink_mps: float | None = None  # fixes the touchdown sink target instead of drawing it
+    go_arounds: int = 0  # go-arounds ordered at the flare height (sim.flight.controllers.GoAround)
     surface_wind_mps: float | None = None  # fixes the wind at 20 ft (the boundary layer's gustiness)
     background_edr: float | None = None  # fixes the background turbulence above 2000 ft (EDR, m^2/3 s^-1)
     convective_velocity_mps: float | None = None  # fixes the mixed layer's convective velocity scale w* (0: none)
