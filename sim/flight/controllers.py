@@ -363,7 +363,6 @@ class EnRoute(Controller):
             # approach's speed): the flare's first tick goes around (Flare._go_around)
             p.fire("flare_height")
 
-
     def speed_cap_mps(self) -> float:
         """A ceiling on the speed target beyond the route's (none en route; :class:`GoAround`'s circuit)."""
         return math.inf
@@ -515,7 +514,6 @@ class Flare(Controller):
                        f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s")
             p.fire("touchdown")
 
-
     def _go_around(self, x, gear_h_m: float, rx_m: float) -> bool:
         """Go around (True: the phase has changed) when the scenario orders it (on the flare's first
         tick), when the flare balloons (FLARE_BALLOON_FACTOR) or when it floats over the runway's second
@@ -553,7 +551,7 @@ FLOAT_LIMIT_FRACTION = 0.5
 MAX_APPROACHES = 3  # approaches flown before a balloon fails the flight and a float lands long
 # the circuit after a go-around: a left-hand circuit (ICAO's standard direction) through the pattern
 # built-in's corners, in the destination runway's frame (nm past the threshold, nm right of the line),
-# then the localizer from a fix GO_AROUND_FIX_NM out (its glideslope height, about 2,500 ft, is the
+# then the localizer from a fix GO_AROUND_FIX_NM out (its glideslope height, about 2,600 ft, is the
 # circuit's altitude)
 CIRCUIT_CORNERS_NM = ((3.0, -3.0), (-5.0, -3.0))
 GO_AROUND_FIX_NM = 8.0
@@ -567,10 +565,10 @@ class GoAround(EnRoute):
     """A go-around from the flare and the circuit back to the localizer. First, as the go-around modes
     of airliner flight directors fly it (Airbus SRS, Boeing TO/GA): climb thrust at once, the pitch
     holding the speed of the moment (the approach speed at least) up to 15 deg, flaps one setting up,
-    gear up with a positive climb, the runway's track to 400 ft. From the acceleration height on,
-    the en-route loops fly the circuit (:data:`CIRCUIT_CORNERS_NM`) at its altitude, the speed capped
-    at the first approach setting's, flaps up on schedule until the approach gates extend them
-    again; the localizer is captured at the circuit's fix as on any approach."""
+    gear up with a positive climb, the runway's heading to 400 ft. From the acceleration height on,
+    the en-route loops fly the circuit (:data:`CIRCUIT_CORNERS_NM`) at its altitude, configured: the
+    speed capped at the approach schedule's for the flaps set, which the approach gates extend again;
+    the localizer is captured at the circuit's fix as on any approach."""
 
     def enter(self, x) -> None:
         ap, ix, prof = self.ap, self.p.ix, self.p.prof
@@ -592,7 +590,11 @@ class GoAround(EnRoute):
         ap.climb_spd_pid.reset(integral=x[ix["theta_rad"]] / ap.climb_spd_pid.ki)
 
     def speed_cap_mps(self) -> float:
-        return self.p.prof.approach_steps[0].speed_kt * KT_MPS
+        """The approach schedule's speed for the flaps set: the fastest step whose flaps are at least
+        these (the circuit is flown configured; it once flew the 787-8's 20/35 flaps at 220 kt)."""
+        steps = self.p.prof.approach_steps
+        return max((s.speed_kt for s in steps if s.flaps_norm >= self.ap.flaps - 1e-9),
+                   default=steps[0].speed_kt) * KT_MPS
 
     def tick(self, x) -> None:
         ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
@@ -625,8 +627,7 @@ class GoAround(EnRoute):
             ap.spd_pid.reset(integral=ap.thr / prof.spd_ki)
             ap.spd_pid.hi = 1.0
             ap.vs_cmd = -x[ix["v_down_mps"]]
-        if ap.distance_to_go_m(x) > prof.approach_steps[0].dist_nm * NM_M:
-            ap.retract_flaps(x)
+            ap.v_tgt = x[ix["ias_mps"]]  # the target then moves at 1 kt/s (EnRoute)
         super().tick(x)
 
 
@@ -677,7 +678,7 @@ FLARE_PITCH_DOWN_RADPS = math.radians(2.0)  # and down
 FLARE_TAU_MIN_S = 1.5
 FLARE_EXP_INTEGRAL_PER_S = 0.15
 FLARE_EXP_INTEGRAL_MAX_RAD = math.radians(3.0)
-FLARE_BALLOON_FACTOR = 2.0  # a flare that climbs above twice its height is a balloon (Flare.tick)
+FLARE_BALLOON_FACTOR = 2.0  # a flare that climbs above twice its height is a balloon (Flare._go_around)
 FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far above the runway (the lag)
 # the flare's bank limit (deg): wings nearly level at touchdown (its value before the track law too)
 FLARE_MAX_BANK_DEG = 5.0

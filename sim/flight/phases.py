@@ -43,7 +43,7 @@ TRANSITIONS: tuple[Transition, ...] = (
     Transition("flare", "touchdown", "rollout", "weight on wheels (spoilers, reversers, autobrake)"),
     Transition("flare", "go_around", "go_around",
                "a go-around ordered at the flare height, or the flare floats over the runway's second half or "
-               "balloons (go-around thrust, a circuit)"),
+               "balloons (climb thrust, a circuit)"),
     Transition("go_around", "localizer_capture", "approach", "back on the localizer after the circuit"),
     Transition("rollout", "exit_speed", "taxi_in", "below the runway exit speed (20 kt): flaps in, exit"),
     Transition("taxi_in", "at_stand", "shutdown", "stopped at the stand (fuel cut off)"),
