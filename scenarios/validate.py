@@ -238,8 +238,6 @@ TOUCHDOWN_PEAK_G = {
 # form, about the runway track, taken here for the touchdown point; not a certification criterion)
 TOUCHDOWN_CENTRELINE_FT = 22.0
 TOUCHDOWN_CENTRELINE_SRC = "an autoland holds the runway track within 22 ft of the centreline (FAA Order 8900.1 4-2-8)"
-
-
 TOUCHDOWN_ZONE_SRC = ("FAA AIM 2-1-5: the touchdown zone, 3,000 ft or the runway's midpoint; "
                       "14 CFR 91.175(c)(1): airline crews land inside it")
 

@@ -80,7 +80,6 @@ class Autopilot:
         self.fix_nm = plan.approach_fix_nm  # the approach fix, nm before the threshold (a circuit's: its own)
         self.set_route(list(plan.waypoints))
         self.loc_mode = False  # on the localizer
-        self.approaches = 0  # approaches flown to the flare height, this one included (sim.flight.controllers)
         self.theta_final: float | None = None  # pitch held on short final (deg)
         self.v_tgt: float | None = None
         self.vs_cmd: float | None = None
@@ -153,6 +152,20 @@ class Autopilot:
         look = max(LOC_LOOK_MIN_M, min(6000.0, -rx_m * 0.25))
         track = math.atan2(x[ix["v_east_mps"]], x[ix["v_north_mps"]])
         self._turn(x, self.dest.heading_rad - math.atan2(ry_m, look) - track, max_bank_deg)
+
+    def gear_up_when_climbing(self, x) -> None:
+        """Gear up once climbing (positive rate, 15 m above the ground), as after every liftoff."""
+        if self.ac.get("gear/gear-cmd-norm") > 0.5 and x[self.ix["agl_m"]] > 15.0 and -x[self.ix["v_down_mps"]] > 1.0:
+            self.ac.set("gear/gear-cmd-norm", 0.0)
+            self.event("gear_up", "")
+
+    def hand_over_to_path_loops(self, x, throttle: float) -> None:
+        """Bumpless hand-over from speed on pitch to the vertical-rate loops (path_to, speed on the
+        throttle): their integrators start at the attitude and ``throttle`` of the moment."""
+        self.gamma_pid.reset(integral=x[self.ix["theta_rad"]] / self.gamma_pid.ki)
+        self.spd_pid.reset(integral=throttle / self.prof.spd_ki)
+        self.thr = throttle
+        self.vs_cmd = -x[self.ix["v_down_mps"]]
 
     def speed_on_pitch(self, x, target_mps: float, lo_deg: float, hi_deg: float, rate_dps: float) -> None:
         """Too fast -> pitch up: PI from IAS error to the pitch command (integrator = trim pitch),

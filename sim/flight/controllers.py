@@ -268,9 +268,7 @@ class InitialClimb(Controller):
     def tick(self, x) -> None:
         ap, p, ix, prof, tu = self.ap, self.p, self.p.ix, self.p.prof, self.ap.tune
         agl = x[ix["agl_m"]]
-        if ap.ac.get("gear/gear-cmd-norm") > 0.5 and agl > 15.0 and -x[ix["v_down_mps"]] > 1.0:
-            ap.ac.set("gear/gear-cmd-norm", 0.0)
-            p.event("gear_up")
+        ap.gear_up_when_climbing(x)
         target = (prof.v2_kt + 20.0) * KT_MPS
         if agl > tu.accel_height_m:
             if self.t_accel is None:
@@ -283,11 +281,7 @@ class InitialClimb(Controller):
         ap.retract_flaps(x, above_m=tu.accel_height_m)
         ap.lateral(x, runway_heading_below_m=400.0 * FT_M)
         if agl > tu.climb_out_m or x[ix["alt_m"]] > p.plan.cruise_alt_m - 150.0:
-            # bumpless hand-over to the climb's vertical-rate mode: its loops start where these are
-            ap.gamma_pid.reset(integral=x[ix["theta_rad"]] / ap.gamma_pid.ki)
-            ap.spd_pid.reset(integral=prof.climb_throttle / prof.spd_ki)
-            ap.thr = prof.climb_throttle
-            ap.vs_cmd = -x[ix["v_down_mps"]]
+            ap.hand_over_to_path_loops(x, prof.climb_throttle)  # to the climb's vertical-rate mode
             p.fire("climb_out_done")
 
 
@@ -441,6 +435,8 @@ class Flare(Controller):
       3.7 with the constant deceleration), so each type keeps the law that lands it best.
     """
 
+    approaches = 0  # approaches flown to the flare height, this one included (one Flare per flight)
+
     def enter(self, x) -> None:
         ix, prof = self.p.ix, self.p.prof
         self.theta_cmd = self.theta_0 = x[ix["theta_rad"]]
@@ -449,7 +445,7 @@ class Flare(Controller):
                                              self.ap.draws.touchdown_sink_mps, prof.flare_tau_max_s)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
         self.retarded = False  # the thrust pulled to idle at the type's retard height: for good
-        self.ap.approaches += 1
+        self.approaches += 1
         self.float_limit_m = FLOAT_LIMIT_FRACTION * self.ap.dest.rwy.length_m
 
     def _rate_decel(self, x, gear_h_m: float, sink: float, target: float) -> float:
@@ -517,20 +513,20 @@ class Flare(Controller):
     def _go_around(self, x, gear_h_m: float, rx_m: float) -> bool:
         """Go around (True: the phase has changed) when the scenario orders it (on the flare's first
         tick), when the flare balloons (FLARE_BALLOON_FACTOR) or when it floats over the runway's second
-        half (FLOAT_LIMIT_FRACTION; rejected landings: a crew goes around rather than land long). After
-        MAX_APPROACHES approaches a balloon fails the flight (a crew would divert; none is flown) and a
+        half (FLOAT_LIMIT_FRACTION; rejected landings: a crew goes around rather than land long). On
+        approach MAX_APPROACHES a balloon fails the flight (a crew would divert; none is flown) and a
         float lands long."""
-        ap, p, prof = self.ap, self.p, self.p.prof
-        if ap.approaches <= p.plan.go_arounds:
-            cause = f"ordered ({ap.approaches} of {p.plan.go_arounds})"
+        p, prof = self.p, self.p.prof
+        if self.approaches <= p.plan.go_arounds:
+            cause = f"ordered ({self.approaches} of {p.plan.go_arounds})"
         elif gear_h_m > FLARE_BALLOON_FACTOR * prof.flare_height_ft * FT_M:
             # a 787-8 pattern flight in a 27 kt wind flown with Boeing's wind additive (165 kt on
             # approach) climbed to 570 ft in its flare within a minute
             cause = (f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway (flare height "
                      f"{prof.flare_height_ft:.0f} ft)")
-            if ap.approaches >= MAX_APPROACHES:
-                p.fail(f"{cause} on approach {ap.approaches}; no diversion is flown after {MAX_APPROACHES}")
-        elif rx_m > self.float_limit_m and x[p.ix["wow"]] < 0.5 and ap.approaches < MAX_APPROACHES:
+            if self.approaches >= MAX_APPROACHES:
+                p.fail(f"{cause} on approach {self.approaches}; no diversion is flown after {MAX_APPROACHES}")
+        elif rx_m > self.float_limit_m and x[p.ix["wow"]] < 0.5 and self.approaches < MAX_APPROACHES:
             cause = (f"long flare: still airborne {rx_m:.0f} m past the threshold, over the runway's second half "
                      f"({self.float_limit_m:.0f} m)")
         else:
@@ -578,7 +574,6 @@ class GoAround(EnRoute):
         ap.theta_final = None
         ap.set_route([ap.dest.to_latlon(a * NM_M, b * NM_M) for a, b in CIRCUIT_CORNERS_NM], GO_AROUND_FIX_NM)
         ap.cruise_alt_m = ap.path_alt_m(GO_AROUND_FIX_NM * NM_M)  # the glideslope's height at the fix
-        ap.v_tgt = None
         self.v_srs = max(ap.vapp_mps(), x[ix["ias_mps"]])
         ap.thr = prof.climb_throttle
         ap.throttle(ap.thr)
@@ -597,12 +592,10 @@ class GoAround(EnRoute):
                    default=steps[0].speed_kt) * KT_MPS
 
     def tick(self, x) -> None:
-        ap, p, ix, prof = self.ap, self.p, self.p.ix, self.p.prof
+        ap, p, ix = self.ap, self.p, self.p.ix
         agl = x[ix["agl_m"]]
         if self.srs:
-            if ap.ac.get("gear/gear-cmd-norm") > 0.5 and agl > 15.0 and -x[ix["v_down_mps"]] > 1.0:
-                ap.ac.set("gear/gear-cmd-norm", 0.0)
-                p.event("gear_up")
+            ap.gear_up_when_climbing(x)
             if self.rotating:
                 # rotate at once towards the go-around attitude: waiting for the speed to ask for it
                 # sank a 737 pattern flight from 57 ft onto the runway at 2.5 g
@@ -620,13 +613,11 @@ class GoAround(EnRoute):
                 ap.lateral(x)
             if agl < ap.tune.accel_height_m:
                 return
-            # bumpless hand-over to the en-route loops, as after the initial climb
+            # to the en-route loops, as after the initial climb
             self.srs = False
             p.event("acceleration_height")
-            ap.gamma_pid.reset(integral=x[ix["theta_rad"]] / ap.gamma_pid.ki)
-            ap.spd_pid.reset(integral=ap.thr / prof.spd_ki)
+            ap.hand_over_to_path_loops(x, ap.thr)
             ap.spd_pid.hi = 1.0
-            ap.vs_cmd = -x[ix["v_down_mps"]]
             ap.v_tgt = x[ix["ias_mps"]]  # the target then moves at 1 kt/s (EnRoute)
         super().tick(x)
 
