@@ -20,6 +20,9 @@ Groups and anchors:
   Boeing 737 AMM inspection at 2.1 g; Airbus A320 AMM hard landing at 2.6 g), and the distance from the
   runway's centreline (an autoland's runway track within 22 ft: FAA Order 8900.1, vol. 4, ch. 2, sec. 8)
   and past the threshold (inside the touchdown zone: FAA AIM 2-1-5, 14 CFR 91.175(c)(1)).
+- **go-around** (a flight that flew one): the rate of climb from 400 ft to the acceleration height,
+  Boeing's reduced go-around thrust (737 FCOM: 1,000-2,000 ft/min; 747/787 FCOM: 2,000) or, at
+  go-around thrust, at least 14 CFR 25.119's 3.2 % gradient.
 - **taxi**: :func:`flightmode.sim.flight.taxi_stats.flight_taxi_statistics` against the smallest and
   largest value of the same figure over the six real ADS-B taxi segments
   (:data:`~flightmode.sim.flight.taxi_stats.ADSB_TAXI_ANCHORS`), and no braking step above 0.1 g.
@@ -271,6 +274,44 @@ def touchdown_checks(track, plan, m: dict) -> list[Check]:
         Check("touchdown", "distance past the threshold", "m", m["touchdown_past_threshold_m"], 0.0,
               plan.destination.touchdown_zone_end_m, TOUCHDOWN_ZONE_SRC),
     ]
+
+
+GO_AROUND_BAND_FPM = 500.0  # the 737 FCOM's band about its middle: "1000 to 2000 fpm"
+GO_AROUND_BOEING_SRC = ("Boeing reduced go-around thrust: 737 FCOM 1,000-2,000 fpm, 747/787 FCOM 2,000 fpm "
+                        "(+-500, the 737's band)")
+GO_AROUND_GRADIENT = 0.032  # 14 CFR 25.119: the landing climb's least gradient, at go-around thrust
+GO_AROUND_GRADIENT_SRC = "14 CFR 25.119: a 3.2 % climb gradient at go-around thrust"
+
+
+def go_around_checks(track, plan) -> list[Check]:
+    """Each go-around's mean rate of climb from 400 ft above the runway (the runway heading's end) to the
+    acceleration height: Boeing's reduced go-around thrust holds the type's rate
+    (AircraftProfile.go_around_climb_fpm), go-around thrust gives at least 14 CFR 25.119's gradient.
+    No rows for a flight without a go-around."""
+    from flightmode.labels import PHASE_CODE
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.units import FPM_MPS, FT_M
+
+    prof = get_profile(track.aircraft)
+    h = track.alt_m - plan.destination.elevation_m
+    out = []
+    calls = [e.t_s for e in track.events if e.name == "go_around"]
+    for k, t_call in enumerate(calls, 1):
+        i0 = int(np.searchsorted(track.t_s, t_call))
+        other = track.phase_code[i0:] != PHASE_CODE["go_around"]
+        sel = slice(i0, i0 + int(np.argmax(other)) if other.any() else track.n)  # this go-around's span
+        rate = _mean_rate_between(track.t_s[sel], h[sel], 400.0 * FT_M, prof.tuning.accel_height_m)
+        if prof.go_around_climb_fpm is not None:
+            lo, hi = ((prof.go_around_climb_fpm - GO_AROUND_BAND_FPM) * FPM_MPS,
+                      (prof.go_around_climb_fpm + GO_AROUND_BAND_FPM) * FPM_MPS)
+            src = GO_AROUND_BOEING_SRC
+        else:
+            lo, hi = GO_AROUND_GRADIENT * float(np.median(track.tas_mps[sel])), None
+            src = GO_AROUND_GRADIENT_SRC
+        out.append(Check("go-around", f"rate of climb, 400 ft to {prof.tuning.accel_height_m / FT_M:,.0f} ft "
+                         f"(go-around {k})", "ft/min", rate / FPM_MPS,
+                         None if lo is None else lo / FPM_MPS, None if hi is None else hi / FPM_MPS, src))
+    return out
 
 
 # --------------------------------------------------------------------------------------- taxi
@@ -596,6 +637,7 @@ def track_checks(track, plan) -> list[Check]:
     m = flight_metrics(track, plan)
     checks = kinematic_checks(track, plan, get_profile(track.aircraft).wrap_type, m)
     checks += touchdown_checks(track, plan, m)
+    checks += go_around_checks(track, plan)
     checks += taxi_checks(track)
     checks += turbulence_checks(track)
     checks += ground_checks(track)

@@ -221,6 +221,10 @@ class AircraftProfile:
     vapp_wind_fraction: float = 0.0
     vapp_wind_included_kt: float = 0.0
     vapp_wind_max_kt: float = 0.0
+    # the go-around's thrust (sim.flight.controllers.GoAround): None, the type's climb thrust at once
+    # (Airbus TOGA, Fokker GA); a rate of climb (ft/min), Boeing's reduced go-around thrust, which the
+    # autothrottle adjusts to hold that climb once the pitch has come up
+    go_around_climb_fpm: float | None = None
     # the share of the flare's elevator the attitude loop keeps at touchdown (sim.flight.controllers.Rollout):
     # 0 relaxes it to the loop's own (half its integrator), 1 keeps it all
     touchdown_elevator_keep: float = 0.0
@@ -260,6 +264,9 @@ class AircraftProfile:
         if self.retard_height_ft < 0.0:
             raise AircraftError(f"aircraft profile '{self.model}': retard_height_ft {self.retard_height_ft:g} is "
                                 "negative; give the main gear's height (ft) at which the flare pulls the thrust to idle")
+        if self.go_around_climb_fpm is not None and not self.go_around_climb_fpm > 0.0:
+            raise AircraftError(f"aircraft profile '{self.model}': go_around_climb_fpm {self.go_around_climb_fpm:g} "
+                                "is not a climb; give a positive rate (ft/min), or None for climb thrust")
         if not (0.0 <= self.vapp_wind_fraction <= 1.0 and 0.0 <= self.vapp_wind_included_kt <= self.vapp_wind_max_kt):
             raise AircraftError(f"aircraft profile '{self.model}': the approach wind additive needs 0 <= "
                                 "vapp_wind_fraction <= 1 and 0 <= vapp_wind_included_kt <= vapp_wind_max_kt")
@@ -323,6 +330,9 @@ PROFILES: dict[str, AircraftProfile] = {
         vapp_wind_fraction=0.5,
         vapp_wind_included_kt=5.0,
         vapp_wind_max_kt=20.0,
+        # Boeing 737 FCOM, TO/GA: the first push advances the thrust "toward the reduced go-around N1
+        # to produce 1000 to 2000 fpm rate of climb" (the middle of it held here)
+        go_around_climb_fpm=1500.0,
         vr_kt=150.0,
         v2_kt=158.0,
         descent_ias_kt=280.0,
@@ -534,6 +544,9 @@ PROFILES: dict[str, AircraftProfile] = {
         # seeds), the CG's roughness unchanged (0.018-0.023 g RMS). A very good runway stays well inside
         # the worst acceptable one's bound: 0.25 m, stiffer than the mains' 0.35 (gear.STATIC_DEFLECTION_M)
         nose_static_deflection_m=0.25,
+        # Boeing 747-400/-8 and 787 FCOM, TO/GA switch: the autothrottle's go-around thrust "adjusts to
+        # provide a 2000 feet per minute climb" (THR mode)
+        go_around_climb_fpm=2000.0,
         vr_kt=150.0,
         v2_kt=160.0,
         descent_ias_kt=290.0,

@@ -145,8 +145,9 @@ def test_a_wind_additive_lands_the_type_in_a_27_kt_wind(fly_cached, aircraft, se
     ({"retard_height_ft": -1.0}, r"retard_height_ft -1 is negative; give the main gear's height \(ft\)"),
     ({"vapp_wind_fraction": 1.5}, r"the approach wind additive needs 0 <= vapp_wind_fraction <= 1"),
     ({"vapp_wind_included_kt": 20.0}, r"0 <= vapp_wind_included_kt <= vapp_wind_max_kt"),
+    ({"go_around_climb_fpm": -500.0}, r"go_around_climb_fpm -500 is not a climb; give a positive rate"),
 ])
-def test_a_bad_retard_height_or_wind_additive_is_refused_when_the_profile_is_made(changes, message):
+def test_a_bad_landing_or_go_around_figure_is_refused_when_the_profile_is_made(changes, message):
     import dataclasses
 
     from flightmode.errors import AircraftError

@@ -27,6 +27,32 @@ def _climb_gradient(track, t0_s: float, t1_s: float) -> float:
     return float((track.alt_m[sel][-1] - track.alt_m[sel][0]) / dist)
 
 
+def _go_around_climb_fpm(track, sc) -> float:
+    """validate's go-around row: the mean rate of climb from 400 ft to the acceleration height."""
+    from flightmode.scenarios.validate import go_around_checks
+
+    (row,) = go_around_checks(track, sc.plan)
+    assert row.passed, row
+    return row.value
+
+
+@pytest.mark.slow
+def test_boeing_reduced_go_around_thrust_holds_the_737_fcoms_climb_rate(fly_cached):
+    """The 737 pattern's ordered go-around: the first push of TO/GA advances the thrust "toward the
+    reduced go-around N1 to produce 1000 to 2000 fpm rate of climb" (737 FCOM). At climb thrust (the
+    Airbus's TOGA here) the same go-around climbed 2,520 ft/min from 400 ft to 1,500 ft."""
+    sc, tr = fly_cached("pattern", seed=1, stop_after_s=1100.0, aircraft="737", **{"landing.go_arounds": 1})
+    t_ga = tr.event_time("go_around")
+    rate = _go_around_climb_fpm(tr, sc)
+    assert 1000.0 <= rate <= 2000.0, rate
+    # a climb all the way to the acceleration height from the end of the rotation (10 s): closed on the
+    # rate of climb rather than the energy rate, the autothrottle fought the pitch's hold of the speed
+    # and the 737 sank again at 430 ft (sim.flight.controllers.GO_AROUND_THRUST_PI)
+    t_acc = next(e.t_s for e in tr.events if e.name == "acceleration_height" and e.t_s > t_ga)
+    sel = (tr.t_s > t_ga + 10.0) & (tr.t_s < t_acc)
+    assert (np.diff(tr.alt_m[sel]) > 0).all()
+
+
 @pytest.mark.slow
 def test_an_ordered_go_around_climbs_away_flies_a_circuit_and_lands(fly_cached):
     from flightmode.sim.flight.flight_metrics import flight_metrics
@@ -51,6 +77,11 @@ def test_an_ordered_go_around_climbs_away_flies_a_circuit_and_lands(fly_cached):
     # the climb-out beats the landing-climb gradient every transport is certified to (14 CFR 25.119)
     # from the moment the sink is arrested (10 s: the rotation and spool-up) over the next 20 s
     assert _climb_gradient(tr, t_ga + 10.0, t_ga + 30.0) > LANDING_CLIMB_GRADIENT
+    # Boeing's reduced go-around thrust: the autothrottle holds 2,000 ft/min (787 FCOM), here the mean
+    # from 400 ft to the acceleration height, within the 737 FCOM's +-500 ft/min band (its climb
+    # thrust climbed 2,400 ft/min on average, 3,600 at the peaks)
+    rate = _go_around_climb_fpm(tr, sc)
+    assert abs(rate - 2000.0) < 500.0, rate
     # the pull-up stays inside the flaps-extended limit load factor (14 CFR 25.345(a))
     nz = -tr.specific_force_body_mps2[(tr.t_s > t_ga) & (tr.t_s < t_ga + 30.0), 2] / G0_MPS2
     assert nz.max() < FLAPS_LIMIT_G
@@ -105,3 +136,25 @@ def test_a_flare_that_floats_over_the_runways_second_half_goes_around(monkeypatc
     assert _climb_gradient(tr, t_ga + 10.0, t_ga + 30.0) > LANDING_CLIMB_GRADIENT
     # back on the localizer for another approach
     assert [e.name for e in tr.events if e.t_s > t_ga and e.name in ("approach", "go_around")] == ["approach"]
+
+
+@pytest.mark.slow
+def test_the_circuit_with_landing_flaps_is_flown_at_the_final_approach_speed(fly_cached):
+    """The 787-8 pattern's ordered go-around (seed 3): the circuit selects landing flaps on its base leg,
+    as the first approach does, and is then flown at the final approach speed for the mass
+    (Autopilot.vapp_mps, 154 kt here), not at the last approach step's nominal 145 kt: so capped, this
+    flight slowed to 138 kt and stalled (angle of attack over 15 deg) in the 25 deg bank turn to final."""
+    sc, tr = fly_cached("pattern", seed=3, aircraft="787-8", **{"landing.go_arounds": 1})
+    assert tr.events[-1].name == "end"  # flown to the stand
+    t_ga = tr.event_time("go_around")
+    flare1, flare2 = [e.t_s for e in tr.events if e.name == "flare"]
+    # from the landing flaps' selection to the flare, on each approach: the base leg, the turn to final
+    # and the final approach
+    landing = max(float(e.detail) for e in tr.events if e.name == "flaps")
+    t1, t2 = [e.t_s for e in tr.events if e.name == "flaps" and float(e.detail) == landing]
+    assert t1 < flare1 < t_ga < t2 < flare2
+    first, circuit = (tr.t_s > t1) & (tr.t_s < flare1), (tr.t_s > t2) & (tr.t_s < flare2)
+    # the same configuration at the same speed, the same turns: the highest angle of attack of the
+    # circuit within 1 deg of the first approach's (gusts)
+    a1, a2 = np.degrees(tr.alpha_rad[first].max()), np.degrees(tr.alpha_rad[circuit].max())
+    assert a2 < a1 + 1.0, (a1, a2)
