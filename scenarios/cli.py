@@ -33,9 +33,13 @@ from flightmode.errors import DetectorError, FlightmodeError, ScenarioError
 
 DEFAULT_SCENARIO = "gva-lhr-a320"  # the same as flightmode.scenarios.scenario.DEFAULT_SCENARIO (tested)
 
+# Help is Click's plain text (rich_markup_mode=None): Typer's Rich help imports rich.markdown and
+# markdown_it (0.15-0.2 s of a 0.5 s `flightmode --help` budget); the commands' own output uses Rich.
+HELP_MARKUP = None
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=False,
+    rich_markup_mode=HELP_MARKUP,
     help="Physics-simulated accelerometer data for a package in an airliner, and its flight-mode detector.",
 )
 console = Console()
@@ -387,7 +391,7 @@ def _detect_activity(source, cols, info, labels, fs, name, window_s, k, time_thr
 
 
 activity_app = typer.Typer(help="Seed 001's (in)activity detectors: the synthesizer and Monte Carlo study.",
-                           no_args_is_help=True)
+                           no_args_is_help=True, rich_markup_mode=HELP_MARKUP)
 app.add_typer(activity_app, name="activity")
 
 
@@ -429,7 +433,7 @@ def activity_synth_cmd(
 
 
 eobs_app = typer.Typer(help="The e-obs tag toolkit (seed 003): calibration, the battery trade-off on flights.",
-                       no_args_is_help=True)
+                       no_args_is_help=True, rich_markup_mode=HELP_MARKUP)
 app.add_typer(eobs_app, name="eobs")
 
 
