@@ -340,10 +340,10 @@ def _json_default(o):
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
-def run_info(result) -> dict:
+def run_info(result, *, track_sha256: str | None = None) -> dict:
     """run.json of a :class:`~flightmode.scenarios.pipeline.RunResult`: the scenario (as TOML text,
     reads back with ``Scenario.from_toml_text``), seed, versions, plan, events, the flight's figures,
-    the track's SHA-256, and each later stage's summary."""
+    the track's SHA-256 (computed here unless given), and each later stage's summary."""
     sc, track = result.scenario, result.track
     info = {
         "run_id": result.run_id,
@@ -359,7 +359,7 @@ def run_info(result) -> dict:
         "events": [{"t_s": e.t_s, "name": e.name, "detail": e.detail} for e in track.events],
         "conditions": track.conditions,
         "summary": result.metrics,
-        "truth": {"rows": track.n, "fs_hz": track.fs_hz, "sha256": track.digest()},
+        "truth": {"rows": track.n, "fs_hz": track.fs_hz, "sha256": track_sha256 or track.digest()},
         "wall_time_s": dict(result.wall_s),
     }
     if result.recording is not None:

@@ -78,10 +78,12 @@ class Atmosphere:
 def _truncated_lognormal(rng: np.random.Generator, upper: float) -> float:
     """A draw of the EDR climatology conditioned on EDR < upper (inverse transform: no rejection
     loop, one uniform per draw)."""
-    from scipy.stats import norm
+    # the standard normal's CDF and its inverse from scipy.special (what scipy.stats.norm's cdf and
+    # ppf compute, bit for bit, without importing scipy.stats: 0.4 s of a fresh process's flight)
+    from scipy.special import ndtr, ndtri
 
-    p_max = norm.cdf((math.log(upper) - EDR_LN_MEAN) / EDR_LN_STD)
-    return float(math.exp(EDR_LN_MEAN + EDR_LN_STD * norm.ppf(rng.uniform(0.0, p_max))))
+    p_max = ndtr((math.log(upper) - EDR_LN_MEAN) / EDR_LN_STD)
+    return float(math.exp(EDR_LN_MEAN + EDR_LN_STD * ndtri(rng.uniform(0.0, p_max))))
 
 
 def draw_atmosphere(rng: np.random.Generator, patches=(), *, w20_mps: float | None = None,
