@@ -131,19 +131,27 @@ def wrap_time_to_altitude_s(w, alt_m: float, first_m: float = 1500 * 0.3048) -> 
     return fast, slow
 
 
-def _mean_rate_between(t: np.ndarray, h: np.ndarray, h0: float, h1: float) -> float:
-    """Mean vertical rate (m/s) between the first crossings of heights h0 and h1 (climb: h0 < h1;
-    descent: h0 > h1, crossings after the highest point). NaN if the track never crosses both."""
+def _crossings(h: np.ndarray, h0: float, h1: float) -> tuple[int, int] | None:
+    """Indices of the first crossings of heights h0 and h1 (climb: h0 < h1; descent: h0 > h1,
+    crossings after the highest point); None if the track never crosses both."""
+    if h.size == 0:
+        return None
     if h0 < h1:
-        i0, i1 = np.argmax(h >= h0), np.argmax(h >= h1)
-        if h[i0] < h0 or h[i1] < h1:
-            return math.nan
-    else:
-        top = int(np.argmax(h))
-        i0, i1 = top + np.argmax(h[top:] <= h0), top + np.argmax(h[top:] <= h1)
-        if h[i0] > h0 or h[i1] > h1:
-            return math.nan
-    return float((h[i1] - h[i0]) / (t[i1] - t[i0])) if t[i1] > t[i0] else math.nan
+        i0, i1 = int(np.argmax(h >= h0)), int(np.argmax(h >= h1))
+        return None if h[i0] < h0 or h[i1] < h1 else (i0, i1)
+    top = int(np.argmax(h))
+    i0, i1 = top + int(np.argmax(h[top:] <= h0)), top + int(np.argmax(h[top:] <= h1))
+    return None if h[i0] > h0 or h[i1] > h1 else (i0, i1)
+
+
+def _mean_rate_between(t: np.ndarray, h: np.ndarray, h0: float, h1: float) -> float:
+    """Mean vertical rate (m/s) between the first crossings of heights h0 and h1 (:func:`_crossings`).
+    NaN if the track never crosses both."""
+    ij = _crossings(h, h0, h1)
+    if ij is None or t[ij[1]] <= t[ij[0]]:
+        return math.nan
+    i0, i1 = ij
+    return float((h[i1] - h[i0]) / (t[i1] - t[i0]))
 
 
 def _takeoff_note(conditions: dict) -> str:
@@ -299,18 +307,18 @@ def go_around_checks(track, plan) -> list[Check]:
     for k, t_call in enumerate(calls, 1):
         i0 = int(np.searchsorted(track.t_s, t_call))
         other = track.phase_code[i0:] != PHASE_CODE["go_around"]
-        sel = slice(i0, i0 + int(np.argmax(other)) if other.any() else track.n)  # this go-around's span
-        rate = _mean_rate_between(track.t_s[sel], h[sel], 400.0 * FT_M, prof.tuning.accel_height_m)
+        sel = slice(i0, i0 + int(np.argmax(other)) if other.any() else track.n)  # the go-around and its circuit
+        t, hs, tas = track.t_s[sel], h[sel], track.tas_mps[sel]
+        ij = _crossings(hs, 400.0 * FT_M, prof.tuning.accel_height_m)
+        rate_fpm = _mean_rate_between(t, hs, 400.0 * FT_M, prof.tuning.accel_height_m) / FPM_MPS
         if prof.go_around_climb_fpm is not None:
-            lo, hi = ((prof.go_around_climb_fpm - GO_AROUND_BAND_FPM) * FPM_MPS,
-                      (prof.go_around_climb_fpm + GO_AROUND_BAND_FPM) * FPM_MPS)
+            lo, hi = prof.go_around_climb_fpm - GO_AROUND_BAND_FPM, prof.go_around_climb_fpm + GO_AROUND_BAND_FPM
             src = GO_AROUND_BOEING_SRC
-        else:
-            lo, hi = GO_AROUND_GRADIENT * float(np.median(track.tas_mps[sel])), None
-            src = GO_AROUND_GRADIENT_SRC
+        else:  # the gradient at the airspeed of the climb measured, not of the (faster) circuit after it
+            lo = math.nan if ij is None else GO_AROUND_GRADIENT * float(np.median(tas[ij[0] : ij[1] + 1])) / FPM_MPS
+            hi, src = None, GO_AROUND_GRADIENT_SRC
         out.append(Check("go-around", f"rate of climb, 400 ft to {prof.tuning.accel_height_m / FT_M:,.0f} ft "
-                         f"(go-around {k})", "ft/min", rate / FPM_MPS,
-                         None if lo is None else lo / FPM_MPS, None if hi is None else hi / FPM_MPS, src))
+                         f"(go-around {k})", "ft/min", rate_fpm, lo, hi, src))
     return out
 
 

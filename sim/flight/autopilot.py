@@ -273,9 +273,13 @@ class Autopilot:
         if on_approach_legs:
             for step in p.approach_steps:
                 if d_m < step.dist_nm * NM_M:
-                    final = step is p.approach_steps[-1]
-                    v = min(v, self.vapp_mps() if final else step.speed_kt * KT_MPS)
+                    v = min(v, self.step_speed_mps(step))
         return v
+
+    def step_speed_mps(self, step) -> float:
+        """An approach step's speed: its own, the last step's being the final approach speed for the
+        mass (:meth:`vapp_mps`)."""
+        return self.vapp_mps() if step is self.prof.approach_steps[-1] else step.speed_kt * KT_MPS
 
     def climb_vs_mps(self, alt_m: float) -> float:
         """The climb's vertical-rate target at this altitude: this flight's draw for the band

@@ -556,13 +556,14 @@ GO_AROUND_FIX_NM = 8.0
 GO_AROUND_PITCH_DEG = 15.0
 GO_AROUND_PITCH_RATE_DPS = 3.0
 # Boeing's reduced go-around thrust (AircraftProfile.go_around_climb_fpm): the autothrottle's PI
-# (throttle per m/s, per m/s per s) on the energy rate, not the rate of climb: thrust sets the total
-# energy's rate d(h + V^2 / 2g)/dt = V f_path / g (f_path the specific force along the flight path,
-# (T - D) / m), the pitch shares it between climb and speed (it holds the speed). Closed on the rate of
-# climb, the two loops fought: the pitch traded speed for climb, the thrust answered the climb, and a
-# 737 pattern go-around sank again at 430 ft at 127 kt (Lambregts's total energy control, NASA CR-3727,
-# 1983). One throttle's worth of thrust is about 0.3 of the weight, 20 m/s of climb at 75 m/s: a loop
-# gain near 0.6; integral time 3 s. The specific force is low-passed over GO_AROUND_ENERGY_TAU_S (gusts)
+# (throttle per m/s of energy-rate error, and per m of its integral) on the energy rate, not the rate
+# of climb: thrust sets the total energy's rate d(h + V^2 / 2g)/dt = V f_path / g (f_path the specific
+# force along the flight path, (T cos(alpha) - D) / m), the pitch shares it between climb and speed (it
+# holds the speed): the principle of Lambregts's total energy control (AIAA paper 83-2239, 1983).
+# Closed on the rate of climb instead, the two loops fought here: the pitch traded speed for climb, the
+# thrust answered the climb, and a 737 pattern go-around sank again at 430 ft at 127 kt. One throttle's
+# worth of thrust is about 0.3 of the weight, 20 m/s of climb at 75 m/s: a loop gain near 0.6;
+# integral time 3 s. The specific force is low-passed over GO_AROUND_ENERGY_TAU_S (gusts)
 GO_AROUND_THRUST_PI = (0.03, 0.01)
 GO_AROUND_ENERGY_TAU_S = 1.0
 
@@ -571,9 +572,9 @@ class GoAround(EnRoute):
     """A go-around from the flare and the circuit back to the localizer. First, as the go-around modes
     of airliner flight directors fly it (Airbus SRS, Boeing TO/GA): climb thrust at once, the pitch
     holding the speed of the moment (the approach speed at least) up to 15 deg, flaps one setting up,
-    gear up with a positive climb, the runway's heading to 400 ft; a Boeing's autothrottle then
-    reduces the thrust to hold its type's rate of climb (AircraftProfile.go_around_climb_fpm,
-    GO_AROUND_THRUST_PI). From the acceleration height on,
+    gear up with a positive climb, the runway's heading to 400 ft. A Boeing's autothrottle holds its
+    type's rate of climb from the call on, as the first push of TO/GA does, climb thrust its ceiling
+    (AircraftProfile.go_around_climb_fpm, GO_AROUND_THRUST_PI). From the acceleration height on,
     the en-route loops fly the circuit (:data:`CIRCUIT_CORNERS_NM`) at its altitude, configured: the
     speed capped at the approach schedule's for the flaps set, which the approach gates extend again;
     the localizer is captured at the circuit's fix as on any approach."""
@@ -594,7 +595,7 @@ class GoAround(EnRoute):
         kp, ki = GO_AROUND_THRUST_PI
         self.thrust_pid = PID(kp, ki, 0.0, 0.0, prof.climb_throttle)
         self.thrust_pid.reset(integral=prof.climb_throttle / ki)
-        self.energy_rate_mps = -x[ix["v_down_mps"]]  # low-passed V f_path / g (GO_AROUND_THRUST_PI)
+        self.energy_rate_mps = self._energy_rate_mps(x)  # low-passed (GO_AROUND_THRUST_PI)
         ap.ac.set("fcs/speedbrake-cmd-norm", 0.0)
         settings = sorted({s.flaps_norm for s in prof.approach_steps if s.flaps_norm < ap.flaps})
         if settings:
@@ -602,15 +603,22 @@ class GoAround(EnRoute):
         ap.theta_cmd = x[ix["theta_rad"]]
         ap.climb_spd_pid.reset(integral=x[ix["theta_rad"]] / ap.climb_spd_pid.ki)
 
+    def _energy_rate_mps(self, x) -> float:
+        """The total energy's rate V f_path / g (m/s; GO_AROUND_THRUST_PI)."""
+        ix = self.p.ix
+        alpha = x[ix["alpha_rad"]]
+        f_path = x[ix["fx_mps2"]] * math.cos(alpha) + x[ix["fz_mps2"]] * math.sin(alpha)
+        return x[ix["tas_mps"]] * f_path / G0_MPS2
+
     def speed_cap_mps(self) -> float:
         """The approach schedule's speed for the flaps set: the fastest step whose flaps are at least
-        these, the last step's being the final approach speed for the mass (Autopilot.vapp_mps), as on
-        any approach (the circuit is flown configured; it once flew the 787-8's 20/35 flaps at 220 kt,
-        and capped at the last step's nominal 145 kt with landing flaps, 13 kt under its Vapp, a 787-8
-        stalled in the turn to final)."""
+        these (Autopilot.step_speed_mps: the last step's is the final approach speed for the mass), as
+        on any approach (the circuit is flown configured; it once flew the 787-8's 20/35 flaps at
+        220 kt, and, capped at the last step's nominal 145 kt with landing flaps, under its mass-scaled
+        Vapp, a 787-8 stalled in the turn to final)."""
         ap, steps = self.ap, self.p.prof.approach_steps
-        return max((ap.vapp_mps() if s is steps[-1] else s.speed_kt * KT_MPS
-                    for s in steps if s.flaps_norm >= ap.flaps - 1e-9), default=steps[0].speed_kt * KT_MPS)
+        return max((ap.step_speed_mps(s) for s in steps if s.flaps_norm >= ap.flaps - 1e-9),
+                   default=steps[0].speed_kt * KT_MPS)
 
     def tick(self, x) -> None:
         ap, p, ix = self.ap, self.p, self.p.ix
@@ -618,9 +626,7 @@ class GoAround(EnRoute):
         if self.srs:
             ap.gear_up_when_climbing(x)
             if self.vs_target_mps is not None:
-                alpha = x[ix["alpha_rad"]]
-                f_path = x[ix["fx_mps2"]] * math.cos(alpha) + x[ix["fz_mps2"]] * math.sin(alpha)
-                rate = x[ix["tas_mps"]] * f_path / G0_MPS2
+                rate = self._energy_rate_mps(x)
                 self.energy_rate_mps += (rate - self.energy_rate_mps) * min(1.0, ap.dt / GO_AROUND_ENERGY_TAU_S)
                 ap.thr = self.thrust_pid(self.vs_target_mps - self.energy_rate_mps, ap.dt)
                 ap.throttle(ap.thr)

@@ -164,3 +164,54 @@ def test_a_long_haul_climb_is_measured_to_its_first_level(fly_cached):
                                          "climb rate at constant Mach"]
     bad = [f"{c.figure}: {c.value:.4g} not in {c.anchor_text()}" for c in checks if not c.passed]
     assert not bad, bad
+
+
+def _go_around_track(aircraft: str, elev_m: float, t_end_s: float = 400.0):
+    """A synthetic go-around, 10 Hz: the call at 100 s at 50 ft above the runway, then a climb at
+    exactly 10 m/s and 70 m/s TAS to 600 m, the circuit level beyond at 110 m/s until the localizer
+    is captured again at 300 s (phase go_around from 100 to 300 s)."""
+    from flightmode.labels import PHASE_CODE
+    from flightmode.sim.flight.track import Event, FlightTrack
+
+    t = np.arange(0.0, t_end_s, 0.1)
+    n = t.size
+    h = np.clip(50.0 * 0.3048 + 10.0 * (t - 100.0), 50.0 * 0.3048, 600.0)
+    tas = np.where(h < 600.0, 70.0, 110.0)
+    phase = np.where((t >= 100.0) & (t < 300.0), PHASE_CODE["go_around"], PHASE_CODE["approach"]).astype(np.uint8)
+    z, z3 = np.zeros(n), np.zeros((n, 3))
+    return FlightTrack(
+        aircraft=aircraft, fs_hz=10.0, origin_lat_deg=0.0, origin_lon_deg=0.0, origin_alt_m=elev_m,
+        t_s=t, lat_deg=z, lon_deg=z, alt_m=elev_m + h, agl_m=h, pos_ned_m=z3, vel_ned_mps=z3, euler_rad=z3,
+        quat_wxyz=np.tile([1.0, 0, 0, 0], (n, 1)), rates_radps=z3, ang_acc_radps2=z3,
+        specific_force_body_mps2=z3, n1_pct=z[:, None], n2_pct=z[:, None], thrust_n=z[:, None],
+        wow=z.astype(bool), flap_norm=z, gear_norm=z, speedbrake_norm=z, ias_mps=tas, tas_mps=tas, mach=z,
+        alpha_rad=z, ground_speed_mps=tas, vertical_speed_mps=z, phase_code=phase,
+        in_flight_window=np.ones(n, bool), airborne=np.ones(n, bool), turbulence_code=z.astype(np.uint8),
+        events=(Event(100.0, "go_around", "ordered (1 of 1)"),),
+    )
+
+
+def test_go_around_rows_measure_the_climb_from_400_ft_to_the_acceleration_height():
+    """The row's rate is the mean climb between the first crossings of 400 ft and the acceleration
+    height (a linear climb: exactly 10 m/s, 1,968.5 ft/min); a Boeing's anchor is its FCOM rate
+    +-500 ft/min, an Airbus's the 3.2 % gradient (14 CFR 25.119) at the climb's own airspeed (70 m/s:
+    441 ft/min), not the faster circuit's after it (110 m/s would give 693 ft/min)."""
+    import dataclasses
+
+    from flightmode.scenarios.scenario import Scenario
+    from flightmode.scenarios.validate import go_around_checks
+    from flightmode.units import FPM_MPS
+
+    plan = Scenario.builtin("pattern").plan
+    elev = plan.destination.elevation_m
+    (boeing,) = go_around_checks(_go_around_track("737", elev), plan)
+    assert boeing.value == pytest.approx(10.0 / FPM_MPS, rel=1e-9)
+    assert (boeing.lo, boeing.hi) == (1000.0, 2000.0) and boeing.passed  # 737 FCOM: 1,000-2,000 ft/min
+    (airbus,) = go_around_checks(_go_around_track("A320", elev), plan)
+    assert airbus.value == pytest.approx(10.0 / FPM_MPS, rel=1e-9)
+    assert airbus.lo == pytest.approx(0.032 * 70.0 / FPM_MPS, rel=1e-12) and airbus.hi is None and airbus.passed
+    # a track that stops before the acceleration height cannot show the climb: the row fails
+    (short,) = go_around_checks(_go_around_track("A320", elev, t_end_s=130.0), plan)
+    assert math.isnan(short.value) and not short.passed
+    # no go-around, no row
+    assert go_around_checks(dataclasses.replace(_go_around_track("737", elev), events=()), plan) == []
