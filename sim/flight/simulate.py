@@ -225,16 +225,16 @@ def fly(
             )
     # the rates one step past the last row: the last row's angular acceleration (_to_track)
     rates_after = [get(nodes[ac.index[name]]) for name in ("p_radps", "q_radps", "r_radps")]
-    raw_record = np.empty((step, nch))
-    raw_record[:, :nf] = np.frombuffer(data, dtype=np.float64).reshape(-1, nf)
+    fast = np.frombuffer(data, dtype=np.float64).reshape(-1, nf)  # (steps, fast channels), raw units
     ticks = np.frombuffer(tick_steps, dtype=np.int64)
     at_ticks = np.frombuffer(slow, dtype=np.float64).reshape(-1, nch - nf)
     all_steps = np.arange(step, dtype=np.float64)
-    for j, ch in enumerate(ac.channels[nf:]):  # slow channels: linear between ticks (jsbsim_adapter.Channel)
+    slow_cols = []  # the slow channels at every step: linear between ticks (jsbsim_adapter.Channel)
+    for j, ch in enumerate(ac.channels[nf:]):
         if ch.name == "alpha_rad":  # an angle: interpolated the short way round (it wraps at standstill)
-            raw_record[:, nf + j] = np.angle(np.exp(1j * np.interp(all_steps, ticks, np.unwrap(at_ticks[:, j]))))
+            slow_cols.append(np.angle(np.exp(1j * np.interp(all_steps, ticks, np.unwrap(at_ticks[:, j])))))
         else:
-            raw_record[:, nf + j] = np.interp(all_steps, ticks, at_ticks[:, j])
+            slow_cols.append(np.interp(all_steps, ticks, at_ticks[:, j]))
     terrain = np.full(step, plan.origin.elevation_m)
     if dest_terrain_from is not None:
         terrain[dest_terrain_from:] = plan.destination.elevation_m
@@ -243,7 +243,7 @@ def fly(
     phase_code = np.repeat(np.array([c[1] for c in changes], dtype=np.uint8), reps)
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
-    track = _to_track(plan, ac, raw_record, terrain, phase_code, turb_code, events, rates_after)
+    track = _to_track(plan, ac, fast, slow_cols, terrain, phase_code, turb_code, events, rates_after)
     fuel = {"fuel_planned_kg": fuel_kg, "fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
     cab = pressure_truth(track, plan, draws)
     return dataclasses.replace(track, conditions=draws.as_dict() | {"takeoff_thrust_norm": pilot.takeoff_thrust_norm}
@@ -265,29 +265,29 @@ def pressure_truth(track: FlightTrack, plan: FlightPlan, draws):
                           hold=plan.hold)
 
 
-def _gather(raw: np.ndarray, scales: np.ndarray, groups: dict[str, list[int]], block: int = 8192) -> dict[str, np.ndarray]:
-    """SI arrays from the (steps, channels) raw record: one (steps, len(idx)) array per group.
-
-    Filled in cache-sized blocks of steps, in one pass over the record: scaling the record whole
-    and then slicing columns would make a second 100+ MB array (fresh memory is what costs most
-    here) and read it once per output.
-    """
-    n = raw.shape[0]
-    out = {name: np.empty((n, len(idx))) for name, idx in groups.items()}
-    cols = {}
+def _si_groups(ac, fast: np.ndarray, slow_cols: list[np.ndarray], groups: dict[str, list[int]]) -> dict[str, np.ndarray]:
+    """SI arrays from the raw record: ``fast`` (steps, fast channels) and ``slow_cols`` (one array per
+    slow channel, every step), in jsbsim_adapter's channel order; one (steps,) array per one-channel
+    group, one (steps, k) array per group of k. Each value is scaled once, straight into its array:
+    a whole scaled copy of the record first was a second 100+ MB array to fill and read again."""
+    nf, scales = fast.shape[1], ac.scales
+    out = {}
     for name, idx in groups.items():
-        contiguous = idx == list(range(idx[0], idx[0] + len(idx)))
-        cols[name] = (slice(idx[0], idx[0] + len(idx)) if contiguous else idx, scales[idx])
-    for i in range(0, n, block):
-        blk = raw[i : i + block]
-        for name, (sel, k) in cols.items():
-            np.multiply(blk[:, sel], k, out=out[name][i : i + block])
+        if len(idx) == 1:
+            i = idx[0]
+            out[name] = fast[:, i] * scales[i] if i < nf else slow_cols[i - nf] * scales[i]
+        elif idx[-1] < nf and idx == list(range(idx[0], idx[0] + len(idx))):  # contiguous fast channels
+            out[name] = fast[:, idx[0] : idx[-1] + 1] * scales[idx[0] : idx[-1] + 1]
+        else:
+            out[name] = np.stack([fast[:, i] * scales[i] if i < nf else slow_cols[i - nf] * scales[i] for i in idx],
+                                 axis=1)
     return out
 
 
-def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events, rates_after) -> FlightTrack:
-    """Assemble the FlightTrack from the (steps, channels) raw record, the terrain per step and the
-    body rates one step past the last row (rad/s)."""
+def _to_track(plan, ac, fast, slow_cols, terrain_m, phase_code, turb_code, events, rates_after) -> FlightTrack:
+    """Assemble the FlightTrack from the raw record (``fast``: (steps, fast channels); ``slow_cols``: the
+    slow channels interpolated to every step), the terrain per step and the body rates one step past
+    the last row (rad/s)."""
     ix = ac.index
     ne = get_profile(plan.aircraft).n_engines
     one = lambda name: [ix[name]]  # noqa: E731
@@ -309,9 +309,9 @@ def _to_track(plan, ac, raw, terrain_m, phase_code, turb_code, events, rates_aft
         "n2": eng("n2_pct"),
         "thrust": eng("thrust_n"),
     }
-    g = _gather(raw, ac.scales, groups)
-    col = lambda name: g[name][:, 0]  # noqa: E731  (contiguous: the group is (n, 1))
-    n = raw.shape[0]
+    g = _si_groups(ac, fast, slow_cols, groups)
+    col = g.__getitem__
+    n = fast.shape[0]
     fdm_hz = float(plan.fdm_hz)
     t = np.arange(n) / fdm_hz
     o = plan.origin
