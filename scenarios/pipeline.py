@@ -384,12 +384,14 @@ def _track_digest(writer: RunWriter, track: FlightTrack):
 def _write_run_json(stage: Path, result: RunResult, track_sha256) -> Path:
     from flightmode.scenarios import run_io
 
-    return run_io.write_run_json(stage, run_io.run_info(result, track_sha256=track_sha256.result()))
+    sha = None if track_sha256 is None else track_sha256.result()
+    return run_io.write_run_json(stage, run_io.run_info(result, track_sha256=sha))
 
 
 def _finish(writer: RunWriter, result: RunResult, rrd: _Rrd | None, track_sha256) -> None:
     """Queue what needs every stage: the rest of recording.rrd, then run.json (a run folder's last
-    file; ``track_sha256``: :func:`_track_digest`'s Future, queued before it on the same thread)."""
+    file; ``track_sha256``: :func:`_track_digest`'s Future, queued before it on the same thread, or
+    None to compute it there)."""
     if rrd is not None:
         writer.submit("rrd", "recording.rrd", rrd.close, result)
     writer.submit("run_json", "run.json", _write_run_json, result, track_sha256)
@@ -409,9 +411,10 @@ def write(out_dir: Path, result: RunResult, *, rrd: bool = True) -> dict[str, Pa
     from flightmode.scenarios import run_io
 
     with RunWriter(out_dir, result.run_id) as w:
+        sha = None
         if result.track is not None:
             w.submit("truth", "truth.parquet", run_io.write_truth, result.track)
-        sha = _track_digest(w, result.track)
+            sha = _track_digest(w, result.track)
         if result.recording is not None:
             w.submit("samples", "samples.parquet", run_io.write_samples, result.recording)
         _finish(w, result, _rrd_after_detect(w, result, rrd), sha)
