@@ -532,6 +532,7 @@ def test_certify_report_renders_every_figure_in_headless_chromium(certified, tmp
     with sync_playwright() as pw:
         b = pw.chromium.launch(executable_path=chromium, headless=True, args=["--no-sandbox", "--no-first-run"])
         page = b.new_page(viewport={"width": 1280, "height": 1600})
+        page.set_default_timeout(180_000)  # a loaded 2-core machine (tests/viz/test_rrd.py's web viewer)
         page.on("request", lambda r: requests.append(r.url))
         page.goto((out / "report.html").resolve().as_uri())
         page.wait_for_load_state("load")

@@ -167,6 +167,9 @@ def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_
                 "--disable-component-update", "--disable-sync", "--use-angle=swiftshader",
                 "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist"])
             page = b.new_page(viewport={"width": 1600, "height": 1000})
+            # software WebGL on a loaded 2-core machine (the suite's other worker busy): the screenshot
+            # waited over Playwright's default 30 s for a frame once, in a full run with Chromium
+            page.set_default_timeout(180_000)
             page.on("console", lambda m: msgs.append((m.type, m.text)))
             page.goto(url)
             page.wait_for_timeout(30_000)
