@@ -32,17 +32,19 @@ def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
         # same bare stepping has measured 9.2 s and 13.6 s minutes apart), so the two timings are
         # taken side by side, repeatedly, and each keeps its least
         t_run = t_bare = float("inf")
+        best = None  # the fastest run's result: its stage times are reported
         for _ in range(repeats):
             t_bare = min(t_bare, bare_stepping_s(sc, steps, 1))
             del r
             r, t = timed(lambda: flightmode.run(sc, out=d))
-            t_run = min(t_run, t)
+            if t < t_run:
+                t_run, best = t, r.wall_s
         _, t_cli = timed(lambda: subprocess.run(["flightmode", "fly", name, "--out", d], check=True,
                                                 capture_output=True))
     res = {"scenario": name, "steps": steps, "simulated_s": r.track.duration_s, "bare_run_wall_s": t_bare,
            "run_wall_s": t_run, "ratio": t_run / t_bare, "cli_wall_s (fresh process)": t_cli,
            "cli_ratio": t_cli / t_bare}
-    res |= {f"stage {k} s (last run)": v for k, v in r.wall_s.items()}
+    res |= {f"stage {k} s (fastest run)": v for k, v in best.items()}
     report(res)
     print(f"goal: ratio <= 1.8 -> {'met' if res['ratio'] <= 1.8 else 'NOT met'} (aim 1.3)")
     return res
