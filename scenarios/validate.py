@@ -147,7 +147,11 @@ def _crossings(h: np.ndarray, h0: float, h1: float) -> tuple[int, int] | None:
 def _mean_rate_between(t: np.ndarray, h: np.ndarray, h0: float, h1: float) -> float:
     """Mean vertical rate (m/s) between the first crossings of heights h0 and h1 (:func:`_crossings`).
     NaN if the track never crosses both."""
-    ij = _crossings(h, h0, h1)
+    return _rate_over(t, h, _crossings(h, h0, h1))
+
+
+def _rate_over(t: np.ndarray, h: np.ndarray, ij: tuple[int, int] | None) -> float:
+    """Mean vertical rate (m/s) between the samples ``ij`` (:func:`_crossings`); NaN without them."""
     if ij is None or t[ij[1]] <= t[ij[0]]:
         return math.nan
     i0, i1 = ij
@@ -310,7 +314,7 @@ def go_around_checks(track, plan) -> list[Check]:
         sel = slice(i0, i0 + int(np.argmax(other)) if other.any() else track.n)  # the go-around and its circuit
         t, hs, tas = track.t_s[sel], h[sel], track.tas_mps[sel]
         ij = _crossings(hs, 400.0 * FT_M, prof.tuning.accel_height_m)
-        rate_fpm = _mean_rate_between(t, hs, 400.0 * FT_M, prof.tuning.accel_height_m) / FPM_MPS
+        rate_fpm = _rate_over(t, hs, ij) / FPM_MPS  # the climb's crossings, found once
         if prof.go_around_climb_fpm is not None:
             lo, hi = prof.go_around_climb_fpm - GO_AROUND_BAND_FPM, prof.go_around_climb_fpm + GO_AROUND_BAND_FPM
             src = GO_AROUND_BOEING_SRC

@@ -3,6 +3,7 @@ or ``nav`` lands in site-packages), and nothing heavy imported to start."""
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -20,7 +21,12 @@ HEAVY = ("numpy", "scipy", "jsbsim", "rerun", "pyarrow", "pandas", "dask", "dist
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("wheel")
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(ROOT)],
+    # built from a copy of the sources: setuptools builds in the source tree, and a build/ left in the
+    # checkout is both clutter and a stale source (its build/lib can carry a module the tree no longer has)
+    src = tmp_path_factory.mktemp("src") / "flightmode"
+    shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(".git", "build", "*.egg-info", "__pycache__",
+                                                             ".pytest_cache", ".hypothesis", "runs", ".venv"))
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(src)],
                    check=True, capture_output=True, text=True)
     (whl,) = out.glob("flightmode-*.whl")
     return whl
