@@ -172,8 +172,16 @@ def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_
             page.set_default_timeout(180_000)
             page.on("console", lambda m: msgs.append((m.type, m.text)))
             page.goto(url)
-            page.wait_for_timeout(30_000)
-            page.screenshot(path=str(tmp_path / "viewer.png"))
+            # the viewer's wasm loads behind a near-white loading page: on a loaded 2-core machine it
+            # once took over 30 s (CI's screenshot at 30 s had a spread of 14, the loading page), so the
+            # test waits for a drawn frame, up to 4 min, and then judges the last screenshot it took
+            page.wait_for_timeout(15_000)
+            deadline = time.time() + 240
+            while True:
+                page.screenshot(path=str(tmp_path / "viewer.png"))
+                if _drawn(tmp_path / "viewer.png") or time.time() > deadline:
+                    break
+                page.wait_for_timeout(5_000)
             b.close()
     finally:
         _stop(proc, ps)
@@ -181,8 +189,18 @@ def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_
     errors = [t for k, t in msgs if (k == "error" or " ERROR " in t) and not any(s in t for s in tile_fetch)]
     assert errors == [], errors[:5]
     assert any("re_viewer" in t or "egui" in t or "wgpu" in t for _, t in msgs), "the viewer never started"
-    from PIL import Image
-
-    img = np.asarray(Image.open(tmp_path / "viewer.png").convert("RGB"), dtype=float)
+    img = _image(tmp_path / "viewer.png")
     assert img.std() > 20.0  # a blank or single-colour page has a near-zero spread
     assert len(np.unique(img.reshape(-1, 3)[::97], axis=0)) > 50  # plots, text, colours
+
+
+def _image(path):
+    from PIL import Image
+
+    return np.asarray(Image.open(path).convert("RGB"), dtype=float)
+
+
+def _drawn(path):
+    """The test's own two criteria of a drawn viewer (below), used to stop waiting."""
+    img = _image(path)
+    return img.std() > 20.0 and len(np.unique(img.reshape(-1, 3)[::97], axis=0)) > 50
