@@ -166,6 +166,17 @@ def _takeoff_note(conditions: dict) -> str:
     return f"throttle {thr:.3f}" + (f", drawn for {target:.2f} m/s^2" if target is not None else " (the scenario's)")
 
 
+def _initial_climb_note(aircraft: str, conditions: dict) -> str:
+    """The flight's drawn initial rate of climb, for a type whose autothrottle holds it
+    (AircraftProfile.initial_climb_thrust_for_rate)."""
+    from flightmode.sim.flight.aircraft_profiles import get_profile
+
+    vs = conditions.get("initial_climb_vs_mps")
+    if vs is None or not get_profile(aircraft).initial_climb_thrust_for_rate:
+        return ""
+    return f"drawn {vs:.1f} m/s (the autothrottle holds it)"
+
+
 def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
     """Takeoff, climb, cruise, descent and landing figures against WRAP (module docstring); ``m``: the
     track's :func:`~flightmode.sim.flight.flight_metrics.flight_metrics`."""
@@ -178,7 +189,7 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
         Check("takeoff", "takeoff acceleration", "m/s^2", m["takeoff_accel_mps2"],
               *_wrap_range(w, "takeoff_acceleration"), src, _takeoff_note(track.conditions)),
         Check("climb", "initial climb rate (to 1,500 ft)", "m/s", m["initial_climb_vs_mps"],
-              *_wrap_range(w, "initclimb_vs"), src),
+              *_wrap_range(w, "initclimb_vs"), src, _initial_climb_note(track.aircraft, track.conditions)),
     ]
     t = track.t_s
     h = track.alt_m - plan.origin.elevation_m

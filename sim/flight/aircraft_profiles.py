@@ -105,6 +105,7 @@ class ClimbSchedule:
     cross_cas_m: float
     cross_mach_m: float
     cas_mps: float  # constant-CAS climb speed (above 10,000 ft)
+    vs_initial: Spread  # m/s, liftoff to 1,500 ft (WRAP ``initclimb_vs``)
 
 
 @dataclass(frozen=True, slots=True)
@@ -185,7 +186,7 @@ class AircraftProfile:
     wheelbase_m: float
     fuel_kg: float  # the least loaded at the gate (sim.flight.simulate.planned_fuel_kg adds trip fuel), over the tanks by capacity
     vr_kt: float  # rotation speed; at vr_ref_mass_kg when that is set, scaled by sqrt(mass / ref)
-    v2_kt: float
+    v2_kt: float  # takeoff safety speed; at vr_ref_mass_kg when that is set, scaled as vr_kt
     descent_ias_kt: float
     vapp_kt: float  # final approach speed at ref_landing_mass_kg; scaled by sqrt(mass / ref)
     ref_landing_mass_kg: float
@@ -221,6 +222,20 @@ class AircraftProfile:
     vapp_wind_fraction: float = 0.0
     vapp_wind_included_kt: float = 0.0
     vapp_wind_max_kt: float = 0.0
+    # the initial climb (sim.flight.controllers.InitialClimb): the speed held from liftoff to the
+    # acceleration height, V2 plus this, and the most pitch the speed loop may command for it.
+    # Boeing: "V2 + 15 to V2 + 25" with all engines (Boeing 737 FCTM, takeoff, initial climb), 20 here
+    initial_climb_v2_add_kt: float = 20.0
+    initial_climb_pitch_max_deg: float = 15.0
+    # None: the speed loop takes the pitch from liftoff on; a pitch (deg): the rotation goes on after
+    # liftoff toward it at 3 deg/s (the rotation's rate, sim.flight.controllers.TakeoffRoll) before the
+    # speed loop takes over (sooner if the speed falls under V2)
+    initial_climb_rotate_to_deg: float | None = None
+    # True: from liftoff to the acceleration height the throttle may rise above the takeoff throttle
+    # (to 1.0) to hold the flight's drawn initial rate of climb (climb.vs_initial) as an energy rate
+    # (sim.flight.controllers.InitialClimb), for a model whose drag in the takeoff configuration is
+    # too high for the thrust that gives the real takeoff acceleration
+    initial_climb_thrust_for_rate: bool = False
     # the go-around's thrust (sim.flight.controllers.GoAround): None, the type's climb thrust at once
     # (Airbus TOGA, Fokker GA); a rate of climb (ft/min), Boeing's reduced go-around thrust, which the
     # autothrottle adjusts to hold that climb once the pitch has come up
@@ -360,7 +375,8 @@ PROFILES: dict[str, AircraftProfile] = {
         touchdown_elevator_keep=1.0,
         # WRAP B737
         climb=ClimbSchedule(Spread(11.41, 2.07, 8.01, 14.82), Spread(11.71, 1.96, 8.49, 14.93),
-                            Spread(6.74, 1.42, 4.4, 9.08), 3400.0, 8900.0, 151.95),
+                            Spread(6.74, 1.42, 4.4, 9.08), 3400.0, 8900.0, 151.95,
+                            vs_initial=Spread(11.94, 2.37, 8.05, 15.83)),
         # WRAP B737 takeoff_acceleration; the curve measured on the pattern (LSGG, 46.5 t at brake release)
         takeoff=TakeoffThrust(Spread(1.77, 0.28, 1.31, 2.23),
                               ((0.70, 1.264), (0.75, 1.465), (0.80, 1.674), (0.85, 1.890), (0.90, 2.112),
@@ -442,9 +458,29 @@ PROFILES: dict[str, AircraftProfile] = {
         # integrator holding the nose off the runway for over 8 s in most of them
         add_ground_spoilers=True,
         touchdown_elevator_keep=0.5,
+        # Airbus SRS: "the speed target in SRS TO mode is V2 + 10 kt" from liftoff to the acceleration
+        # altitude (A320 FCOM DSC-22_30-40-20-20, SRS TO mode). At V2 + 20 the model, which lifts off
+        # near V2 + 5, spent the first 1,500 ft accelerating 20-25 kt (about 100 m of height in
+        # energy): 7 european-trio A320s climbed at 4.7-11.1 m/s, 2 of 7 within WRAP's 9.15-16.0
+        initial_climb_v2_add_kt=10.0,
+        # "At VR, initiate the rotation to achieve a continuous rotation with a rate of about 3 deg/s,
+        # towards a pitch attitude of 15 deg" (Airbus A320 FCOM, standard operating procedures, takeoff).
+        # Handed to the speed loop at liftoff (9-10 deg), the model pitched up at under 0.5 deg/s and
+        # spent its thrust on speed: 160 to 175-185 kt over the first 1,500 ft
+        initial_climb_rotate_to_deg=15.0,
+        # The stock model's drag due to lift is about twice an A320's: its CDalpha table (clean, 8 deg)
+        # gives CL 1.02 for CD 0.086 + CDo 0.016, an Oswald factor of about 0.41 at its aspect ratio
+        # 9.4, where a swept transport wing has 0.75-0.85 (Raymer, "Aircraft Design: A Conceptual
+        # Approach", 5th ed., 2012, section 12.6); so at the throttle that gives WRAP's takeoff
+        # acceleration (TakeoffThrust) it climbs with a lift-to-drag ratio near 5 at 9 deg of incidence:
+        # 7 european-trio A320s climbed from liftoff to 1,500 ft at 4.7-11.1 m/s (median 7.5), WRAP's
+        # initclimb_vs being 12.6 +- 2.1 (9.15-16.0). The extra thrust stands for the extra drag: the
+        # accelerometer feels (T - D) / m, which the climb and speed kinematics set
+        initial_climb_thrust_for_rate=True,
         # WRAP A320
         climb=ClimbSchedule(Spread(10.25, 1.59, 7.63, 12.87), Spread(8.44, 1.31, 6.28, 10.6),
-                            Spread(5.29, 1.03, 3.6, 6.97), 3700.0, 8800.0, 151.04),
+                            Spread(5.29, 1.03, 3.6, 6.97), 3700.0, 8800.0, 151.04,
+                            vs_initial=Spread(12.59, 2.09, 9.15, 16.04)),
         # WRAP A320 takeoff_acceleration; the curve measured on the pattern (LSGG, 55.7 t at brake release,
         # mean of seeds 1 and 4, Vr 143 kt; at 0.70 it does not lift off before the runway's end). The mass
         # exponent 1.2 fits 16 european-trio A320 takeoffs (60-65 t): flown minus drawn acceleration
@@ -502,7 +538,8 @@ PROFILES: dict[str, AircraftProfile] = {
         flare_accel_gain=1.0 / 3.0,  # and so does its flare loop at the full gain (JSBSim blew up, 2 of 8 seeds)
         # WRAP E190 (the nearest type WRAP models)
         climb=ClimbSchedule(Spread(10.44, 1.98, 7.18, 13.71), Spread(8.93, 1.62, 6.27, 11.6),
-                            Spread(4.82, 1.14, 2.95, 6.7), 3000.0, 9200.0, 140.0),
+                            Spread(4.82, 1.14, 2.95, 6.7), 3000.0, 9200.0, 140.0,
+                            vs_initial=Spread(11.2, 3.3, 5.78, 16.62)),
         # WRAP E190 takeoff_acceleration (the stand-in, as above); the curve measured on the pattern
         # (LSGG, 33.9 t at brake release)
         takeoff=TakeoffThrust(Spread(1.83, 0.27, 1.38, 2.28),
@@ -589,7 +626,9 @@ PROFILES: dict[str, AircraftProfile] = {
         flare_law="exponential",
         # WRAP B788
         climb=ClimbSchedule(Spread(9.58, 1.38, 7.32, 11.85), Spread(9.02, 1.77, 6.12, 11.93),
-                            Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68),
+                            Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68,
+                            # WRAP gives a beta law (6.24, 5.05, loc 0.78, scale 17.49): its mean and sd
+                            vs_initial=Spread(10.45, 2.48, 6.27, 14.45)),
         # WRAP B788 takeoff_acceleration; the curve measured on lhr-jfk-787 (EGLL, 180 t at brake release)
         takeoff=TakeoffThrust(Spread(1.61, 0.28, 1.16, 2.07),
                               ((0.75, 1.234), (0.80, 1.411), (0.85, 1.591), (0.90, 1.773), (0.95, 1.955),

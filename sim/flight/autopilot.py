@@ -315,6 +315,14 @@ class Autopilot:
             return vr
         return vr * math.sqrt(self.mass_kg() / self.prof.vr_ref_mass_kg)
 
+    def v2_mps(self) -> float:
+        """Takeoff safety speed for the current mass, scaled as :meth:`vr_mps` (V2 is at least 1.13
+        times the 1-g stall speed, 14 CFR 25.107(b), which grows as sqrt(mass))."""
+        v2 = self.prof.v2_kt * KT_MPS
+        if self.prof.vr_ref_mass_kg is None:
+            return v2
+        return v2 * math.sqrt(self.mass_kg() / self.prof.vr_ref_mass_kg)
+
     def configure_approach(self, d_m: float, ias_mps: float) -> None:
         for step in self.prof.approach_steps:
             # a setting is selected inside its distance gate once slow enough for it: within 10 kt

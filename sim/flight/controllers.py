@@ -257,27 +257,55 @@ class TakeoffRoll(Controller):
             p.fire("liftoff")
 
 
+INITIAL_CLIMB_RATE_MAX = 1.3  # InitialClimb's autothrottle: at most this times the drawn rate
+
+
 class InitialClimb(Controller):
-    """V2 + 20 kt to the acceleration height, then accelerate while still climbing (the speed target
-    ramps up at 1.5 kt/s, no level-off) at climb thrust, flaps up on schedule, runway heading to
-    400 ft then the route."""
+    """V2 + the type's initial-climb additive (``initial_climb_v2_add_kt``: Airbus 10 kt, Boeing 20) to
+    the acceleration height, then accelerate while still climbing (the speed target ramps up at
+    1.5 kt/s, no level-off) at climb thrust, flaps up on schedule, runway heading to 400 ft then the
+    route. A type whose model climbs too slowly at its takeoff throttle
+    (``initial_climb_thrust_for_rate``) has an autothrottle until then that holds the flight's drawn
+    initial rate of climb as an energy rate (:class:`EnergyRateThrottle`; the pitch holds the speed),
+    the throttle between the takeoff throttle and 1."""
 
     def enter(self, x) -> None:
         self.t_accel: float | None = None
+        self.v_climb_mps = self.ap.v2_mps() + self.p.prof.initial_climb_v2_add_kt * KT_MPS  # at liftoff's mass
+        thr = self.p.takeoff_thrust_norm
+        self.autothrottle = (EnergyRateThrottle(x, self.p.ix, thr, 1.0, thr)
+                             if self.p.prof.initial_climb_thrust_for_rate and thr is not None else None)
+        # the drawn rate is WRAP's mean from liftoff to 1,500 ft (the acceleration height), the slow
+        # first seconds of the climb included: the autothrottle aims at the height still to gain over
+        # the time left, never less than the drawn rate nor more than INITIAL_CLIMB_RATE_MAX times it
+        vs = self.ap.draws.initial_climb_vs_mps
+        self.t_goal_s = self.p.t + (self.ap.tune.accel_height_m - (x[self.p.ix["agl_m"]] - self.p.prof.cg_height_m)) / vs
+        self.rotate_to = self.p.prof.initial_climb_rotate_to_deg  # None once the speed loop has the pitch
 
     def tick(self, x) -> None:
         ap, p, ix, prof, tu = self.ap, self.p, self.p.ix, self.p.prof, self.ap.tune
         agl = x[ix["agl_m"]]
         ap.gear_up_when_climbing(x)
-        target = (prof.v2_kt + 20.0) * KT_MPS
+        target = self.v_climb_mps
+        if self.autothrottle is not None and agl <= tu.accel_height_m:
+            vs = ap.draws.initial_climb_vs_mps
+            togo = (tu.accel_height_m - (agl - prof.cg_height_m)) / max(self.t_goal_s - p.t, 1.0)
+            ap.throttle(self.autothrottle(x, clamp(togo, vs, INITIAL_CLIMB_RATE_MAX * vs), ap.dt))
         if agl > tu.accel_height_m:
             if self.t_accel is None:
                 self.t_accel = p.t
                 ap.throttle(prof.climb_throttle)
                 p.event("acceleration_height")
-            target = min(tu.speed_limit_mps, (prof.v2_kt + 20.0 + 1.5 * (p.t - self.t_accel)) * KT_MPS)
-        # pitch command moves at most 2 deg/s here, where the speeds are low
-        ap.speed_on_pitch(x, target, lo_deg=5.0, hi_deg=15.0, rate_dps=2.0)
+            target = min(tu.speed_limit_mps, self.v_climb_mps + 1.5 * KT_MPS * (p.t - self.t_accel))
+        if self.rotate_to is not None:
+            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(self.rotate_to), math.radians(3.0) * ap.dt)
+            ap.pitch_to(x, ap.theta_cmd)
+            if ap.theta_cmd >= math.radians(self.rotate_to) - 1e-9 or x[ix["ias_mps"]] < ap.v2_mps():
+                self.rotate_to = None
+                ap.climb_spd_pid.reset(integral=ap.theta_cmd / ap.climb_spd_pid.ki)
+        else:
+            # pitch command moves at most 2 deg/s here, where the speeds are low
+            ap.speed_on_pitch(x, target, lo_deg=5.0, hi_deg=prof.initial_climb_pitch_max_deg, rate_dps=2.0)
         ap.retract_flaps(x, above_m=tu.accel_height_m)
         ap.lateral(x, runway_heading_below_m=400.0 * FT_M)
         if agl > tu.climb_out_m or x[ix["alt_m"]] > p.plan.cruise_alt_m - 150.0:
@@ -568,6 +596,29 @@ GO_AROUND_THRUST_PI = (0.03, 0.01)
 GO_AROUND_ENERGY_TAU_S = 1.0
 
 
+def energy_rate_mps(x, ix) -> float:
+    """The total energy's rate V f_path / g (m/s; GO_AROUND_THRUST_PI)."""
+    alpha = x[ix["alpha_rad"]]
+    f_path = x[ix["fx_mps2"]] * math.cos(alpha) + x[ix["fz_mps2"]] * math.sin(alpha)
+    return x[ix["tas_mps"]] * f_path / G0_MPS2
+
+
+class EnergyRateThrottle:
+    """An autothrottle that holds the total energy's rate (GO_AROUND_THRUST_PI: its PI, and its
+    low-pass over GO_AROUND_ENERGY_TAU_S), the throttle within [``lo``, ``hi``], starting from ``start``."""
+
+    def __init__(self, x, ix, lo: float, hi: float, start: float):
+        kp, ki = GO_AROUND_THRUST_PI
+        self.ix = ix
+        self.pid = PID(kp, ki, 0.0, lo, hi)
+        self.pid.reset(integral=start / ki)
+        self.rate_mps = energy_rate_mps(x, ix)  # low-passed
+
+    def __call__(self, x, target_mps: float, dt_s: float) -> float:
+        self.rate_mps += (energy_rate_mps(x, self.ix) - self.rate_mps) * min(1.0, dt_s / GO_AROUND_ENERGY_TAU_S)
+        return self.pid(target_mps - self.rate_mps, dt_s)
+
+
 class GoAround(EnRoute):
     """A go-around from the flare and the circuit back to the localizer. First, as the go-around modes
     of airliner flight directors fly it (Airbus SRS, Boeing TO/GA): climb thrust at once, the pitch
@@ -592,23 +643,13 @@ class GoAround(EnRoute):
         ap.throttle(ap.thr)
         # Boeing's reduced go-around thrust: from climb thrust, adjusted to hold the type's rate of climb
         self.vs_target_mps = None if prof.go_around_climb_fpm is None else prof.go_around_climb_fpm * FPM_MPS
-        kp, ki = GO_AROUND_THRUST_PI
-        self.thrust_pid = PID(kp, ki, 0.0, 0.0, prof.climb_throttle)
-        self.thrust_pid.reset(integral=prof.climb_throttle / ki)
-        self.energy_rate_mps = self._energy_rate_mps(x)  # low-passed (GO_AROUND_THRUST_PI)
+        self.autothrottle = EnergyRateThrottle(x, ix, 0.0, prof.climb_throttle, prof.climb_throttle)
         ap.ac.set("fcs/speedbrake-cmd-norm", 0.0)
         settings = sorted({s.flaps_norm for s in prof.approach_steps if s.flaps_norm < ap.flaps})
         if settings:
             ap.set_flaps(settings[-1])
         ap.theta_cmd = x[ix["theta_rad"]]
         ap.climb_spd_pid.reset(integral=x[ix["theta_rad"]] / ap.climb_spd_pid.ki)
-
-    def _energy_rate_mps(self, x) -> float:
-        """The total energy's rate V f_path / g (m/s; GO_AROUND_THRUST_PI)."""
-        ix = self.p.ix
-        alpha = x[ix["alpha_rad"]]
-        f_path = x[ix["fx_mps2"]] * math.cos(alpha) + x[ix["fz_mps2"]] * math.sin(alpha)
-        return x[ix["tas_mps"]] * f_path / G0_MPS2
 
     def speed_cap_mps(self) -> float:
         """The approach schedule's speed for the flaps set: the fastest step whose flaps are at least
@@ -626,9 +667,7 @@ class GoAround(EnRoute):
         if self.srs:
             ap.gear_up_when_climbing(x)
             if self.vs_target_mps is not None:
-                rate = self._energy_rate_mps(x)
-                self.energy_rate_mps += (rate - self.energy_rate_mps) * min(1.0, ap.dt / GO_AROUND_ENERGY_TAU_S)
-                ap.thr = self.thrust_pid(self.vs_target_mps - self.energy_rate_mps, ap.dt)
+                ap.thr = self.autothrottle(x, self.vs_target_mps, ap.dt)
                 ap.throttle(ap.thr)
             if self.rotating:
                 # rotate at once towards the go-around attitude: waiting for the speed to ask for it

@@ -39,6 +39,7 @@ SINK_BANDS_FPS = {"firm": (4.5, 7.0), "hard": (7.0, 9.5)}  # module docstring
 @dataclass(frozen=True, slots=True)
 class FlightDraws:
     climb_vs_mps: tuple[float, float, float]  # below the CAS crossover, constant CAS, constant Mach
+    initial_climb_vs_mps: float  # liftoff to 1,500 ft (ClimbSchedule.vs_initial)
     takeoff_accel_target_mps2: float | None  # the drawn takeoff acceleration (None: the plan sets the throttle)
     touchdown_sink_mps: float  # what the flare aims at
     atmosphere: Atmosphere
@@ -47,7 +48,8 @@ class FlightDraws:
 
     def as_dict(self) -> dict:
         a = self.atmosphere
-        return {"climb_vs_mps": list(self.climb_vs_mps), "takeoff_accel_target_mps2": self.takeoff_accel_target_mps2,
+        return {"climb_vs_mps": list(self.climb_vs_mps), "initial_climb_vs_mps": self.initial_climb_vs_mps,
+                "takeoff_accel_target_mps2": self.takeoff_accel_target_mps2,
                 "touchdown_sink_target_mps": self.touchdown_sink_mps,
                 "surface_wind_mps": a.w20_mps, "background_edr_mid": a.edr_mid, "background_edr_upper": a.edr_upper,
                 "patch_edr": list(a.patch_edr), "convective_velocity_mps": a.w_star_mps, "mixed_layer_depth_m": a.z_i_m,
@@ -64,11 +66,12 @@ def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
 
 
 def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDraws:
-    """One flight's draws from its ``flight`` streams (named: ``climb``, ``takeoff``, ``landing``, ``turbulence/atmosphere``,
+    """One flight's draws from its ``flight`` streams (named: ``climb``, ``climb/initial``, ``takeoff``, ``landing``, ``turbulence/atmosphere``,
     ``weather/departure``, ``weather/arrival``); the plan's fixed values replace the draws."""
     c = profile.climb
     r = streams.rng("climb")
     climb = (c.vs_pre_cas.draw(r), c.vs_cas.draw(r), c.vs_mach.draw(r))
+    vs_initial = c.vs_initial.draw(streams.rng("climb/initial"))  # its own stream: no other draw moves
     accel = profile.takeoff.accel.draw(streams.rng("takeoff"))  # drawn even when unused: no other draw moves
     accel_target = accel if plan.takeoff_thrust_norm is None else None
     sink = draw_sink_mps(plan.landing_quality, streams.rng("landing"))
@@ -80,7 +83,7 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
     arr = _weather(plan, plan.arrival_qnh_hpa, streams.rng("weather/arrival"))
     if plan.origin.icao == plan.destination.icao and plan.arrival_qnh_hpa is None:
         arr = dep  # back where it started (a pattern): one airport, one weather (a flight's hour moves QNH ~1 hPa)
-    return FlightDraws(climb, accel_target, float(sink), atm, dep, arr)
+    return FlightDraws(climb, vs_initial, accel_target, float(sink), atm, dep, arr)
 
 
 def _weather(plan: FlightPlan, qnh_hpa: float | None, rng: np.random.Generator) -> Weather:

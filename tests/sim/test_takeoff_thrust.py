@@ -77,3 +77,26 @@ def test_the_a320_lifts_off_a_few_seconds_after_rotating_at_its_mass_scaled_vr(f
     sqrt(mass) from 143 kt at 55.7 t, 147 kt here and 3.6 s. 6 s lies between the two."""
     _, tr = fly_cached("gva-lhr-a320")
     assert tr.event_time("liftoff") - tr.event_time("rotate") < 6.0
+
+
+def test_the_a320_climbs_to_1500_ft_at_its_drawn_wrap_rate(fly_cached):
+    """The A320 model's drag due to lift is about twice the real one's (aircraft_profiles, the A320's
+    initial_climb_thrust_for_rate): at the throttle that gives WRAP's takeoff acceleration it climbed
+    from liftoff to 1,500 ft at 4.7-11.1 m/s on 7 european-trio routes, where WRAP's initclimb_vs is
+    12.6 +- 2.1 m/s. The autothrottle holds the drawn rate, as WRAP measures it (the mean from liftoff,
+    sim.flight.flight_metrics), never under the takeoff throttle. This flight (the pattern from LSGG
+    at seed 4, drawn acceleration 1.61 m/s^2, low in WRAP's 1.5-2.37) climbed at 9.05 m/s before,
+    drawn 10.54; 0.3 m/s is the autothrottle's lag over the last seconds, a seventh of WRAP's sd."""
+    sc, track = fly_cached("pattern", seed=4, stop_after_s=430.0, aircraft="A320", **{"takeoff.thrust_norm": None})
+    h = track.alt_m - sc.plan.origin.elevation_m
+    assert h.max() > 1500 * 0.3048 + 10.0  # the prefix reaches past 1,500 ft
+    drawn = track.conditions["initial_climb_vs_mps"]
+    w = PROFILES["A320"].climb.vs_initial
+    assert w.lo <= drawn <= w.hi
+    i_lo = int(np.searchsorted(track.t_s, track.event_time("liftoff")))
+    i_15 = i_lo + int(np.argmax(h[i_lo:] > 1500 * 0.3048))
+    flown = (track.alt_m[i_15] - track.alt_m[i_lo]) / (track.t_s[i_15] - track.t_s[i_lo])
+    assert flown == pytest.approx(drawn, abs=0.3)
+    # never under the takeoff throttle before the acceleration height: the takeoff thrust at least
+    seg = slice(i_lo, i_15)
+    assert track.n1_pct[seg].min() >= track.n1_pct[i_lo - 1].min() - 0.5
