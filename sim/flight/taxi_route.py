@@ -340,6 +340,23 @@ def _jogs(rng: np.random.Generator, n: int, style_r) -> tuple[Jog, ...]:
     return tuple(out)
 
 
+def turn_count(rate_per_min: float, duration_s: float, band_per_min: tuple[float, float], least: int) -> int:
+    """The number of turns of a taxi segment expected to last ``duration_s``: the drawn rate times the
+    duration, rounded, unless that leaves the rate band (a short segment: 1 turn in 2.5 min is 0.40 per
+    minute, 2 are 0.80), then the count whose rate lies in the band, or, if none does, the one whose
+    rate is nearest to it (by ratio); at least ``least``."""
+    t_min = duration_s / 60.0
+    lo, hi = band_per_min
+
+    def outside(k: int) -> float:  # how far k turns' rate lies outside the band, as a log ratio
+        r = k / t_min
+        return max(math.log(lo / r), math.log(r / hi), 0.0)
+
+    want = rate_per_min * t_min
+    ks = range(max(least, math.floor(lo * t_min)), max(least, math.ceil(hi * t_min)) + 1)
+    return min(ks, key=lambda k: (outside(k), abs(k - want)))
+
+
 def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
     """The flight's taxi draws from its ``taxi`` stream: the crew's speeds and limits (ranges of the
     profile's :class:`~flightmode.sim.flight.aircraft_profiles.PilotTuning`), the number of turns
@@ -365,8 +382,8 @@ def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
     t_out = plan.taxi_out.length_m / (0.64 * style.straight_out_mps) + sum(plan.taxi_out.holds_s) \
         + plan.taxi_out.lineup_hold_s
     t_in = plan.taxi_in.length_m / (0.75 * style.straight_in_mps) + sum(plan.taxi_in.holds_s)
-    n_out = max(3, round(rate_out * t_out / 60.0))  # at least the apron turn and the two at the runway
-    n_in = max(1, round(rate_in * t_in / 60.0))
+    n_out = turn_count(rate_out, t_out, tu.taxi_turns_per_min, 3)  # at least the apron turn and the two at the runway
+    n_in = turn_count(rate_in, t_in, tu.taxi_turns_per_min, 1)
 
     # taxi-out: apron (1 or 2 turns) + 2 per jog + 2 at the runway
     lane = "toward" if (n_out - 2) % 2 == 1 else "parallel"

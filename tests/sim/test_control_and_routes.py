@@ -161,3 +161,27 @@ def test_taxi_in_routes_turn_as_often_as_the_real_tracks_statistics_count():
         layouts.add(lay.apron_turns)
     assert layouts == {0, 1, 2, 3}
     assert counted == pytest.approx(drawn, rel=0.1), (drawn, counted)
+
+
+def test_turn_count_keeps_a_short_segments_rate_inside_the_band():
+    """turn_count: the drawn rate times the expected duration, rounded, while that rate stays inside
+    the band; a short segment whose rounded count leaves it takes the count inside it, or the nearest
+    by ratio when none fits; never under ``least``. The band is the profile's (the ADS-B 0.425-0.833
+    turns per minute narrowed by a tenth at each end)."""
+    from flightmode.sim.flight.aircraft_profiles import PilotTuning
+    from flightmode.sim.flight.taxi_route import turn_count
+
+    band = PilotTuning().taxi_turns_per_min
+    lo, hi = band
+    assert turn_count(0.6, 600.0, band, 3) == 6  # 10 min at 0.6: round(6.0), inside
+    # 2.5 min: one turn is 0.40 per minute, under the band; two are 0.80, over it but nearer by ratio
+    assert turn_count(0.5, 150.0, band, 1) == 2
+    # 10 min at the band's top: round(7.6) = 8 is 0.80 per minute, outside; 7 (0.70) is inside
+    assert turn_count(hi, 600.0, band, 3) == 7
+    assert turn_count(0.6, 30.0, band, 3) == 3  # the least, whatever the rate
+    for t_s in np.linspace(60.0, 1200.0, 200):  # every count inside the band where one fits
+        for r in (lo, 0.6, hi):
+            k = turn_count(r, t_s, band, 1)
+            fits = [j for j in range(1, 40) if lo <= j / (t_s / 60.0) <= hi]
+            if fits:
+                assert k in fits, (r, t_s, k)
