@@ -209,6 +209,7 @@ class TaxiOut(Taxi):
 # the CG), where a smooth rotation toward 2-3 deg/s of pitch rate (Boeing 737 FCTM, Airbus A320 FCTM)
 # takes about a second to build it (a few deg/s^2)
 ROTATE_RAMP_S = 1.5
+ROTATE_RATE_DPS = 3.0  # the rotation's pitch rate: "about 3 deg/s" (Airbus A320 FCOM SOP; Boeing 737 FCTM: 2-3)
 
 
 class TakeoffRoll(Controller):
@@ -239,7 +240,7 @@ class TakeoffRoll(Controller):
             if self.t_rotate is None:
                 self.t_rotate = p.t
                 p.event("rotate", f"{ias / KT_MPS:.0f} kt")
-            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(prof.rotate_pitch_deg), math.radians(3.0) * ap.dt)
+            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(prof.rotate_pitch_deg), math.radians(ROTATE_RATE_DPS) * ap.dt)
             # nose-up elevator bias while the mains still carry the aircraft (rotation), applied
             # smoothly (ROTATE_RAMP_S)
             self.bias = prof.rotate_elevator * min(1.0, (p.t - self.t_rotate) / ROTATE_RAMP_S)
@@ -257,6 +258,42 @@ class TakeoffRoll(Controller):
             p.fire("liftoff")
 
 
+# The energy-rate autothrottle of Boeing's reduced go-around thrust (AircraftProfile.go_around_climb_fpm)
+# and of the A320's initial climb (AircraftProfile.initial_climb_thrust_for_rate): a PI (throttle per
+# m/s of energy-rate error, and per m of its integral) on the energy rate, not the rate of climb: thrust sets the total energy's rate d(h + V^2 / 2g)/dt = V f_path / g (f_path the specific
+# force along the flight path, (T cos(alpha) - D) / m), the pitch shares it between climb and speed (it
+# holds the speed): the principle of Lambregts's total energy control (AIAA paper 83-2239, 1983).
+# Closed on the rate of climb instead, the two loops fought here: the pitch traded speed for climb, the
+# thrust answered the climb, and a 737 pattern go-around sank again at 430 ft at 127 kt. One throttle's
+# worth of thrust is about 0.3 of the weight, 20 m/s of climb at 75 m/s: a loop gain near 0.6;
+# integral time 3 s. The specific force is low-passed over ENERGY_RATE_TAU_S (gusts)
+ENERGY_RATE_THRUST_PI = (0.03, 0.01)
+ENERGY_RATE_TAU_S = 1.0
+
+
+def energy_rate_mps(x, ix) -> float:
+    """The total energy's rate V f_path / g (m/s; ENERGY_RATE_THRUST_PI)."""
+    alpha = x[ix["alpha_rad"]]
+    f_path = x[ix["fx_mps2"]] * math.cos(alpha) + x[ix["fz_mps2"]] * math.sin(alpha)
+    return x[ix["tas_mps"]] * f_path / G0_MPS2
+
+
+class EnergyRateThrottle:
+    """An autothrottle that holds the total energy's rate (ENERGY_RATE_THRUST_PI: its PI, and its
+    low-pass over ENERGY_RATE_TAU_S), the throttle within [``lo``, ``hi``], starting from ``start``."""
+
+    def __init__(self, x, ix, lo: float, hi: float, start: float):
+        kp, ki = ENERGY_RATE_THRUST_PI
+        self.ix = ix
+        self.pid = PID(kp, ki, 0.0, lo, hi)
+        self.pid.reset(integral=start / ki)
+        self.rate_mps = energy_rate_mps(x, ix)  # low-passed
+
+    def __call__(self, x, target_mps: float, dt_s: float) -> float:
+        self.rate_mps += (energy_rate_mps(x, self.ix) - self.rate_mps) * min(1.0, dt_s / ENERGY_RATE_TAU_S)
+        return self.pid(target_mps - self.rate_mps, dt_s)
+
+
 INITIAL_CLIMB_RATE_MAX = 1.3  # InitialClimb's autothrottle: at most this times the drawn rate
 
 
@@ -266,20 +303,21 @@ class InitialClimb(Controller):
     1.5 kt/s, no level-off) at climb thrust, flaps up on schedule, runway heading to 400 ft then the
     route. A type whose model climbs too slowly at its takeoff throttle
     (``initial_climb_thrust_for_rate``) has an autothrottle until then that holds the flight's drawn
-    initial rate of climb as an energy rate (:class:`EnergyRateThrottle`; the pitch holds the speed),
-    the throttle between the takeoff throttle and 1."""
+    initial rate of climb as an energy rate (:class:`EnergyRateThrottle`; once the rotation is over the
+    pitch holds the speed), the throttle between the takeoff throttle and 1. A type with
+    ``initial_climb_rotate_to_deg`` goes on rotating toward that attitude after liftoff first."""
 
     def enter(self, x) -> None:
         self.t_accel: float | None = None
         self.v_climb_mps = self.ap.v2_mps() + self.p.prof.initial_climb_v2_add_kt * KT_MPS  # at liftoff's mass
         thr = self.p.takeoff_thrust_norm
-        self.autothrottle = (EnergyRateThrottle(x, self.p.ix, thr, 1.0, thr)
+        self.autothrottle = (EnergyRateThrottle(x, self.p.ix, thr, max(1.0, thr), thr)
                              if self.p.prof.initial_climb_thrust_for_rate and thr is not None else None)
         # the drawn rate is WRAP's mean from liftoff to 1,500 ft (the acceleration height), the slow
         # first seconds of the climb included: the autothrottle aims at the height still to gain over
         # the time left, never less than the drawn rate nor more than INITIAL_CLIMB_RATE_MAX times it
         vs = self.ap.draws.initial_climb_vs_mps
-        self.t_goal_s = self.p.t + (self.ap.tune.accel_height_m - (x[self.p.ix["agl_m"]] - self.p.prof.cg_height_m)) / vs
+        self.t_goal_s = self.p.t + (self.ap.tune.accel_height_m - x[self.p.ix["agl_m"]]) / vs  # the CG's height, as below
         self.rotate_to = self.p.prof.initial_climb_rotate_to_deg  # None once the speed loop has the pitch
 
     def tick(self, x) -> None:
@@ -287,9 +325,9 @@ class InitialClimb(Controller):
         agl = x[ix["agl_m"]]
         ap.gear_up_when_climbing(x)
         target = self.v_climb_mps
-        if self.autothrottle is not None and agl <= tu.accel_height_m:
+        if self.autothrottle is not None and self.t_accel is None and agl <= tu.accel_height_m:
             vs = ap.draws.initial_climb_vs_mps
-            togo = (tu.accel_height_m - (agl - prof.cg_height_m)) / max(self.t_goal_s - p.t, 1.0)
+            togo = (tu.accel_height_m - agl) / max(self.t_goal_s - p.t, 1.0)
             ap.throttle(self.autothrottle(x, clamp(togo, vs, INITIAL_CLIMB_RATE_MAX * vs), ap.dt))
         if agl > tu.accel_height_m:
             if self.t_accel is None:
@@ -298,7 +336,7 @@ class InitialClimb(Controller):
                 p.event("acceleration_height")
             target = min(tu.speed_limit_mps, self.v_climb_mps + 1.5 * KT_MPS * (p.t - self.t_accel))
         if self.rotate_to is not None:
-            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(self.rotate_to), math.radians(3.0) * ap.dt)
+            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(self.rotate_to), math.radians(ROTATE_RATE_DPS) * ap.dt)
             ap.pitch_to(x, ap.theta_cmd)
             if ap.theta_cmd >= math.radians(self.rotate_to) - 1e-9 or x[ix["ias_mps"]] < ap.v2_mps():
                 self.rotate_to = None
@@ -583,49 +621,13 @@ GO_AROUND_FIX_NM = 8.0
 # Airbus's SRS commands up to 17.5 deg)
 GO_AROUND_PITCH_DEG = 15.0
 GO_AROUND_PITCH_RATE_DPS = 3.0
-# Boeing's reduced go-around thrust (AircraftProfile.go_around_climb_fpm): the autothrottle's PI
-# (throttle per m/s of energy-rate error, and per m of its integral) on the energy rate, not the rate
-# of climb: thrust sets the total energy's rate d(h + V^2 / 2g)/dt = V f_path / g (f_path the specific
-# force along the flight path, (T cos(alpha) - D) / m), the pitch shares it between climb and speed (it
-# holds the speed): the principle of Lambregts's total energy control (AIAA paper 83-2239, 1983).
-# Closed on the rate of climb instead, the two loops fought here: the pitch traded speed for climb, the
-# thrust answered the climb, and a 737 pattern go-around sank again at 430 ft at 127 kt. One throttle's
-# worth of thrust is about 0.3 of the weight, 20 m/s of climb at 75 m/s: a loop gain near 0.6;
-# integral time 3 s. The specific force is low-passed over GO_AROUND_ENERGY_TAU_S (gusts)
-GO_AROUND_THRUST_PI = (0.03, 0.01)
-GO_AROUND_ENERGY_TAU_S = 1.0
-
-
-def energy_rate_mps(x, ix) -> float:
-    """The total energy's rate V f_path / g (m/s; GO_AROUND_THRUST_PI)."""
-    alpha = x[ix["alpha_rad"]]
-    f_path = x[ix["fx_mps2"]] * math.cos(alpha) + x[ix["fz_mps2"]] * math.sin(alpha)
-    return x[ix["tas_mps"]] * f_path / G0_MPS2
-
-
-class EnergyRateThrottle:
-    """An autothrottle that holds the total energy's rate (GO_AROUND_THRUST_PI: its PI, and its
-    low-pass over GO_AROUND_ENERGY_TAU_S), the throttle within [``lo``, ``hi``], starting from ``start``."""
-
-    def __init__(self, x, ix, lo: float, hi: float, start: float):
-        kp, ki = GO_AROUND_THRUST_PI
-        self.ix = ix
-        self.pid = PID(kp, ki, 0.0, lo, hi)
-        self.pid.reset(integral=start / ki)
-        self.rate_mps = energy_rate_mps(x, ix)  # low-passed
-
-    def __call__(self, x, target_mps: float, dt_s: float) -> float:
-        self.rate_mps += (energy_rate_mps(x, self.ix) - self.rate_mps) * min(1.0, dt_s / GO_AROUND_ENERGY_TAU_S)
-        return self.pid(target_mps - self.rate_mps, dt_s)
-
-
 class GoAround(EnRoute):
     """A go-around from the flare and the circuit back to the localizer. First, as the go-around modes
     of airliner flight directors fly it (Airbus SRS, Boeing TO/GA): climb thrust at once, the pitch
     holding the speed of the moment (the approach speed at least) up to 15 deg, flaps one setting up,
     gear up with a positive climb, the runway's heading to 400 ft. A Boeing's autothrottle holds its
     type's rate of climb from the call on, as the first push of TO/GA does, climb thrust its ceiling
-    (AircraftProfile.go_around_climb_fpm, GO_AROUND_THRUST_PI). From the acceleration height on,
+    (AircraftProfile.go_around_climb_fpm, ENERGY_RATE_THRUST_PI). From the acceleration height on,
     the en-route loops fly the circuit (:data:`CIRCUIT_CORNERS_NM`) at its altitude, configured: the
     speed capped at the approach schedule's for the flaps set, which the approach gates extend again;
     the localizer is captured at the circuit's fix as on any approach."""

@@ -44,6 +44,16 @@ def takeoff_accel_mps2(track: FlightTrack) -> float:
     return float(track.ground_speed_mps[i_lo] / (track.t_s[i_lo] - t_roll))
 
 
+def initial_climb_vs_mps(track: FlightTrack, plan: FlightPlan) -> float:
+    """WRAP's initial climb rate: the mean vertical rate from liftoff to 1,500 ft above the runway.
+    Needs only the track up to there."""
+    t = track.t_s
+    i_lo = int(np.searchsorted(t, track.event_time("liftoff")))
+    agl_o = track.alt_m - plan.origin.elevation_m
+    i_1500 = i_lo + int(np.argmax(agl_o[i_lo:] > 1500 * FT_M))
+    return float((track.alt_m[i_1500] - track.alt_m[i_lo]) / (t[i_1500] - t[i_lo]))
+
+
 def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     """Figures of one gate-to-gate flight; see the module docstring. Keys carry their units."""
     t = track.t_s
@@ -58,10 +68,7 @@ def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     m["liftoff_ias_mps"] = float(track.ias_mps[i_lo])
     m["liftoff_gs_mps"] = float(gs[i_lo])
     m["takeoff_accel_mps2"] = takeoff_accel_mps2(track)
-    # initial climb: mean vertical rate from liftoff to 1500 ft above the runway
-    agl_o = track.alt_m - plan.origin.elevation_m
-    i_1500 = i_lo + int(np.argmax(agl_o[i_lo:] > 1500 * FT_M))
-    m["initial_climb_vs_mps"] = float((track.alt_m[i_1500] - track.alt_m[i_lo]) / (t[i_1500] - t[i_lo]))
+    m["initial_climb_vs_mps"] = initial_climb_vs_mps(track, plan)
     c0, c1 = _phase_span(track, "cruise")
     m["cruise_alt_m"] = float(np.median(track.alt_m[c0 : c1 + 1]))
     m["max_alt_m"] = float(track.alt_m.max())

@@ -342,10 +342,12 @@ def _jogs(rng: np.random.Generator, n: int, style_r) -> tuple[Jog, ...]:
 
 def turn_count(rate_per_min: float, duration_s: float, band_per_min: tuple[float, float], least: int) -> int:
     """The number of turns of a taxi segment expected to last ``duration_s``: the drawn rate times the
-    duration, rounded, unless that leaves the rate band (a short segment: 1 turn in 2.5 min is 0.40 per
+    duration, rounded (a half to the lower count), unless that leaves the rate band (a short segment: 1 turn in 2.5 min is 0.40 per
     minute, 2 are 0.80), then the count whose rate lies in the band, or, if none does, the one whose
     rate is nearest to it (by ratio); at least ``least``."""
     t_min = duration_s / 60.0
+    if t_min <= 0.0:  # nothing to time a rate over (a taxi plan of no length and no holds)
+        return least
     lo, hi = band_per_min
 
     def outside(k: int) -> float:  # how far k turns' rate lies outside the band, as a log ratio

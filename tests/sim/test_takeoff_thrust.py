@@ -83,20 +83,24 @@ def test_the_a320_climbs_to_1500_ft_at_its_drawn_wrap_rate(fly_cached):
     """The A320 model's drag due to lift is about twice the real one's (aircraft_profiles, the A320's
     initial_climb_thrust_for_rate): at the throttle that gives WRAP's takeoff acceleration it climbed
     from liftoff to 1,500 ft at 4.7-11.1 m/s on 7 european-trio routes, where WRAP's initclimb_vs is
-    12.6 +- 2.1 m/s. The autothrottle holds the drawn rate, as WRAP measures it (the mean from liftoff,
-    sim.flight.flight_metrics), never under the takeoff throttle. This flight (the pattern from LSGG
-    at seed 4, drawn acceleration 1.61 m/s^2, low in WRAP's 1.5-2.37) climbed at 9.05 m/s before,
-    drawn 10.54; 0.3 m/s is the autothrottle's lag over the last seconds, a seventh of WRAP's sd."""
+    12.6 +- 2.1 m/s. The autothrottle holds the drawn rate as WRAP measures it (the mean from liftoff,
+    sim.flight.flight_metrics), aiming at the height to go over the time left. This flight (the
+    pattern from LSGG at seed 4, drawn acceleration 1.61 m/s^2, low in WRAP's 1.5-2.37) climbed at
+    9.05 m/s without it, 10.55 m/s with it for a drawn 10.54 m/s. The tolerance, 0.3 m/s, is a seventh
+    of WRAP's standard deviation; the flown rate sits under the drawn one only if the thrust runs out
+    (throttle 1), which at this draw it does not (8 european-trio A320s: within 0.4 m/s of their
+    draws up to 12.4 m/s)."""
+    from flightmode.sim.flight.flight_metrics import initial_climb_vs_mps
+
     sc, track = fly_cached("pattern", seed=4, stop_after_s=430.0, aircraft="A320", **{"takeoff.thrust_norm": None})
     h = track.alt_m - sc.plan.origin.elevation_m
     assert h.max() > 1500 * 0.3048 + 10.0  # the prefix reaches past 1,500 ft
     drawn = track.conditions["initial_climb_vs_mps"]
-    w = PROFILES["A320"].climb.vs_initial
-    assert w.lo <= drawn <= w.hi
+    assert initial_climb_vs_mps(track, sc.plan) == pytest.approx(drawn, abs=0.3)
+    # the autothrottle had to add thrust: at the takeoff throttle the thrust only falls as the speed
+    # grows, so 10 % more than in the last second on the runway (measured: 122 kN, then up to 181) is
+    # the throttle's doing
     i_lo = int(np.searchsorted(track.t_s, track.event_time("liftoff")))
     i_15 = i_lo + int(np.argmax(h[i_lo:] > 1500 * 0.3048))
-    flown = (track.alt_m[i_15] - track.alt_m[i_lo]) / (track.t_s[i_15] - track.t_s[i_lo])
-    assert flown == pytest.approx(drawn, abs=0.3)
-    # never under the takeoff throttle before the acceleration height: the takeoff thrust at least
-    seg = slice(i_lo, i_15)
-    assert track.n1_pct[seg].min() >= track.n1_pct[i_lo - 1].min() - 0.5
+    roll = track.thrust_n[i_lo - int(track.fs_hz) : i_lo].sum(axis=1).max()
+    assert track.thrust_n[i_lo:i_15].sum(axis=1).max() > 1.1 * roll
