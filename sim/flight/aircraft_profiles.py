@@ -43,8 +43,8 @@ class PilotTuning:
     taxi_accel_mps2: tuple = (0.02 * G0_MPS2, 0.04 * G0_MPS2)
     # turns per minute of taxi, drawn per segment (sim.flight.taxi_route.turn_count): the ADS-B tracks'
     # 0.425-0.833 narrowed by a tenth at each end, the error of the expected duration the count is made
-    # for (flown over expected taxi-out time 0.84-1.08 on 20 european-trio flights): drawn at
-    # 0.45-0.80, 7 of 40 flown segments fell outside the real range (0.37-0.41 and 0.86-0.87)
+    # for (sim.flight.taxi_route.TAXI_TIME_FIT): drawn at 0.45-0.80, 7 of 40 flown segments of a
+    # european-trio population fell outside the real range (0.37-0.41 and 0.86-0.87)
     taxi_turns_per_min: tuple = (0.47, 0.76)
     # taxi speed loop: brakes from the deceleration wanted over the brakes' gain (deceleration per unit
     # brake command, measured at 10 m/s: JSBSim 737 7.0 m/s^2, A320 4.2), plus a PI on the over-speed;
