@@ -209,7 +209,8 @@ class TaxiOut(Taxi):
 # the CG), where a smooth rotation toward 2-3 deg/s of pitch rate (Boeing 737 FCTM, Airbus A320 FCTM)
 # takes about a second to build it (a few deg/s^2)
 ROTATE_RAMP_S = 1.5
-ROTATE_RATE_DPS = 3.0  # the rotation's pitch rate: "about 3 deg/s" (Airbus A320 FCOM SOP; Boeing 737 FCTM: 2-3)
+# the rotation's pitch rate: "about 3 deg/s" (Airbus A320 FCOM SOP; Boeing 737 FCTM: 2-3 deg/s)
+ROTATE_RATE_DPS = 3.0
 
 
 class TakeoffRoll(Controller):
@@ -240,7 +241,8 @@ class TakeoffRoll(Controller):
             if self.t_rotate is None:
                 self.t_rotate = p.t
                 p.event("rotate", f"{ias / KT_MPS:.0f} kt")
-            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(prof.rotate_pitch_deg), math.radians(ROTATE_RATE_DPS) * ap.dt)
+            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(prof.rotate_pitch_deg),
+                                      math.radians(ROTATE_RATE_DPS) * ap.dt)
             # nose-up elevator bias while the mains still carry the aircraft (rotation), applied
             # smoothly (ROTATE_RAMP_S)
             self.bias = prof.rotate_elevator * min(1.0, (p.t - self.t_rotate) / ROTATE_RAMP_S)
@@ -260,8 +262,9 @@ class TakeoffRoll(Controller):
 
 # The energy-rate autothrottle of Boeing's reduced go-around thrust (AircraftProfile.go_around_climb_fpm)
 # and of the A320's initial climb (AircraftProfile.initial_climb_thrust_for_rate): a PI (throttle per
-# m/s of energy-rate error, and per m of its integral) on the energy rate, not the rate of climb: thrust sets the total energy's rate d(h + V^2 / 2g)/dt = V f_path / g (f_path the specific
-# force along the flight path, (T cos(alpha) - D) / m), the pitch shares it between climb and speed (it
+# m/s of energy-rate error, and per m of its integral) on the energy rate, not the rate of climb:
+# thrust sets the total energy's rate d(h + V^2 / 2g)/dt = V f_path / g (f_path the specific force
+# along the flight path, (T cos(alpha) - D) / m), the pitch shares it between climb and speed (it
 # holds the speed): the principle of Lambregts's total energy control (AIAA paper 83-2239, 1983).
 # Closed on the rate of climb instead, the two loops fought here: the pitch traded speed for climb, the
 # thrust answered the climb, and a 737 pattern go-around sank again at 430 ft at 127 kt. One throttle's
@@ -309,7 +312,8 @@ class InitialClimb(Controller):
 
     def enter(self, x) -> None:
         self.t_accel: float | None = None
-        self.v_climb_mps = self.ap.v2_mps() + self.p.prof.initial_climb_v2_add_kt * KT_MPS  # at liftoff's mass
+        # at liftoff's mass
+        self.v_climb_mps = self.ap.v2_mps() + self.p.prof.initial_climb_v2_add_kt * KT_MPS
         thr = self.p.takeoff_thrust_norm
         self.autothrottle = (EnergyRateThrottle(x, self.p.ix, thr, max(1.0, thr), thr)
                              if self.p.prof.initial_climb_thrust_for_rate and thr is not None else None)
@@ -317,7 +321,8 @@ class InitialClimb(Controller):
         # first seconds of the climb included: the autothrottle aims at the height still to gain over
         # the time left, never less than the drawn rate nor more than INITIAL_CLIMB_RATE_MAX times it
         vs = self.ap.draws.initial_climb_vs_mps
-        self.t_goal_s = self.p.t + (self.ap.tune.accel_height_m - x[self.p.ix["agl_m"]]) / vs  # the CG's height, as below
+        # (heights: the CG's above the ground, as tick's switch at the acceleration height)
+        self.t_goal_s = self.p.t + (self.ap.tune.accel_height_m - x[self.p.ix["agl_m"]]) / vs
         self.rotate_to = self.p.prof.initial_climb_rotate_to_deg  # None once the speed loop has the pitch
 
     def tick(self, x) -> None:
@@ -336,7 +341,8 @@ class InitialClimb(Controller):
                 p.event("acceleration_height")
             target = min(tu.speed_limit_mps, self.v_climb_mps + 1.5 * KT_MPS * (p.t - self.t_accel))
         if self.rotate_to is not None:
-            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(self.rotate_to), math.radians(ROTATE_RATE_DPS) * ap.dt)
+            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(self.rotate_to),
+                                      math.radians(ROTATE_RATE_DPS) * ap.dt)
             ap.pitch_to(x, ap.theta_cmd)
             if ap.theta_cmd >= math.radians(self.rotate_to) - 1e-9 or x[ix["ias_mps"]] < ap.v2_mps():
                 self.rotate_to = None

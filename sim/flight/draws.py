@@ -66,8 +66,9 @@ def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
 
 
 def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDraws:
-    """One flight's draws from its ``flight`` streams (named: ``climb``, ``climb/initial``, ``takeoff``, ``landing``, ``turbulence/atmosphere``,
-    ``weather/departure``, ``weather/arrival``); the plan's fixed values replace the draws."""
+    """One flight's draws from its ``flight`` streams (named: ``climb``, ``climb/initial``, ``takeoff``,
+    ``landing``, ``turbulence/atmosphere``, ``weather/departure``, ``weather/arrival``); the plan's fixed
+    values replace the draws."""
     c = profile.climb
     r = streams.rng("climb")
     climb = (c.vs_pre_cas.draw(r), c.vs_cas.draw(r), c.vs_mach.draw(r))

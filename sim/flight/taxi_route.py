@@ -344,8 +344,8 @@ def _jogs(rng: np.random.Generator, n: int, style_r) -> tuple[Jog, ...]:
 # (s per s of length over the straight speed, s), a least-squares line over 25 flown segments of each
 # kind (the 20 of a seeded european-trio population and the 5 gate-to-gate built-ins; A320, 737,
 # Fokker 100, 787-8): flown over predicted 0.89-1.06 (taxi-out) and 0.82-1.17 (taxi-in). The fixed part
-# is the start from rest, the line-up and the apron; a term per turn came out insignificant (10 s a
-# turn on taxi-out, 0.3 s on taxi-in). The earlier fixed fractions of the straight speed (64 % and
+# is the start from rest, the line-up and the apron; a term per turn hardly changed the fit (10 s a
+# turn on taxi-out, 0.3 s on taxi-in; taxi-out 0.91-1.08 with it). The earlier fixed fractions of the straight speed (64 % and
 # 75 %, medians of 20 A320 routes) overestimated the long routes of the built-ins by up to 29 %: their
 # turns per minute, made for the estimate, came out at 0.84-0.93 flown
 TAXI_TIME_FIT = {"out": (0.95, 138.0), "in": (1.02, 27.0)}
@@ -353,9 +353,9 @@ TAXI_TIME_FIT = {"out": (0.95, 138.0), "in": (1.02, 27.0)}
 
 def turn_count(rate_per_min: float, duration_s: float, band_per_min: tuple[float, float], least: int) -> int:
     """The number of turns of a taxi segment expected to last ``duration_s``: the drawn rate times the
-    duration, rounded (a half to the lower count), unless that leaves the rate band (a short segment: 1 turn in 2.5 min is 0.40 per
-    minute, 2 are 0.80), then the count whose rate lies in the band, or, if none does, the one whose
-    rate is nearest to it (by ratio); at least ``least``."""
+    duration, rounded (a half to the lower count), unless that leaves the rate band (a short segment:
+    1 turn in 2.5 min is 0.40 per minute, 2 are 0.80), then the count whose rate lies in the band, or,
+    if none does, the one whose rate is nearest to it (by ratio); at least ``least``."""
     t_min = duration_s / 60.0
     if t_min <= 0.0:  # nothing to time a rate over (a taxi plan of no length and no holds)
         return least
@@ -394,7 +394,8 @@ def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
     t_out = k_out * plan.taxi_out.length_m / style.straight_out_mps + c_out + sum(plan.taxi_out.holds_s) \
         + plan.taxi_out.lineup_hold_s
     t_in = k_in * plan.taxi_in.length_m / style.straight_in_mps + c_in + sum(plan.taxi_in.holds_s)
-    n_out = turn_count(rate_out, t_out, tu.taxi_turns_per_min, 3)  # at least the apron turn and the two at the runway
+    # at least the apron turn and the two at the runway
+    n_out = turn_count(rate_out, t_out, tu.taxi_turns_per_min, 3)
     n_in = turn_count(rate_in, t_in, tu.taxi_turns_per_min, 1)
 
     # taxi-out: apron (1 or 2 turns) + 2 per jog + 2 at the runway
