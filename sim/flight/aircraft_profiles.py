@@ -465,7 +465,7 @@ PROFILES: dict[str, AircraftProfile] = {
         # Airbus SRS: "the speed target in SRS TO mode is V2 + 10 kt" from liftoff to the acceleration
         # altitude (A320 FCOM DSC-22_30-40-20-20, SRS TO mode). At V2 + 20 the model, which lifts off
         # near V2 + 5, spent the first 1,500 ft accelerating 20-25 kt (about 100 m of height in
-        # energy): 7 european-trio A320s climbed at 4.7-11.1 m/s, 2 of 7 within WRAP's 9.15-16.0
+        # energy): 8 european-trio A320s climbed at 4.7-11.1 m/s, 2 of 8 within WRAP's 9.15-16.0
         initial_climb_v2_add_kt=10.0,
         # "At VR, initiate the rotation to achieve a continuous rotation with a rate of about 3 deg/s,
         # towards a pitch attitude of 15 deg" (Airbus A320 FCOM, standard operating procedures, takeoff).
@@ -477,7 +477,7 @@ PROFILES: dict[str, AircraftProfile] = {
         # 9.4, where a swept transport wing has 0.75-0.85 (Raymer, "Aircraft Design: A Conceptual
         # Approach", 5th ed., 2012, section 12.6); so at the throttle that gives WRAP's takeoff
         # acceleration (TakeoffThrust) it climbs with a lift-to-drag ratio near 5 at 9 deg of incidence:
-        # 7 european-trio A320s climbed from liftoff to 1,500 ft at 4.7-11.1 m/s (median 7.5), WRAP's
+        # 8 european-trio A320s climbed from liftoff to 1,500 ft at 4.7-11.1 m/s (median 7.6), WRAP's
         # initclimb_vs being 12.6 +- 2.1 (9.15-16.0). The extra thrust stands for the extra drag: the
         # accelerometer feels (T - D) / m, which the climb and speed kinematics set
         initial_climb_thrust_for_rate=True,

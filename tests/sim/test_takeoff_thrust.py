@@ -82,7 +82,7 @@ def test_the_a320_lifts_off_a_few_seconds_after_rotating_at_its_mass_scaled_vr(f
 def test_the_a320_climbs_to_1500_ft_at_its_drawn_wrap_rate(fly_cached):
     """The A320 model's drag due to lift is about twice the real one's (aircraft_profiles, the A320's
     initial_climb_thrust_for_rate): at the throttle that gives WRAP's takeoff acceleration it climbed
-    from liftoff to 1,500 ft at 4.7-11.1 m/s on 7 european-trio routes, where WRAP's initclimb_vs is
+    from liftoff to 1,500 ft at 4.7-11.1 m/s on 8 european-trio routes, where WRAP's initclimb_vs is
     12.6 +- 2.1 m/s. The autothrottle holds the drawn rate as WRAP measures it (the mean from liftoff,
     sim.flight.flight_metrics), aiming at the height to go over the time left. This flight (the
     pattern from LSGG at seed 4, drawn acceleration 1.61 m/s^2, low in WRAP's 1.5-2.37) climbed at
