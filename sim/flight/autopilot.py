@@ -307,21 +307,22 @@ class Autopilot:
         return clamp(p.vapp_wind_fraction * self.draws.atmosphere.w20_mps - p.vapp_wind_included_kt * KT_MPS,
                      0.0, (p.vapp_wind_max_kt - p.vapp_wind_included_kt) * KT_MPS)
 
-    def vr_mps(self) -> float:
-        """Rotation speed for the current mass: the profile's, scaled with sqrt(mass) as the stall
-        speed is when the profile gives the mass it holds at (``vr_ref_mass_kg``)."""
-        vr = self.prof.vr_kt * KT_MPS
+    def _takeoff_speed_mps(self, kt: float) -> float:
+        """A takeoff speed of the profile for the current mass: scaled with sqrt(mass), as the stall
+        speed is, when the profile gives the mass it holds at (``vr_ref_mass_kg``)."""
+        v = kt * KT_MPS
         if self.prof.vr_ref_mass_kg is None:
-            return vr
-        return vr * math.sqrt(self.mass_kg() / self.prof.vr_ref_mass_kg)
+            return v
+        return v * math.sqrt(self.mass_kg() / self.prof.vr_ref_mass_kg)
+
+    def vr_mps(self) -> float:
+        """Rotation speed for the current mass (:meth:`_takeoff_speed_mps`)."""
+        return self._takeoff_speed_mps(self.prof.vr_kt)
 
     def v2_mps(self) -> float:
-        """Takeoff safety speed for the current mass, scaled as :meth:`vr_mps` (V2 is at least 1.13
+        """Takeoff safety speed for the current mass (:meth:`_takeoff_speed_mps`: V2 is at least 1.13
         times the 1-g stall speed, 14 CFR 25.107(b), which grows as sqrt(mass))."""
-        v2 = self.prof.v2_kt * KT_MPS
-        if self.prof.vr_ref_mass_kg is None:
-            return v2
-        return v2 * math.sqrt(self.mass_kg() / self.prof.vr_ref_mass_kg)
+        return self._takeoff_speed_mps(self.prof.v2_kt)
 
     def configure_approach(self, d_m: float, ias_mps: float) -> None:
         for step in self.prof.approach_steps:

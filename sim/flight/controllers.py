@@ -312,8 +312,8 @@ class InitialClimb(Controller):
 
     def enter(self, x) -> None:
         self.t_accel: float | None = None
-        # at liftoff's mass
-        self.v_climb_mps = self.ap.v2_mps() + self.p.prof.initial_climb_v2_add_kt * KT_MPS
+        self.v2_mps = self.ap.v2_mps()  # at liftoff's mass
+        self.v_climb_mps = self.v2_mps + self.p.prof.initial_climb_v2_add_kt * KT_MPS
         thr = self.p.takeoff_thrust_norm
         self.autothrottle = (EnergyRateThrottle(x, self.p.ix, thr, max(1.0, thr), thr)
                              if self.p.prof.initial_climb_thrust_for_rate and thr is not None else None)
@@ -344,7 +344,7 @@ class InitialClimb(Controller):
             ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(self.rotate_to),
                                       math.radians(ROTATE_RATE_DPS) * ap.dt)
             ap.pitch_to(x, ap.theta_cmd)
-            if ap.theta_cmd >= math.radians(self.rotate_to) - 1e-9 or x[ix["ias_mps"]] < ap.v2_mps():
+            if ap.theta_cmd >= math.radians(self.rotate_to) - 1e-9 or x[ix["ias_mps"]] < self.v2_mps:
                 self.rotate_to = None
                 ap.climb_spd_pid.reset(integral=ap.theta_cmd / ap.climb_spd_pid.ki)
         else:
