@@ -170,6 +170,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         "turbulence": ",".join(t.severity for t in sc.plan.turbulence),
         "landing_quality": sc.plan.landing_quality, "placement": sc.carrier.placement,
         "carrier_kind": sc.carrier.kind, "sensor_preset": sc.sensor.preset,
+        **stowage_columns(rec.stowage),
         "touchdown_sink_mps": float(r.metrics.get("touchdown_sink_mps", float("nan"))),
         "detector_false_static_count": det.false_static_count,
         "detector_false_static_s": det.false_static_s,
@@ -182,6 +183,25 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
     row["wall_s"] = time.perf_counter() - t0
     row["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     return row
+
+
+def stowage_columns(stowage: dict | None) -> dict:
+    """The manifest's record of where and how the bag lay in flight (``Recording.stowage["in_flight"]``,
+    None where the flight has none): what seed 000's Tables 4 / 5 depend on most."""
+    f = (stowage or {}).get("in_flight") or {}
+    return {"inflight_placement": f.get("placement"), "cabin_row": f.get("cabin_row"), "packing": f.get("packing"),
+            "stowed_yaw_deg": f.get("yaw_deg"), "stowed_tilt_deg": f.get("tilt_deg"),
+            "sensor_x_from_fuselage_deg": f.get("x_from_fuselage_deg")}
+
+
+def stowage_of_row(row: dict) -> dict | None:
+    """A manifest row's stowage columns back in ``Recording.stowage``'s form (None: a manifest written
+    before they were recorded)."""
+    if row.get("sensor_x_from_fuselage_deg") is None:
+        return None
+    return {"in_flight": {"placement": row["inflight_placement"], "cabin_row": row["cabin_row"],
+                          "packing": row["packing"], "yaw_deg": row["stowed_yaw_deg"],
+                          "tilt_deg": row["stowed_tilt_deg"], "x_from_fuselage_deg": row["sensor_x_from_fuselage_deg"]}}
 
 
 def _failed_row(fam, i: int, error: str, attempts: int) -> dict:
@@ -265,6 +285,8 @@ def manifest_schema():
               *((f"phase_{p}_s", f64) for p in PHASES),
               ("samples", i64), ("samples_in_flight_window", i64), ("samples_airborne", i64), ("samples_static", i64),
               ("turbulence", s), ("landing_quality", s), ("placement", s), ("carrier_kind", s), ("sensor_preset", s),
+              ("inflight_placement", s), ("cabin_row", s), ("packing", s), ("stowed_yaw_deg", f64),
+              ("stowed_tilt_deg", f64), ("sensor_x_from_fuselage_deg", f64),
               ("touchdown_sink_mps", f64), ("detector_false_static_count", i64), ("detector_false_static_s", f64),
               ("detector_response_s", f64), ("detector_in_flight_checks", i64), ("samples_file", s),
               ("samples_sha256", s), ("truth_file", s), ("truth_sha256", s), ("rrd_file", s)]

@@ -47,7 +47,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -556,7 +556,7 @@ def fraction_interval(k: int, n: int, confidence: float = PFA_CONFIDENCE) -> tup
 
 
 def _order_check(group: str, figure: str, ours: float, interval: tuple[float, float], paper: float,
-                 counted: str, source: str) -> Check:
+                 counted: str, source: str, where: str = "") -> Check:
     """The paper's cell against the run's fraction: ``value`` is the log10 distance from the paper's
     value to the run's confidence interval (0 inside it), which must be within one order. A flight of
     n checks cannot tell a fraction of 1e-6 from 0 when n is thousands: the interval says what the run
@@ -569,14 +569,40 @@ def _order_check(group: str, figure: str, ours: float, interval: tuple[float, fl
     else:
         dist = 0.0
     return Check(group, figure, "log10 from CI", dist, -1.0, 1.0, source,
-                 f"run {ours:.2g}{counted}, {PFA_CONFIDENCE:.0%} CI {lo:.1e}..{hi:.1e}; paper {paper:.0e}")
+                 f"run {ours:.2g}{counted}, {PFA_CONFIDENCE:.0%} CI {lo:.1e}..{hi:.1e}; paper {paper:.0e}{where}")
+
+
+# Tables 4 / 5 are judged only for a bag whose sensor x axis lay within this angle of the fuselage
+# axis in flight. Seed 000 does not say how its phone lay, but its x axis was by far the quietest in
+# both flights (Tables 4-5: x fractions 25-70 times y's at 3 sigma^2), which here is the fore-aft axis
+# (the soft supports isolate it best; sim.sensor.mount). Past 45 deg the sensor's x sees more of the
+# floor's lateral vibration than of its fore-aft, a different experiment from the paper's: its cells
+# are shown, not judged (measured on the default flight re-sensed at fixed yaws: at 0-30 deg the x
+# cells pass, at 60-90 deg they are 1-1.9 decades off).
+COMPARABLE_X_FROM_FUSELAGE_DEG = 45.0
+
+
+def placement_text(stowage: dict | None) -> tuple[str, bool]:
+    """(a note on where and how the bag lay in flight, whether seed 000's Tables 4 / 5 are comparable:
+    :data:`COMPARABLE_X_FROM_FUSELAGE_DEG`). Without a record (an older run): no note, comparable."""
+    f = (stowage or {}).get("in_flight")
+    if not f:
+        return "", True
+    x = float(f["x_from_fuselage_deg"])
+    row = f" {f['cabin_row']} row," if f.get("cabin_row") not in (None, "hold") else ""
+    comparable = x <= COMPARABLE_X_FROM_FUSELAGE_DEG
+    judged = "" if comparable else \
+        f" (not judged: over {COMPARABLE_X_FROM_FUSELAGE_DEG:g} deg, the paper's quiet x lay along it)"
+    return f"; bag {f['placement']},{row} sensor x {x:.0f} deg from the fuselage{judged}", comparable
 
 
 def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.ndarray],
-                   paper_flight: int) -> list[Check]:
+                   paper_flight: int, stowage: dict | None = None) -> list[Check]:
     """Seed 000 Tables 2, 4/5 and Fig. 6 on a run's samples (module docstring), sampled at ``fs_hz``;
     ``sigma2_of(window)``: the per-axis sigma^2 of the stream's unit for a window of that many samples
-    (its bench calibration, as the run's own detector had it)."""
+    (its bench calibration, as the run's own detector had it). ``stowage``: the recording's record of
+    the bag's place (``Recording.stowage``), noted on the Tables 4 / 5 rows, which are judged only when
+    the sensor lay as the paper's must have (:func:`placement_text`)."""
     from scipy.signal import welch
 
     from flightmode.detector.evaluation import pfa_table
@@ -624,6 +650,8 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
     rows = {r["T_sigma"]: r for r in pfa_table(t, acc, labels, params, sigma2, ks=TABLE_KS, time_thresholds_s=(4.0,))}
     paper = PAPER_TABLES[paper_flight]
     table = 4 if paper_flight == 1 else 5
+    where, comparable = placement_text(stowage)
+    judge = (lambda c: c) if comparable else (lambda c: replace(c, lo=None, hi=None))
     for i, k in enumerate(TABLE_KS):
         r = rows[k]
         n_checks = int(r["checks"])
@@ -635,8 +663,8 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
             k_ax = int(round(r[f"P_FA_{ax}"] * n_checks))
             lo, hi = fraction_interval(k_ax, n_checks)
             lo_t, hi_t = lo_t * lo, hi_t * hi
-            out.append(_order_check("seed 000", f"Table {table} P_FA^{ax} at {k:g} sigma^2", r[f"P_FA_{ax}"], (lo, hi),
-                                    paper[ax][i], f" ({k_ax} of {n_checks} checks)", src))
+            out.append(judge(_order_check("seed 000", f"Table {table} P_FA^{ax} at {k:g} sigma^2", r[f"P_FA_{ax}"],
+                                          (lo, hi), paper[ax][i], f" ({k_ax} of {n_checks} checks)", src, where)))
         if k == 4.0:  # how often the recommended threshold is challenged in flight (informational)
             joint = int(round(r["P_FA_t_joint"] * n_checks))
             axes = ", ".join(f"{ax} {int(round(r[f'P_FA_{ax}'] * n_checks))}" for ax in "xyz")
@@ -645,8 +673,8 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
                              f"per axis: {axes} of {n_checks}"))
         # the paper's P_FA^t is the product of the axes' fractions (seed 000 eq. 14's independence);
         # its interval here: the product of the axes' bounds (each at 95 %, so wider than 95 %)
-        out.append(_order_check("seed 000", f"Table {table} P_FA^t at {k:g} sigma^2", r["P_FA_t"], (lo_t, hi_t),
-                                paper["t"][i], " (product of the axes)", src))
+        out.append(judge(_order_check("seed 000", f"Table {table} P_FA^t at {k:g} sigma^2", r["P_FA_t"], (lo_t, hi_t),
+                                      paper["t"][i], " (product of the axes)", src, where)))
     return out
 
 
@@ -682,5 +710,6 @@ def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
         columns, sinfo = read_samples(samples)
         sinfo = sinfo or info
         checks += seed000_checks(columns, float(sinfo["sensor"]["odr_hz"]),
-                                 lambda window: stream_sigma2("preset", columns, sinfo, window)[0], paper_flight)
+                                 lambda window: stream_sigma2("preset", columns, sinfo, window)[0], paper_flight,
+                                 sinfo["sensor"].get("stowage"))
     return checks

@@ -9,9 +9,12 @@ the unit its sensing drew, as its own detector had it). Flights run in this proc
 per flight (``workers`` > 1: a LocalCluster on 127.0.0.1, as the sweep's).
 
 The summary (:func:`summarise`) gives, per aircraft type and figure, the anchor, the flights' values
-(p5, median, p95 over the flights that show the figure) and how many pass, with the 95 %
-Clopper-Pearson interval of the pass fraction (:func:`~flightmode.scenarios.validate.fraction_interval`):
-20 flights that all pass still allow a true failure rate up to 17 %. A flight that cannot be checked
+(p5, median, p95 over the flights that show the figure) and how many of the flights that judge it
+pass, with the 95 % Clopper-Pearson interval of the pass fraction
+(:func:`~flightmode.scenarios.validate.fraction_interval`): 20 flights that all pass still allow a
+true failure rate up to 17 %. A flight shows a figure without judging it when the anchor does not
+apply to it (seed 000's Tables 4 / 5 for a bag whose sensor lay unlike the paper's:
+:func:`~flightmode.scenarios.validate.placement_text`). A flight that cannot be checked
 is reported with its error, never dropped silently; nothing is written (``--checks-out`` writes the
 per-flight rows as Parquet, atomically).
 """
@@ -41,15 +44,22 @@ class FigureSummary:
     anchor: str
     source: str
     flights: int  # flights showing the figure
-    passed: int
+    passed: int  # of the judged flights
     p5: float  # over the flights with a finite value (NaN if none)
     median: float
     p95: float
     pass_ci: tuple[float, float]  # 95 % Clopper-Pearson interval of the pass fraction
+    # flights whose check has an anchor to pass (a row shown without one, e.g. a seed 000 Table 4 cell
+    # of a bag lying unlike the paper's, is not judged); None: every flight's
+    judged: int | None = None
+
+    @property
+    def n_judged(self) -> int:
+        return self.flights if self.judged is None else self.judged
 
     @property
     def pass_fraction(self) -> float:
-        return self.passed / self.flights
+        return self.passed / self.n_judged if self.n_judged else math.nan
 
     def as_dict(self) -> dict:
         return asdict(self) | {"pass_fraction": self.pass_fraction}
@@ -72,6 +82,7 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
     """One dataset flight's checks: ``{"flight_id", "aircraft", "checks": [Check, ...]}``, or with
     ``"error"`` (the exception's type and message) instead of checks if it cannot be validated."""
     from flightmode.scenarios import pipeline
+    from flightmode.scenarios.dataset import stowage_of_row
     from flightmode.scenarios.run_io import read_samples
     from flightmode.scenarios.scenario import Scenario
     from flightmode.scenarios.sweep import full_truth_track, sigma2_of_flight
@@ -84,7 +95,7 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
         checks = track_checks(track, sc.plan)
         columns, _ = read_samples(Path(dataset) / row["samples_file"])
         checks += seed000_checks(columns, pipeline.sensor_preset(sc.sensor).odr_hz,
-                                 sigma2_of_flight("preset", row, columns), paper_flight)
+                                 sigma2_of_flight("preset", row, columns), paper_flight, stowage_of_row(row))
     except Exception as e:  # noqa: BLE001  recorded with its type and reported, never dropped
         return head | {"error": f"{type(e).__name__}: {e}"}
     return head | {"checks": checks}
@@ -115,11 +126,13 @@ def summarise(results: Sequence[dict]) -> list[FigureSummary]:
         values = np.array([c.value for c in checks], float)
         finite = values[np.isfinite(values)]
         q = np.percentile(finite, SUMMARY_QUANTILES) if finite.size else np.full(len(SUMMARY_QUANTILES), math.nan)
-        n_pass = sum(c.passed for c in checks)
-        # one anchor per figure: the same source range for every flight of the type (the first flight's text)
-        c0 = checks[0]
+        judged = [c for c in checks if c.lo is not None or c.hi is not None]
+        n_pass = sum(c.passed for c in judged)
+        # one anchor per figure: the same source range for every judged flight of the type (the first's text)
+        c0 = (judged or checks)[0]
+        ci = fraction_interval(n_pass, len(judged)) if judged else (0.0, 1.0)  # nothing judged: no bound
         out.append(FigureSummary(aircraft, group, figure, c0.unit, c0.anchor_text(), c0.source, len(checks), n_pass,
-                                 float(q[0]), float(q[1]), float(q[2]), fraction_interval(n_pass, len(checks))))
+                                 float(q[0]), float(q[1]), float(q[2]), ci, len(judged)))
     return out
 
 

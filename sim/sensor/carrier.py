@@ -172,6 +172,18 @@ def stowed_rot(spec: CarrierSpec, rng: np.random.Generator, placement: str | Non
     return r.as_matrix() @ LEVEL
 
 
+def orientation_angles(rot: np.ndarray) -> dict[str, float]:
+    """How a stowed sensor lies in the aircraft (``rot``: sensor -> body): its x axis's yaw from the
+    fuselage axis (0-360 deg, as ``stowed_yaw_deg``), its z axis's tilt from the up vertical, and the
+    angle between its x axis and the fuselage axis folded to 0-90 deg (0: x fore-aft, the axis seed
+    000 found quietest in flight; 90: x across the aisle or vertical)."""
+    x, z = rot[:, 0], rot[:, 2]
+    yaw = float(np.degrees(np.arctan2(x[1], x[0])) % 360.0)
+    tilt = float(np.degrees(np.arccos(np.clip(-z[2], -1.0, 1.0))))  # body z is down
+    x_fus = float(np.degrees(np.arccos(np.clip(abs(x[0]), 0.0, 1.0))))
+    return {"yaw_deg": yaw, "tilt_deg": tilt, "x_from_fuselage_deg": x_fus}
+
+
 def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[float, float] | None,
                    rng: np.random.Generator) -> list[Segment]:
     """Lay the bag's segments on the flight. ``events`` maps event names to times (engine_start,

@@ -39,6 +39,8 @@ class Recording:
     baro_pa: np.ndarray | None = None
     baro_new: np.ndarray | None = None
     baro: dict | None = None  # {"preset", "odr_hz", "unit": {...}} of the fitted barometer
+    # the bag's place on board as drawn (sensing.stowage_record): in-flight placement, orientation, mount
+    stowage: dict | None = None
 
     @property
     def baro_stream(self) -> tuple[np.ndarray, np.ndarray]:
@@ -75,7 +77,8 @@ class Recording:
             "carrier": asdict(self.carrier),
             "static_fraction": float(self.sensor_static.mean()),
             "clipped_samples": int(self.clipped.any(axis=1).sum()),
-        } | ({"baro": self.baro} if self.baro is not None else {})
+        } | ({"baro": self.baro} if self.baro is not None else {}) | (
+            {"stowage": self.stowage} if self.stowage is not None else {})
 
     def digest(self) -> str:
         """Equal digests mean bit-identical recordings (:func:`flightmode.digest.digest`)."""

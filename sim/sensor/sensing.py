@@ -97,6 +97,7 @@ def sense(
     segs = car.build_timeline(spec, events, cruise, streams.rng("timeline"))
     rng_motion, rng_vib, rng_noise = streams.rng("motion"), streams.rng("vibration"), streams.rng("noise")
     floor_draw, mount_draws = draw_path(track.aircraft, spec, streams)
+    vibration_imposed = vibration
     vibration = floor_draw.model if vibration is None else vibration
     if vibration_level != 1.0:  # a population's spread of levels (a scenario's [sensor].vibration_level)
         vibration = scaled(vibration, float(vibration_level))
@@ -193,7 +194,30 @@ def sense(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
         preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft,
         segments=tuple(segs), gyro_dps=gyro_dps, pressure_pa=pressure, **labels, **baro_cols,
+        stowage=stowage_record(segs, events, mount_draws, floor_draw if vibration_imposed is None else None),
     )
+
+
+def stowage_record(segs, events: dict[str, float], mount_draws: dict[str, mnt.MountDraw],
+                   floor_draw: FloorDraw | None) -> dict:
+    """What the flight drew of the bag's place on board, for the record (run.json, the manifest) and
+    for reading seed 000's tables beside it: the in-flight placement (the stowed segment that covers
+    most of liftoff to touchdown, or of engine start to engines off without them), how the sensor lay
+    there (:func:`~flightmode.sim.sensor.carrier.orientation_angles`), its mount (support and packing,
+    cabin row) and the floor's vibration factors (None when the caller imposed a vibration model)."""
+    t0 = events.get("liftoff", events["engine_start"])
+    t1 = events.get("touchdown", events["engines_off"])
+    board = [s for s in segs if s.on_board and s.state in ("stowed", "in_hold")]
+    out: dict = {"mounts": {p: m.as_dict() for p, m in mount_draws.items()},
+                 "floor": None if floor_draw is None else floor_draw.as_dict()}
+    if board:
+        best = max(board, key=lambda s: min(s.t1_s, t1) - max(s.t0_s, t0))
+        place = best.placement or ("hold" if best.state == "in_hold" else None)
+        out["in_flight"] = {"placement": place, **car.orientation_angles(best.orientation)}
+        m = mount_draws.get(place) if place is not None else None
+        if m is not None:
+            out["in_flight"] |= {"cabin_row": m.cabin_row, "packing": m.packing}
+    return out
 
 
 def _in_hold(seg: car.Segment) -> bool:

@@ -169,6 +169,25 @@ def test_failed_flights_are_retried_once_and_recorded_without_stopping(tmp_path,
     check_request(str(family_file), 1, out, resume=True, flight_timeout_s=10.0)
 
 
+def test_the_manifest_records_how_each_bag_lay_in_flight(reference):
+    from flightmode.scenarios.dataset import stowage_of_row
+    from flightmode.scenarios.scenario import Scenario
+
+    for row in read_manifest(reference).values():
+        sc = Scenario.from_toml_text(row["scenario_toml"])
+        # a handbag: at its placement (or its cruise placement) in a cabin row, its sensor level to within
+        # a few degrees (Rayleigh tilt, scale 3-8 deg: 40 deg is beyond any draw's reach), x folded to 0-90
+        assert row["inflight_placement"] in (sc.carrier.placement, sc.carrier.cruise_placement)
+        assert row["cabin_row"] in ("front", "mid", "rear") and row["packing"] == "soft"
+        assert 0.0 <= row["stowed_yaw_deg"] < 360.0 and 0.0 <= row["stowed_tilt_deg"] < 40.0
+        yaw = row["stowed_yaw_deg"]
+        folded = min(yaw % 180.0, 180.0 - yaw % 180.0)
+        assert abs(row["sensor_x_from_fuselage_deg"] - folded) <= row["stowed_tilt_deg"] + 1e-9
+        back = stowage_of_row(row)["in_flight"]
+        assert back["x_from_fuselage_deg"] == row["sensor_x_from_fuselage_deg"]
+        assert back["cabin_row"] == row["cabin_row"]
+
+
 @pytest.mark.slow
 def test_the_card_documents_the_dataset_and_its_four_loaders_read_it(tmp_path, reference, monkeypatch):
     monkeypatch.setenv("HF_DATASETS_CACHE", str(tmp_path / "hf"))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -67,6 +68,14 @@ def test_a_population_summary_keeps_types_and_figures_apart_and_bounds_its_pass_
     b = s["737", "sink"]
     assert (b.flights, b.passed) == (3, 1) and (b.median, b.p5) == pytest.approx((5.5, 2.35))
     assert (s["737", "peak"].flights, s["737", "peak"].passed) == (1, 1)
+    # a figure shown without an anchor on some flights (a Table 4 cell of a bag lying unlike the
+    # paper's) counts only where it is judged: 2 shown, 1 judged and failing
+    cell = lambda v, anchored: Check("seed 000", "cell", "log10", v, -1.0 if anchored else None,  # noqa: E731
+                                     1.0 if anchored else None, "src")
+    t = summarise([{"flight_id": "1", "aircraft": "F100", "checks": [cell(1.5, True)]},
+                   {"flight_id": "2", "aircraft": "F100", "checks": [cell(1.7, False)]}])[0]
+    assert (t.flights, t.n_judged, t.passed, t.pass_fraction) == (2, 1, 0, 0.0)
+    assert t.anchor == "-1 .. 1" and t.median == pytest.approx(1.6)
 
 
 def _run_folder(tmp_path_factory, run_cached, name: str):
@@ -108,6 +117,12 @@ def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name
     # seed 000 Table 2: the 1 s variances at rest spread as the paper's rows imply (within 30 %)
     t2 = [c for c in by_group["seed 000"] if c.figure.startswith("Table 2")]
     assert len(t2) == 6 and all(c.passed for c in t2), [(c.figure, c.value) for c in t2]
+    # Tables 4 / 5 name how the bag lay in flight, and are judged only with the sensor's x axis within
+    # 45 deg of the fuselage (validate.COMPARABLE_X_FROM_FUSELAGE_DEG); 3 thresholds x (3 axes + P_FA^t)
+    t4 = [c for c in by_group["seed 000"] if c.figure.startswith("Table 4")]
+    assert len(t4) == 12 and all("deg from the fuselage" in c.note for c in t4), t4
+    x_deg = float(re.search(r"sensor x (\d+) deg from the fuselage", t4[0].note).group(1))
+    assert all((c.lo, c.hi) == ((-1.0, 1.0) if x_deg <= 45.0 else (None, None)) for c in t4)
 
 
 def test_cli_prints_one_table_and_json(pattern_run):

@@ -379,6 +379,31 @@ def test_eobs_bursts_and_a_parcel_in_the_hold(fly_cached):
 
 
 
+def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
+    from flightmode.sim.sensor.carrier import orientation_angles
+
+    _, tr = fly_cached("pattern")
+    spec = CarrierSpec(placement="under_seat", cruise_placement="seat", cabin_row="rear")
+    rec = sense(tr, spec, get_preset("lis302dl-logged16"), np.random.default_rng(5))
+    st = rec.stowage
+    assert set(st["mounts"]) == {"under_seat", "seat"} and st["floor"]["location_level"] > 0
+    # the in-flight record is the stowed segment covering most of liftoff to touchdown, and its angles
+    # are that segment's orientation's (the pattern flight has no cruise, so the bag stays under the seat)
+    ev = {e.name: e.t_s for e in tr.events}
+    cover = [(min(s.t1_s, ev["touchdown"]) - max(s.t0_s, ev["liftoff"]), s) for s in rec.segments
+             if s.on_board and s.state == "stowed"]
+    best = max(cover, key=lambda c: c[0])[1]
+    f = st["in_flight"]
+    assert best.placement == "under_seat"
+    assert (f["placement"], f["cabin_row"], f["packing"]) == ("under_seat", "rear", "soft")
+    assert {k: f[k] for k in ("yaw_deg", "tilt_deg", "x_from_fuselage_deg")} == orientation_angles(best.orientation)
+    assert rec.summary()["stowage"] == st
+    # a parcel in the hold: no cabin row, any orientation
+    rec = sense(tr, CarrierSpec(kind="parcel", placement="hold"), get_preset("lis302dl-logged16"),
+                np.random.default_rng(5))
+    assert rec.stowage["in_flight"]["placement"] == "hold" and rec.stowage["in_flight"]["cabin_row"] == "hold"
+
+
 def test_cli_sense_writes_a_new_run_folder(tmp_path, pattern_run):
     from typer.testing import CliRunner
 

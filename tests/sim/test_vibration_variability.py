@@ -21,7 +21,7 @@ from scipy import stats
 from flightmode.errors import CarrierError
 from flightmode.sim.sensor import mount as mnt
 from flightmode.sim.sensor import vibration as vib
-from flightmode.sim.sensor.carrier import CarrierSpec, build_timeline, stowed_rot
+from flightmode.sim.sensor.carrier import CarrierSpec, build_timeline, orientation_angles, stowed_rot
 
 N = 4000
 P_MIN = 1e-3  # module docstring
@@ -259,10 +259,28 @@ def test_digital_mount_matches_the_continuous_transmissibility():
 # ---------------------------------------------------------------------- stowage and orientation (carrier)
 def _tilt_and_yaw(r: np.ndarray) -> tuple[float, float]:
     """Tilt of the sensor's z axis from body up (deg), and the yaw of its x axis (deg, 0 = forward)."""
-    z_body = r[:, 2]  # sensor z in body axes (body z is down)
-    tilt = math.degrees(math.acos(max(-1.0, min(1.0, -z_body[2]))))
-    x_body = r[:, 0]
-    return tilt, math.degrees(math.atan2(x_body[1], x_body[0])) % 360.0
+    a = orientation_angles(r)
+    return a["tilt_deg"], a["yaw_deg"]
+
+
+@pytest.mark.parametrize("yaw, x_fus", [(0.0, 0.0), (30.0, 30.0), (90.0, 90.0), (150.0, 30.0), (270.0, 90.0),
+                                        (330.0, 30.0)])
+def test_orientation_angles_of_a_level_sensor(yaw, x_fus):
+    # a level sensor yawed by ``yaw``: its x axis makes |yaw| folded into 0-90 deg with the fuselage
+    # axis (fore or aft alike: the same vibration), its z axis is vertical (tilt 0); 1e-9 deg: rounding
+    spec = CarrierSpec(stowed_yaw_deg=yaw)
+    r = stowed_rot(spec, _rng(3))
+    a = orientation_angles(r)
+    tilt = a["tilt_deg"]  # the Rayleigh tilt drawn (scale 3 deg under a seat)
+    # the tilt turns the x axis's heading and its angle to the fuselage by at most the tilt (small tilt)
+    assert min(abs(a["yaw_deg"] - yaw), 360.0 - abs(a["yaw_deg"] - yaw)) <= tilt + 1e-9
+    assert abs(a["x_from_fuselage_deg"] - x_fus) <= tilt + 1e-9
+    level = orientation_angles(np.array([[math.cos(math.radians(yaw)), -math.sin(math.radians(yaw)), 0.0],
+                                         [math.sin(math.radians(yaw)), math.cos(math.radians(yaw)), 0.0],
+                                         [0.0, 0.0, 1.0]]) @ np.diag([1.0, -1.0, -1.0]))
+    assert level["tilt_deg"] == pytest.approx(0.0, abs=1e-9)
+    assert level["x_from_fuselage_deg"] == pytest.approx(x_fus, abs=1e-6)
+    assert level["yaw_deg"] % 360.0 == pytest.approx(yaw, abs=1e-6)
 
 
 @pytest.mark.parametrize("placement", ["under_seat", "seat", "lap"])
