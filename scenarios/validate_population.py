@@ -86,7 +86,7 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
     from flightmode.scenarios.run_io import read_samples
     from flightmode.scenarios.scenario import Scenario
     from flightmode.scenarios.sweep import full_truth_track, sigma2_of_flight
-    from flightmode.scenarios.validate import seed000_checks, track_checks
+    from flightmode.scenarios.validate import seed000_checks, sensor_noise_psd, track_checks
 
     head = {"flight_id": row["flight_id"], "aircraft": row["aircraft"]}
     try:
@@ -94,8 +94,9 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
         sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']} (scenario_toml)")
         checks = track_checks(track, sc.plan)
         columns, _ = read_samples(Path(dataset) / row["samples_file"])
-        checks += seed000_checks(columns, pipeline.sensor_preset(sc.sensor).odr_hz,
-                                 sigma2_of_flight("preset", row, columns), paper_flight, stowage_of_row(row))
+        preset = pipeline.sensor_preset(sc.sensor)
+        checks += seed000_checks(columns, preset.odr_hz, sigma2_of_flight("preset", row, columns), paper_flight,
+                                 stowage_of_row(row), sensor_noise_psd(preset.name, preset.odr_hz))
     except Exception as e:  # noqa: BLE001  recorded with its type and reported, never dropped
         return head | {"error": f"{type(e).__name__}: {e}"}
     return head | {"checks": checks}

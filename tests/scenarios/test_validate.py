@@ -230,3 +230,29 @@ def test_go_around_rows_measure_the_climb_from_400_ft_to_the_acceleration_height
     assert math.isnan(short.value) and not short.passed
     # no go-around, no row
     assert go_around_checks(dataclasses.replace(_go_around_track("737", elev), events=()), plan) == []
+
+
+def test_a_fig6_line_stands_over_the_noise_and_noise_alone_never_makes_one():
+    """validate.vibration_line_db: white noise at the LIS302DL's level gives no line 10 dB over its own
+    PSD (a Welch bin of noise is S chi2_nu / nu: with 2,048 samples nu ~ 13, its 1e-6 quantile over the
+    band's 100 bins 6.9 dB); a 17 Hz tone of 3 mg amplitude on the same noise (power 4.5e-6 g^2 over
+    a Hann window's 1.5 bins of 0.2 Hz: about 22 dB over the floor's 1e-7 g^2/Hz) stands out at its
+    frequency; a spectrum falling through the band has no local maximum there."""
+    from scipy.signal import welch
+
+    from flightmode.scenarios.validate import FIG6_LINE_MIN_DB, vibration_line_db
+
+    fs, sigma = 100.0, 2.23e-3
+    rng = np.random.default_rng(11)
+    floor = lambda f: np.full_like(f, 2.0 * sigma**2 / fs)  # noqa: E731  one-sided white PSD
+    worst = -np.inf
+    for _ in range(200):
+        f, p = welch(rng.normal(0.0, sigma, 2048), fs=fs, nperseg=512)
+        worst = max(worst, vibration_line_db(f, p, floor(f))[0])
+    assert worst < FIG6_LINE_MIN_DB - 3.0, worst
+    t = np.arange(2048) / fs
+    f, p = welch(rng.normal(0.0, sigma, 2048) + 3e-3 * np.sin(2 * np.pi * 17.0 * t), fs=fs, nperseg=512)
+    db, f_line = vibration_line_db(f, p, floor(f))
+    assert db > FIG6_LINE_MIN_DB and abs(f_line - 17.0) <= fs / 512
+    f = np.linspace(0.0, 50.0, 257)
+    assert vibration_line_db(f, 1.0 / (1.0 + f**2), floor(f)) == (-np.inf, pytest.approx(np.nan, nan_ok=True))
