@@ -521,16 +521,25 @@ class Flare(Controller):
         self.float_limit_m = FLOAT_LIMIT_FRACTION * self.ap.dest.rwy.length_m
 
     def _rate_decel(self, x, gear_h_m: float, sink: float, target: float) -> float:
-        """The constant-deceleration law: the pitch rate (rad/s) it asks for."""
+        """The constant-deceleration law: the pitch rate (rad/s) it asks for. The lag between the
+        attitude and the sink rate is met in one of two ways (the type's profile): the guidance aims
+        to reach the touchdown sink ``flare_aim_m`` above the runway, and, with ``flare_predict_s``
+        T > 0, it steers on the state T seconds ahead if the upward acceleration a the aircraft has
+        now were kept: sink v - a T at height h - v T + a T^2 / 2 (a predictor of the simplest kind:
+        the deceleration already under way is not asked for a second time)."""
         ix, prof = self.p.ix, self.p.prof
-        h_m = gear_h_m - FLARE_AIM_M
+        # vertical acceleration (up) from the specific force: a = -f_z cos(theta) - g (near wings level)
+        a_up = -x[ix["fz_mps2"]] * math.cos(x[ix["theta_rad"]]) - G0_MPS2
+        h_m = gear_h_m - prof.flare_aim_m
+        if prof.flare_predict_s > 0.0:
+            lead = prof.flare_predict_s
+            h_m -= sink * lead - 0.5 * a_up * lead * lead
+            sink -= a_up * lead
         if h_m > FLARE_MIN_H_M:
             a_req = (sink * abs(sink) - target * target) / (2.0 * h_m)
         else:  # at the aim height: hold the touchdown sink until the wheels meet the runway
             a_req = FLARE_HOLD_PER_S * (sink - target)
         a_req = clamp(a_req, -FLARE_MAX_PUSH_MPS2, FLARE_MAX_UP_MPS2)
-        # vertical acceleration (up) from the specific force: a = -f_z cos(theta) - g (near wings level)
-        a_up = -x[ix["fz_mps2"]] * math.cos(x[ix["theta_rad"]]) - G0_MPS2
         return clamp(prof.flare_accel_gain * FLARE_PITCH_GAIN * (a_req - a_up), -FLARE_PITCH_DOWN_RADPS,
                      FLARE_PITCH_UP_RADPS)
 
@@ -751,7 +760,6 @@ FLARE_TAU_MIN_S = 1.5
 FLARE_EXP_INTEGRAL_PER_S = 0.15
 FLARE_EXP_INTEGRAL_MAX_RAD = math.radians(3.0)
 FLARE_BALLOON_FACTOR = 2.0  # a flare that climbs above twice its height is a balloon (Flare._go_around)
-FLARE_AIM_M = 2.0  # the guidance aims to reach the touchdown sink this far above the runway (the lag)
 # the flare's bank limit (deg): wings nearly level at touchdown (its value before the track law too)
 FLARE_MAX_BANK_DEG = 5.0
 
