@@ -949,11 +949,13 @@ def validate_cmd(
         checks = validate_run(run_dir, paper_flight)
     except FlightmodeError as e:
         _die(e)
-    failed = sum(not c.passed for c in checks)
+    judged = [c for c in checks if c.judged]
+    failed = sum(not c.passed for c in judged)
     if as_json:
         import json
 
-        typer.echo(json.dumps({"run_dir": str(run_dir), "passed": len(checks) - failed, "failed": failed,
+        typer.echo(json.dumps({"run_dir": str(run_dir), "passed": len(judged) - failed, "failed": failed,
+                               "not_judged": len(checks) - len(judged),
                                "checks": [_finite(c.as_dict()) for c in checks]}, indent=1, allow_nan=False))
     else:
         table = Table(title=f"{run_dir}: the run beside its anchors", title_justify="left")
@@ -961,11 +963,14 @@ def validate_cmd(
                         ("", {}), ("source / note", {})):
             table.add_column(col, **kw)
         for c in checks:
-            mark = Text("pass", style="green") if c.passed else Text("FAIL", style="bold red")
+            mark = (Text("-", style="dim") if not c.judged else
+                    Text("pass", style="green") if c.passed else Text("FAIL", style="bold red"))
             note = c.source + (f"; {c.note}" if c.note else "")
             table.add_row(c.group, f"{c.figure} ({c.unit})", c.anchor_text(), f"{c.value:.4g}", mark, note)
         console.print(table)
-        console.print(f"{len(checks) - failed} of {len(checks)} checks pass", highlight=False)
+        shown = len(checks) - len(judged)
+        console.print(f"{len(judged) - failed} of {len(judged)} checks pass"
+                      + (f"; {shown} shown without an anchor (-)" if shown else ""), highlight=False)
     if strict and failed:
         raise typer.Exit(code=1)
 
@@ -1008,7 +1013,8 @@ def _validate_dataset(dataset: Path, paper_flight: int, as_json: bool, strict: b
             for col in ("group", "figure", "anchor", "p5", "median", "p95", "pass", "95 % CI", "source"):
                 table.add_column(col, justify="right" if col in ("anchor", "p5", "median", "p95", "pass") else "left")
             for s in rows:
-                style = "green" if s.passed == s.n_judged else ("bold red" if s.passed == 0 else "yellow")
+                style = ("dim" if s.n_judged == 0 else "green" if s.passed == s.n_judged
+                         else "bold red" if s.passed == 0 else "yellow")
                 # a figure some flights show without judging it (a bag lying unlike the paper's): "3/5 of 7"
                 shown = f" of {s.flights}" if s.n_judged != s.flights else ""
                 table.add_row(s.group, f"{s.figure} ({s.unit})", s.anchor, f"{s.p5:.4g}", f"{s.median:.4g}",

@@ -189,19 +189,25 @@ def stowage_columns(stowage: dict | None) -> dict:
     """The manifest's record of where and how the bag lay in flight (``Recording.stowage["in_flight"]``,
     None where the flight has none): what seed 000's Tables 4 / 5 depend on most."""
     f = (stowage or {}).get("in_flight") or {}
-    return {"inflight_placement": f.get("placement"), "cabin_row": f.get("cabin_row"), "packing": f.get("packing"),
-            "stowed_yaw_deg": f.get("yaw_deg"), "stowed_tilt_deg": f.get("tilt_deg"),
-            "sensor_x_from_fuselage_deg": f.get("x_from_fuselage_deg")}
+    return {"inflight_placement": f.get("placement"), "cabin_row": f.get("cabin_row"),
+            "packing": f.get("packing"), "stowed_yaw_deg": f.get("yaw_deg"),
+            "stowed_tilt_deg": f.get("tilt_deg"), "sensor_x_from_fuselage_deg": f.get("x_from_fuselage_deg"),
+            "stowage_json": None if stowage is None else json.dumps(stowage)}
 
 
 def stowage_of_row(row: dict) -> dict | None:
-    """A manifest row's stowage columns back in ``Recording.stowage``'s form (None: a manifest written
-    before they were recorded)."""
+    """A manifest row's whole stowage record (``Recording.stowage``). A row with only the flat columns
+    (written before ``stowage_json`` was kept) gives its one in-flight segment; a row without either
+    (a resumed old dataset's first flights), None."""
+    text = row.get("stowage_json")
+    if text is not None:
+        return json.loads(text)
     if row.get("sensor_x_from_fuselage_deg") is None:
         return None
     return {"in_flight": {"placement": row["inflight_placement"], "cabin_row": row["cabin_row"],
                           "packing": row["packing"], "yaw_deg": row["stowed_yaw_deg"],
-                          "tilt_deg": row["stowed_tilt_deg"], "x_from_fuselage_deg": row["sensor_x_from_fuselage_deg"]}}
+                          "tilt_deg": row["stowed_tilt_deg"],
+                          "x_from_fuselage_deg": row["sensor_x_from_fuselage_deg"]}}
 
 
 def _failed_row(fam, i: int, error: str, attempts: int) -> dict:
@@ -286,7 +292,7 @@ def manifest_schema():
               ("samples", i64), ("samples_in_flight_window", i64), ("samples_airborne", i64), ("samples_static", i64),
               ("turbulence", s), ("landing_quality", s), ("placement", s), ("carrier_kind", s), ("sensor_preset", s),
               ("inflight_placement", s), ("cabin_row", s), ("packing", s), ("stowed_yaw_deg", f64),
-              ("stowed_tilt_deg", f64), ("sensor_x_from_fuselage_deg", f64),
+              ("stowed_tilt_deg", f64), ("sensor_x_from_fuselage_deg", f64), ("stowage_json", s),
               ("touchdown_sink_mps", f64), ("detector_false_static_count", i64), ("detector_false_static_s", f64),
               ("detector_response_s", f64), ("detector_in_flight_checks", i64), ("samples_file", s),
               ("samples_sha256", s), ("truth_file", s), ("truth_sha256", s), ("rrd_file", s)]

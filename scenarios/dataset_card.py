@@ -81,8 +81,9 @@ def write_card(out: Path, fam, rows: dict, options) -> Path:
         "## Files", "",
         "- `flights.parquet`: the manifest, one row per flight: id, seed, the scenario (`scenario_toml`, "
         "`scenario_sha256`), status and error, seconds per phase (`phase_<name>_s`), sample counts per label, "
-        "where and how the bag lay in flight (`inflight_placement`, `cabin_row`, `packing`, `stowed_yaw_deg`, "
-        "`stowed_tilt_deg`, `sensor_x_from_fuselage_deg`: 0 with the sensor's x axis fore-aft), "
+        "where and how the bag lay in flight (`inflight_placement`, `cabin_row`, `packing`, "
+        "`stowed_yaw_deg`, `stowed_tilt_deg`, `sensor_x_from_fuselage_deg`: 0 with the sensor's x axis "
+        "fore-aft; `stowage_json`: every stowed stretch of the in-flight window and the mounts), "
         "the recommended detector's summary (seed 000's NMV, 1 s, 4 sigma^2, 4 s), file names and SHA-256.",
         "- `samples/aircraft=<type>/part-<flight_id>.parquet`: the accelerometer stream and its labels.",
         "- `truth/aircraft=<type>/part-<flight_id>.parquet`: the aircraft's state (positions, velocities, attitude, "

@@ -95,8 +95,9 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
         checks = track_checks(track, sc.plan)
         columns, _ = read_samples(Path(dataset) / row["samples_file"])
         preset = pipeline.sensor_preset(sc.sensor)
-        checks += seed000_checks(columns, preset.odr_hz, sigma2_of_flight("preset", row, columns), paper_flight,
-                                 stowage_of_row(row), sensor_noise_psd(preset.name, preset.odr_hz))
+        checks += seed000_checks(columns, preset.odr_hz, sigma2_of_flight("preset", row, columns),
+                                 paper_flight, stowage_of_row(row),
+                                 sensor_noise_psd(preset.name, preset.odr_hz))
     except Exception as e:  # noqa: BLE001  recorded with its type and reported, never dropped
         return head | {"error": f"{type(e).__name__}: {e}"}
     return head | {"checks": checks}

@@ -522,7 +522,7 @@ class Flare(Controller):
 
     def _rate_decel(self, x, gear_h_m: float, sink: float, target: float) -> float:
         """The constant-deceleration law: the pitch rate (rad/s) it asks for. The lag between the
-        attitude and the sink rate is met in one of two ways (the type's profile): the guidance aims
+        attitude and the sink rate is met two ways, each set by the type's profile: the guidance aims
         to reach the touchdown sink ``flare_aim_m`` above the runway, and, with ``flare_predict_s``
         T > 0, it steers on the state T seconds ahead if the upward acceleration a the aircraft has
         now were kept: sink v - a T at height h - v T + a T^2 / 2 (a predictor of the simplest kind:

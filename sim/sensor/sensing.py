@@ -194,27 +194,38 @@ def sense(
         t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
         preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft,
         segments=tuple(segs), gyro_dps=gyro_dps, pressure_pa=pressure, **labels, **baro_cols,
-        stowage=stowage_record(segs, events, mount_draws, floor_draw if vibration_imposed is None else None),
+        stowage=stowage_record(segs, events, mount_draws,
+                               floor_draw if vibration_imposed is None and mount is None else None),
     )
 
 
 def stowage_record(segs, events: dict[str, float], mount_draws: dict[str, mnt.MountDraw],
                    floor_draw: FloorDraw | None) -> dict:
     """What the flight drew of the bag's place on board, for the record (run.json, the manifest) and
-    for reading seed 000's tables beside it: the in-flight placement (the stowed segment that covers
-    most of liftoff to touchdown, or of engine start to engines off without them), how the sensor lay
-    there (:func:`~flightmode.sim.sensor.carrier.orientation_angles`), its mount (support and packing,
-    cabin row) and the floor's vibration factors (None when the caller imposed a vibration model)."""
-    t0 = events.get("liftoff", events["engine_start"])
-    t1 = events.get("touchdown", events["engines_off"])
-    board = [s for s in segs if s.on_board and s.state in ("stowed", "in_hold")]
+    for reading seed 000's tables beside it. Over the in-flight window (pushback to engines off, what
+    Tables 4 / 5 cover; engine start without a pushback), every segment the bag lay stowed (each
+    handling sets it down anew, at a new orientation): its placement, how the sensor lay there
+    (:func:`~flightmode.sim.sensor.carrier.orientation_angles`) and the share of the window it covers
+    (``in_flight_segments``); ``in_flight``: the one covering most, with its mount's cabin row and
+    packing. Also every placement's mount and the floor's vibration factors (None when the caller
+    imposed a vibration model or a mount: the record would not be what was felt)."""
+    t0 = events.get("pushback", events["engine_start"])
+    t1 = events["engines_off"]
+    span = max(t1 - t0, 1e-9)
     out: dict = {"mounts": {p: m.as_dict() for p, m in mount_draws.items()},
                  "floor": None if floor_draw is None else floor_draw.as_dict()}
-    if board:
-        best = max(board, key=lambda s: min(s.t1_s, t1) - max(s.t0_s, t0))
-        place = best.placement or ("hold" if best.state == "in_hold" else None)
-        out["in_flight"] = {"placement": place, **car.orientation_angles(best.orientation)}
-        m = mount_draws.get(place) if place is not None else None
+    parts = []
+    for seg in segs:
+        cover = min(seg.t1_s, t1) - max(seg.t0_s, t0)
+        if seg.on_board and seg.state in ("stowed", "in_hold") and cover > 0.0:
+            place = seg.placement or "hold"
+            parts.append({"placement": place, **car.orientation_angles(seg.orientation),
+                          "share": cover / span})
+    if parts:
+        out["in_flight_segments"] = parts
+        best = max(parts, key=lambda d: d["share"])
+        out["in_flight"] = {k: v for k, v in best.items() if k != "share"}
+        m = mount_draws.get(best["placement"])
         if m is not None:
             out["in_flight"] |= {"cabin_row": m.cabin_row, "packing": m.packing}
     return out
