@@ -128,7 +128,7 @@ def summarise(results: Sequence[dict]) -> list[FigureSummary]:
         values = np.array([c.value for c in checks], float)
         finite = values[np.isfinite(values)]
         q = np.percentile(finite, SUMMARY_QUANTILES) if finite.size else np.full(len(SUMMARY_QUANTILES), math.nan)
-        judged = [c for c in checks if c.lo is not None or c.hi is not None]
+        judged = [c for c in checks if c.judged]
         n_pass = sum(c.passed for c in judged)
         # one anchor per figure: the same source range for every judged flight of the type (the first's text)
         c0 = (judged or checks)[0]
