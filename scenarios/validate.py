@@ -29,7 +29,9 @@ Groups and anchors:
 - **turbulence**: the vertical load factor's 60 s standard deviation and peak change in the air,
   per turbulence category: calm air never still, each category's peak change inside its ICAO
   description at the centre of gravity (light < 0.5 g, moderate 0.5-1.0 g, severe > 1.0 g), the
-  boundary layer rougher than calm cruise (MIL-F-8785C 3.7.3.3).
+  boundary layer rougher than calm cruise (MIL-F-8785C 3.7.3.3) whenever the air the flight drew is
+  rougher low than aloft (its surface wind and convection against the background EDR; a still,
+  sunless day's low air is calmer, and the row is then shown without an anchor).
 - **ground**: the runway rolls rougher than taxiing (the issue's ordering; speed), the cockpit within
   +-0.4 g (NASA, Morris and Hall, 1965).
 - **seed 000** (with a samples file): Table 2's spread of 1 s moving variances at rest (the paper's
@@ -455,6 +457,27 @@ def load_factor_windows(track, sel: np.ndarray, window_s: float = WINDOW_S) -> t
     return np.concatenate(stds), np.concatenate(peaks)
 
 
+def boundary_layer_anchor(track, cruise_alt_m: float) -> tuple[float | None, str]:
+    """The boundary-layer row's anchor and note. The air below 2000 ft must be rougher than calm cruise
+    when the field the flight drew is (:func:`~flightmode.sim.flight.turbulence.low_to_high_sigma_w_ratio`
+    at least 1: the surface wind's and the sun's gusts stronger than the background aloft); under a light
+    wind and no convection the cited model itself makes the low air calmer, and the row is shown
+    without an anchor. A track without its draws (an older file) is judged as before."""
+    from flightmode.sim.flight.turbulence import MID_TOP_M, low_to_high_sigma_w_ratio
+
+    c = track.conditions or {}
+    keys = ("surface_wind_mps", "convective_velocity_mps", "background_edr_mid", "background_edr_upper")
+    if not all(k in c for k in keys):
+        return 1.0, "the track records no atmosphere draws: judged whatever the wind"
+    edr = c["background_edr_mid"] if cruise_alt_m < MID_TOP_M else c["background_edr_upper"]
+    r = low_to_high_sigma_w_ratio(c["surface_wind_mps"], c["convective_velocity_mps"], edr)
+    drawn = (f"drawn field {r:.2f} times as rough low as aloft (W20 {c['surface_wind_mps']:.1f} m/s, "
+             f"w* {c['convective_velocity_mps']:.2f} m/s, cruise EDR {edr:.3f})")
+    if r >= 1.0:
+        return 1.0, drawn
+    return None, drawn + ": calmer low than high, so not judged"
+
+
 def turbulence_checks(track) -> list[Check]:
     from flightmode.labels import SEVERITY_CODE
     from flightmode.units import FT_M
@@ -474,9 +497,10 @@ def turbulence_checks(track) -> list[Check]:
         std_l, _ = load_factor_windows(track, low, 30.0)
         std_c30, _ = load_factor_windows(track, cruise_calm, 30.0)
         if std_l.size and std_c30.size:
+            lo, note = boundary_layer_anchor(track, float(np.median(track.alt_m[cruise_calm])))
             out.append(Check("turbulence", "boundary layer / calm cruise, 30 s std (medians)", "ratio",
-                             float(np.median(std_l) / np.median(std_c30)), 1.0, None,
-                             "MIL-F-8785C 3.7.3.3: low-altitude gusts scale with the surface wind"))
+                             float(np.median(std_l) / np.median(std_c30)), lo, None,
+                             "MIL-F-8785C 3.7.3.3: low-altitude gusts scale with the surface wind", note))
     for sev in ("light", "moderate", "severe"):
         s = air & (track.turbulence_code == SEVERITY_CODE[sev])
         std, peak = load_factor_windows(track, s)

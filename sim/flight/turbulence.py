@@ -143,6 +143,22 @@ def _mechanical(h_m: float, sigma_high_mps: float, w20_mps: float) -> tuple[floa
     return L_HIGH_M, L_HIGH_M, sigma_high_mps, sigma_high_mps
 
 
+# the height of the convective sigma_w's maximum, as a fraction of z_i: d/dx [x^(1/3) (1 - 0.8 x)] = 0
+# at x = 1 / 3.2 (Lenschow et al. 1980, eq. 3, as in convective_sigmas)
+CONVECTIVE_PEAK_FRACTION = 1.0 / 3.2
+
+
+def low_to_high_sigma_w_ratio(w20_mps: float, w_star_mps: float, edr_background: float) -> float:
+    """How much rougher the drawn air is near the ground than the calm air aloft: the boundary layer's
+    largest vertical gust intensity (MIL-F-8785C's mechanical sigma_w = 0.1 W20, combined with the
+    convective mixed layer's peak, 0.68 w*) over the calm background's sigma_w = 9.1 EDR. Under 1 the
+    field the flight drew is calmer low than high (light wind, no sun): low-altitude gusts scale with
+    the surface wind (MIL-F-8785C 3.7.3.3), and on a still night an approach is smoother than cruise."""
+    z_i = 1000.0  # any depth: the peak's value does not depend on it
+    _, conv_w = convective_sigmas(CONVECTIVE_PEAK_FRACTION * z_i, w_star_mps, z_i)
+    return math.hypot(0.1 * w20_mps, conv_w) / (EDR_TO_SIGMA_W * edr_background)
+
+
 class GustField:
     """Gust velocities for JSBSim, generated a block of ``block_steps`` FDM steps at a time with the
     state carried across blocks (vectorised: scipy.signal.lfilter). The height, airspeed, heading and

@@ -126,6 +126,15 @@ def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name
     parts = info["sensor"]["stowage"]["in_flight_segments"]
     near = sum(p["share"] for p in parts if p["x_from_fuselage_deg"] <= 45.0) / sum(p["share"] for p in parts)
     assert all((c.lo, c.hi) == ((-1.0, 1.0) if near >= 0.9 else (None, None)) for c in t4), near
+    # the air below 2000 ft is judged rougher than calm cruise only where the drawn field is (its wind
+    # and sun against the background EDR at the cruise level), and passes where judged
+    from flightmode.sim.flight.turbulence import MID_TOP_M, low_to_high_sigma_w_ratio
+
+    bl = [c for c in by_group["turbulence"] if c.figure.startswith("boundary layer")]
+    cond = info["conditions"]
+    edr = cond["background_edr_upper" if info["plan"]["cruise_alt_m"] >= MID_TOP_M else "background_edr_mid"]
+    rougher_low = low_to_high_sigma_w_ratio(cond["surface_wind_mps"], cond["convective_velocity_mps"], edr) >= 1.0
+    assert len(bl) == 1 and bl[0].judged == rougher_low and (bl[0].passed or not rougher_low), bl
 
 
 def test_cli_prints_one_table_and_json(pattern_run):

@@ -38,3 +38,21 @@ def test_the_convective_draws_come_last_and_move_no_other_draw():
     b = draw_atmosphere(np.random.default_rng(7), w_star_mps=0.0)
     assert (a.w20_mps, a.edr_mid, a.edr_upper, a.z_i_m) == (b.w20_mps, b.edr_mid, b.edr_upper, b.z_i_m)
     assert b.w_star_mps == 0.0 and 0.0 <= a.w_star_mps <= 2.0 and 500.0 <= a.z_i_m <= 2000.0
+
+
+def test_the_low_to_high_ratio_compares_the_roughest_low_air_with_the_background():
+    """validate judges "boundary layer rougher than calm cruise" only where the drawn field is
+    (low_to_high_sigma_w_ratio >= 1). Its numerator is the largest sigma_w below the mixed layer's top,
+    MIL-F-8785C's 0.1 W20 combined in quadrature with the convective peak (found here by brute force
+    over heights), its denominator the background's 9.1 EDR (EDR_TO_SIGMA_W)."""
+    from flightmode.sim.flight.turbulence import EDR_TO_SIGMA_W, low_to_high_sigma_w_ratio
+
+    assert EDR_TO_SIGMA_W == pytest.approx(9.1, abs=0.05)
+    # no sun: 0.1 x 10 m/s against 9.1 x 0.05 = 0.456 m/s
+    assert low_to_high_sigma_w_ratio(10.0, 0.0, 0.05) == pytest.approx(1.0 / (EDR_TO_SIGMA_W * 0.05), rel=1e-12)
+    z_i = 1500.0
+    peak = max(convective_sigmas(z, 1.5, z_i)[1] for z in np.linspace(1.0, z_i - 1.0, 20001))
+    want = np.hypot(0.3, peak) / (EDR_TO_SIGMA_W * 0.06)
+    assert low_to_high_sigma_w_ratio(3.0, 1.5, 0.06) == pytest.approx(want, rel=1e-6)
+    # the built-ins' seed-1 day (W20 1.0 m/s, w* 0.34 m/s, EDR 0.059) is calmer low than aloft
+    assert low_to_high_sigma_w_ratio(1.02, 0.34, 0.059) < 1.0
