@@ -423,7 +423,7 @@ class EnRoute(Controller):
         agl = x[ix["agl_m"]]
         sb = clamp((-err - 4.0) / 10.0, 0.0, 1.0) if thr <= 0.01 and agl > 1000 * FT_M else 0.0
         ap.ac.set("fcs/speedbrake-cmd-norm", sb)
-        if ap.loc_mode and (agl - prof.cg_height_m < prof.flare_height_ft * FT_M
+        if ap.loc_mode and (agl - prof.cg_height_m < flare_start_height_m(ap, x[ix["v_down_mps"]])
                             or -d > FLOAT_LIMIT_FRACTION * ap.dest.rwy.length_m):
             # over the runway's second half still above the flare height (a float in gusts on the
             # approach's speed): the flare's first tick goes around (Flare._go_around)
@@ -473,6 +473,21 @@ class EnRoute(Controller):
         ap.vs_cmd = rate_limit(ap.vs_cmd, vs, 0.8 * ap.dt)
         ap.path_to(x, ap.vs_cmd, 0.0, 15.0, rate_dps=1.0)
         ap.ac.set("fcs/speedbrake-cmd-norm", 0.0)
+
+
+def flare_start_height_m(ap, sink_mps: float) -> float:
+    """The main gear's height at which the flare begins: the type's flare height, or, for a type that
+    flares at a time to contact (``flare_at_time_to_contact``) and sinks faster than the glideslope
+    asks at its approach speed, higher, at the time to contact the flare height gives on the glideslope.
+    A pilot judges the flare by the closing of the runway, not by a height: the tau hypothesis (Lee,
+    "A theory of visual control of braking based on information about time-to-collision", Perception
+    5, 1976) has the braking of an approach to a surface begin at a constant time to contact."""
+    prof = ap.prof
+    h = prof.flare_height_ft * FT_M
+    if not prof.flare_at_time_to_contact:
+        return h
+    glide_sink = ap.vapp_mps() * math.sin(math.radians(ap.plan.glideslope_deg))
+    return max(h, h / glide_sink * sink_mps)
 
 
 class Flare(Controller):
@@ -535,13 +550,18 @@ class Flare(Controller):
             lead = prof.flare_predict_s
             h_m -= sink * lead - 0.5 * a_up * lead * lead
             sink -= a_up * lead
+        lowest = -FLARE_PITCH_DOWN_RADPS
         if h_m > FLARE_MIN_H_M:
             a_req = (sink * abs(sink) - target * target) / (2.0 * h_m)
         else:  # at the aim height: hold the touchdown sink until the wheels meet the runway
             a_req = FLARE_HOLD_PER_S * (sink - target)
+            if sink >= 0.0:
+                # and never lower the nose there unless the aircraft climbs (a balloon): an A320 that
+                # had arrested its sink at 3 ft was pushed to 3.4 ft/s by the loop chasing its drawn
+                # 1.5 ft/s, with the speed decaying at idle (the A320 profile's flare_aim_m comment)
+                lowest = 0.0
         a_req = clamp(a_req, -FLARE_MAX_PUSH_MPS2, FLARE_MAX_UP_MPS2)
-        return clamp(prof.flare_accel_gain * FLARE_PITCH_GAIN * (a_req - a_up), -FLARE_PITCH_DOWN_RADPS,
-                     FLARE_PITCH_UP_RADPS)
+        return clamp(prof.flare_accel_gain * FLARE_PITCH_GAIN * (a_req - a_up), lowest, FLARE_PITCH_UP_RADPS)
 
     def _rate_exponential(self, x, gear_h_m: float, sink: float, target: float) -> float:
         """The exponential law: the pitch rate (rad/s) that moves the attitude command towards its
