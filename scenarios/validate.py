@@ -470,6 +470,8 @@ def boundary_layer_anchor(track, cruise_alt_m: float) -> tuple[float | None, str
     if not all(k in c for k in keys):
         return 1.0, "the track records no atmosphere draws: judged whatever the wind"
     edr = c["background_edr_mid"] if cruise_alt_m < MID_TOP_M else c["background_edr_upper"]
+    if not edr > 0.0:
+        return 1.0, f"the track records a background EDR of {edr:g} aloft: judged whatever the wind"
     r = low_to_high_sigma_w_ratio(c["surface_wind_mps"], c["convective_velocity_mps"], edr)
     drawn = (f"drawn field {r:.2f} times as rough low as aloft (W20 {c['surface_wind_mps']:.1f} m/s, "
              f"w* {c['convective_velocity_mps']:.2f} m/s, cruise EDR {edr:.3f})")

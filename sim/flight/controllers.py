@@ -423,7 +423,7 @@ class EnRoute(Controller):
         agl = x[ix["agl_m"]]
         sb = clamp((-err - 4.0) / 10.0, 0.0, 1.0) if thr <= 0.01 and agl > 1000 * FT_M else 0.0
         ap.ac.set("fcs/speedbrake-cmd-norm", sb)
-        if ap.loc_mode and (agl - prof.cg_height_m < flare_start_height_m(ap, x[ix["v_down_mps"]])
+        if ap.loc_mode and (agl - prof.cg_height_m < flare_start_height_m(ap, x)
                             or -d > FLOAT_LIMIT_FRACTION * ap.dest.rwy.length_m):
             # over the runway's second half still above the flare height (a float in gusts on the
             # approach's speed): the flare's first tick goes around (Flare._go_around)
@@ -475,19 +475,22 @@ class EnRoute(Controller):
         ap.ac.set("fcs/speedbrake-cmd-norm", 0.0)
 
 
-def flare_start_height_m(ap, sink_mps: float) -> float:
+def flare_start_height_m(ap, x) -> float:
     """The main gear's height at which the flare begins: the type's flare height, or, for a type that
-    flares at a time to contact (``flare_at_time_to_contact``) and sinks faster than the glideslope
-    asks at its approach speed, higher, at the time to contact the flare height gives on the glideslope.
-    A pilot judges the flare by the closing of the runway, not by a height: the tau hypothesis (Lee,
-    "A theory of visual control of braking based on information about time-to-collision", Perception
-    5, 1976) has the braking of an approach to a surface begin at a constant time to contact."""
+    flares at a time to contact (``flare_at_time_to_contact``) and descends more steeply than the
+    glideslope (its sink over its ground speed), higher: at the time to contact the flare height gives on
+    the glideslope at this ground speed, at most FLARE_START_MAX_FACTOR times the flare height (under
+    the balloon check's FLARE_BALLOON_FACTOR, which a flare begun higher would trip on its first tick).
+    A pilot judges the flare by the closing of the runway, not by a
+    height: the tau hypothesis (Lee, "A theory of visual control of braking based on information about
+    time-to-collision", Perception 5, 1976) has the braking of an approach to a surface begin at a
+    constant time to contact."""
     prof = ap.prof
     h = prof.flare_height_ft * FT_M
     if not prof.flare_at_time_to_contact:
         return h
-    glide_sink = ap.vapp_mps() * math.sin(math.radians(ap.plan.glideslope_deg))
-    return max(h, h / glide_sink * sink_mps)
+    glide_sink = max(ap.gs(x), 1.0) * math.tan(math.radians(ap.plan.glideslope_deg))
+    return clamp(h / glide_sink * x[ap.ix["v_down_mps"]], h, FLARE_START_MAX_FACTOR * h)
 
 
 class Flare(Controller):
@@ -500,9 +503,9 @@ class Flare(Controller):
       kinematics of a uniform deceleration. The pitch attitude is moved at a rate proportional to the
       error between a_req and the measured vertical acceleration (from the specific force), as a
       pilot eases the stick back while watching the sink rate. The guidance corrects itself: a flare
-      begun late asks for more, one overdone asks for less (a float is allowed a gentle push, never a
-      dive). Stock autoland flare laws are of this kinematic kind (e.g. NASA TN D-6544, exponential
-      and constant-deceleration flare paths).
+      begun late asks for more, one overdone asks for less (a float above the aim height is allowed a
+      gentle push, never a dive; below it, only a balloon is). Stock autoland flare laws are of this
+      kinematic kind (e.g. NASA TN D-6544, exponential and constant-deceleration flare paths).
     - ``"exponential"``: the classic automatic flare (Blakelock, *Automatic Control of Aircraft and
       Missiles*, 2nd ed. 1991, automatic flare control): the sink rate is commanded along the
       exponential path v_cmd = v_td + h / tau, which meets the runway at v_td; tau is set at the flare
@@ -541,7 +544,9 @@ class Flare(Controller):
         to reach the touchdown sink ``flare_aim_m`` above the runway, and, with ``flare_predict_s``
         T > 0, it steers on the state T seconds ahead if the upward acceleration a the aircraft has
         now were kept: sink v - a T at height h - v T + a T^2 / 2 (a predictor of the simplest kind:
-        the deceleration already under way is not asked for a second time)."""
+        the deceleration already under way is not asked for a second time). Below the aim height it
+        pulls against a sink above the target and otherwise holds the attitude, lowering the nose only
+        when the aircraft climbs (a balloon), as a pilot holds the flare attitude in the last feet."""
         ix, prof = self.p.ix, self.p.prof
         # vertical acceleration (up) from the specific force: a = -f_z cos(theta) - g (near wings level)
         a_up = -x[ix["fz_mps2"]] * math.cos(x[ix["theta_rad"]]) - G0_MPS2
@@ -553,12 +558,14 @@ class Flare(Controller):
         lowest = -FLARE_PITCH_DOWN_RADPS
         if h_m > FLARE_MIN_H_M:
             a_req = (sink * abs(sink) - target * target) / (2.0 * h_m)
-        else:  # at the aim height: hold the touchdown sink until the wheels meet the runway
+        else:  # at the aim height: limit the sink to the target until the wheels meet the runway
             a_req = FLARE_HOLD_PER_S * (sink - target)
             if sink >= 0.0:
-                # and never lower the nose there unless the aircraft climbs (a balloon): an A320 that
-                # had arrested its sink at 3 ft was pushed to 3.4 ft/s by the loop chasing its drawn
-                # 1.5 ft/s, with the speed decaying at idle (the A320 profile's flare_aim_m comment)
+                # and never lower the nose there unless the aircraft climbs (a balloon): an A320 in still
+                # air that had arrested its sink at 3 ft was pushed to 3.4 ft/s by the loop chasing its
+                # drawn 1.5 ft/s, with the speed decaying at idle (pattern seed 0; now 1.0 ft/s:
+                # test_the_a320s_flare_lands_where_it_aims_in_still_air). Shared by the Fokker 100,
+                # whose flare reaches this regime only in its last foot (pattern landings within 0.01 ft/s)
                 lowest = 0.0
         a_req = clamp(a_req, -FLARE_MAX_PUSH_MPS2, FLARE_MAX_UP_MPS2)
         return clamp(prof.flare_accel_gain * FLARE_PITCH_GAIN * (a_req - a_up), lowest, FLARE_PITCH_UP_RADPS)
@@ -764,7 +771,7 @@ STEP_CHECK_S = 60.0  # how often the cruise checks whether a step climb is due
 FLARE_PITCH_GAIN = 2.1 / (4.5 * G0_MPS2)
 FLARE_ALPHA_MARGIN_DEG = 3.0  # the flare stops pitching up this close to the type's stall angle
 FLARE_MAX_UP_MPS2 = 0.25 * G0_MPS2  # a flare pulls at most a quarter g
-FLARE_MAX_PUSH_MPS2 = 0.03 * G0_MPS2  # and pushes gently when floating
+FLARE_MAX_PUSH_MPS2 = 0.03 * G0_MPS2  # and pushes gently when floating (below the aim: in a balloon)
 FLARE_MIN_H_M = 0.3  # the guidance's height floor (a_req stays finite at contact)
 FLARE_HOLD_PER_S = 1.0  # below the aim height: upward acceleration per m/s of sink above the target
 FLARE_PITCH_UP_RADPS = math.radians(3.0)  # the flare's attitude command moves at most this fast up
@@ -780,6 +787,7 @@ FLARE_TAU_MIN_S = 1.5
 FLARE_EXP_INTEGRAL_PER_S = 0.15
 FLARE_EXP_INTEGRAL_MAX_RAD = math.radians(3.0)
 FLARE_BALLOON_FACTOR = 2.0  # a flare that climbs above twice its height is a balloon (Flare._go_around)
+FLARE_START_MAX_FACTOR = 1.5  # a steep approach's flare begins at most this many flare heights up
 # the flare's bank limit (deg): wings nearly level at touchdown (its value before the track law too)
 FLARE_MAX_BANK_DEG = 5.0
 

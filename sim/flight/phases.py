@@ -38,8 +38,9 @@ TRANSITIONS: tuple[Transition, ...] = (
     Transition("cruise", "localizer_capture", "approach", "localizer captured at the cruise altitude"),
     Transition("descent", "localizer_capture", "approach", "on the approach fix's leg, aligned: localizer captured"),
     Transition("approach", "flare_height", "flare",
-               "main gear below the type's flare height on the localizer (or over the runway's second half "
-               "still above it: the flare then goes around)"),
+               "main gear below the type's flare height on the localizer (higher on a steep approach for a "
+               "type that flares at a time to contact) or over the runway's second half still above it "
+               "(the flare then goes around)"),
     Transition("flare", "touchdown", "rollout", "weight on wheels (spoilers, reversers, autobrake)"),
     Transition("flare", "go_around", "go_around",
                "a go-around ordered at the flare height, or the flare floats over the runway's second half or "

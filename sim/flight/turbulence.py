@@ -150,10 +150,12 @@ CONVECTIVE_PEAK_FRACTION = 1.0 / 3.2
 
 def low_to_high_sigma_w_ratio(w20_mps: float, w_star_mps: float, edr_background: float) -> float:
     """How much rougher the drawn air is near the ground than the calm air aloft: the boundary layer's
-    largest vertical gust intensity (MIL-F-8785C's mechanical sigma_w = 0.1 W20, combined with the
-    convective mixed layer's peak, 0.68 w*) over the calm background's sigma_w = 9.1 EDR. Under 1 the
-    field the flight drew is calmer low than high (light wind, no sun): low-altitude gusts scale with
-    the surface wind (MIL-F-8785C 3.7.3.3), and on a still night an approach is smoother than cruise."""
+    roughest vertical gust intensity (MIL-F-8785C's mechanical sigma_w = 0.1 W20 below 1000 ft, combined
+    with the convective mixed layer's peak, 0.68 w*; an upper estimate between 1000 and 2000 ft, where
+    the mechanical part blends towards the background) over the calm background's sigma_w = 9.1 EDR.
+    Under 1 the field the flight drew is calmer low than high (light wind, no sun): low-altitude gusts
+    scale with the surface wind (MIL-F-8785C 3.7.3.3), and on a still night an approach is smoother
+    than cruise."""
     z_i = 1000.0  # any depth: the peak's value does not depend on it
     _, conv_w = convective_sigmas(CONVECTIVE_PEAK_FRACTION * z_i, w_star_mps, z_i)
     return math.hypot(0.1 * w20_mps, conv_w) / (EDR_TO_SIGMA_W * edr_background)

@@ -42,14 +42,16 @@ def test_the_convective_draws_come_last_and_move_no_other_draw():
 
 def test_the_low_to_high_ratio_compares_the_roughest_low_air_with_the_background():
     """validate judges "boundary layer rougher than calm cruise" only where the drawn field is
-    (low_to_high_sigma_w_ratio >= 1). Its numerator is the largest sigma_w below the mixed layer's top,
-    MIL-F-8785C's 0.1 W20 combined in quadrature with the convective peak (found here by brute force
-    over heights), its denominator the background's 9.1 EDR (EDR_TO_SIGMA_W)."""
+    (low_to_high_sigma_w_ratio >= 1). Its numerator is the low air's roughest sigma_w, MIL-F-8785C's
+    0.1 W20 (below 1000 ft) combined in quadrature with the convective peak (found here by brute force
+    over heights), an upper estimate between 1000 and 2000 ft where the mechanical part blends towards
+    the background; its denominator the background's 9.1 EDR (EDR_TO_SIGMA_W)."""
     from flightmode.sim.flight.turbulence import EDR_TO_SIGMA_W, low_to_high_sigma_w_ratio
 
     assert EDR_TO_SIGMA_W == pytest.approx(9.1, abs=0.05)
     # no sun: 0.1 x 10 m/s against 9.1 x 0.05 = 0.456 m/s
-    assert low_to_high_sigma_w_ratio(10.0, 0.0, 0.05) == pytest.approx(1.0 / (EDR_TO_SIGMA_W * 0.05), rel=1e-12)
+    want = 1.0 / (EDR_TO_SIGMA_W * 0.05)
+    assert low_to_high_sigma_w_ratio(10.0, 0.0, 0.05) == pytest.approx(want, rel=1e-12)
     z_i = 1500.0
     peak = max(convective_sigmas(z, 1.5, z_i)[1] for z in np.linspace(1.0, z_i - 1.0, 20001))
     want = np.hypot(0.3, peak) / (EDR_TO_SIGMA_W * 0.06)
