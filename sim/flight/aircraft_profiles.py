@@ -216,8 +216,8 @@ class AircraftProfile:
     # predicts the sink rate and height from the upward acceleration the aircraft has
     flare_aim_m: float = 2.0
     flare_predict_s: float = 0.0
-    # begin the flare at flare_height_ft or, sinking faster than the glideslope asks at the approach
-    # speed, at the same time to contact (sim.flight.controllers.flare_start_height_m)
+    # begin the flare at flare_height_ft or, on an approach steeper than the glideslope (sink over
+    # ground speed), at the same time to contact (sim.flight.controllers.flare_start_height_m)
     flare_at_time_to_contact: bool = False
     # the exponential law's proportional gain: attitude change per sink-rate error, times the true
     # airspeed (rad per rad of flight-path angle; sim.flight.controllers.FLARE_EXP_INTEGRAL_PER_S)

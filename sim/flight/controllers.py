@@ -481,10 +481,9 @@ def flare_start_height_m(ap, x) -> float:
     glideslope (its sink over its ground speed), higher: at the time to contact the flare height gives on
     the glideslope at this ground speed, at most FLARE_START_MAX_FACTOR times the flare height (under
     the balloon check's FLARE_BALLOON_FACTOR, which a flare begun higher would trip on its first tick).
-    A pilot judges the flare by the closing of the runway, not by a
-    height: the tau hypothesis (Lee, "A theory of visual control of braking based on information about
-    time-to-collision", Perception 5, 1976) has the braking of an approach to a surface begin at a
-    constant time to contact."""
+    A pilot judges the flare by the closing of the runway, not by a height: the tau hypothesis (Lee, "A
+    theory of visual control of braking based on information about time-to-collision", Perception 5,
+    1976) has the braking of an approach to a surface begin at a constant time to contact."""
     prof = ap.prof
     h = prof.flare_height_ft * FT_M
     if not prof.flare_at_time_to_contact:
