@@ -185,10 +185,10 @@ STILL_AIR = {"atmosphere.surface_wind_mps": 0.0, "atmosphere.convective_velocity
 def test_the_a320s_flare_lands_where_it_aims_in_still_air(fly_cached):
     """No wind, no sun, background EDR 0.01: the A320's flare (aim 1.5 m, no nose-down once there
     unless ballooning) lands a 1.5 ft/s and a 3.0 ft/s target in that order, each within 1 ft/s (it
-    comes out about half a ft/s soft: seeds 0-15 of normal landings, -0.48 ft/s, sd 0.07). Aiming 2 m up and
-    pushing to its target there, it came out near 3.2 ft/s whatever was drawn: 3.4 for 1.46 and 2.7
-    for 3.49, the wrong order. The 1 ft/s bounds are half the normal landings' median target
-    (sim.flight.draws); the order asks 1.5 ft/s of the drawn 1.5 between them to survive, at least half."""
+    comes out about half a ft/s soft: seeds 0-15 of normal landings, -0.48 ft/s, sd 0.07). Aiming 2 m
+    up and pushing to its target there, it came out near 3.2 ft/s whatever was drawn: 3.4 for 1.46 and
+    2.7 for 3.49, the wrong order. The 1 ft/s bounds are half the normal landings' median target
+    (sim.flight.draws); the order asks that at least half of the 1.5 ft/s between the targets survive."""
     flown = []
     for fps in (1.5, 3.0):
         _, tr = fly_cached("pattern", seed=0, aircraft="A320", **STILL_AIR,
