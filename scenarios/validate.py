@@ -463,13 +463,13 @@ def boundary_layer_anchor(track, cruise_alt_m: float) -> tuple[float | None, str
     at least 1: the surface wind's and the sun's gusts stronger than the background aloft); under a light
     wind and no convection the cited model itself makes the low air calmer, and the row is shown
     without an anchor. A track without its draws (an older file) is judged as before."""
-    from flightmode.sim.flight.turbulence import MID_TOP_M, low_to_high_sigma_w_ratio
+    from flightmode.sim.flight.turbulence import background_edr, low_to_high_sigma_w_ratio
 
     c = track.conditions or {}
     keys = ("surface_wind_mps", "convective_velocity_mps", "background_edr_mid", "background_edr_upper")
     if not all(k in c for k in keys):
         return 1.0, "the track records no atmosphere draws: judged whatever the wind"
-    edr = c["background_edr_mid"] if cruise_alt_m < MID_TOP_M else c["background_edr_upper"]
+    edr = background_edr(cruise_alt_m, c["background_edr_mid"], c["background_edr_upper"])
     if not edr > 0.0:
         return 1.0, f"the track records a background EDR of {edr:g} aloft: judged whatever the wind"
     r = low_to_high_sigma_w_ratio(c["surface_wind_mps"], c["convective_velocity_mps"], edr)

@@ -24,7 +24,7 @@ from flightmode.sim.flight.autopilot import Autopilot
 from flightmode.sim.flight.controllers import CONTROLLERS
 from flightmode.sim.flight.phases import START, TABLE
 from flightmode.sim.flight.plan import FlightPlan
-from flightmode.sim.flight.turbulence import MID_TOP_M, sigma_high_mps
+from flightmode.sim.flight.turbulence import background_edr, sigma_high_mps
 from flightmode.units import FT_M, KT_MPS
 
 EN_ROUTE = frozenset({"climb", "cruise", "descent"})  # ticked at 5 Hz above 3000 ft (control_every)
@@ -178,7 +178,7 @@ class Pilot:
             return
         since = self.t - self.t_liftoff
         atm = self.draws.atmosphere
-        sev, edr = 0, (atm.edr_mid if self._x[self.ix["alt_m"]] < MID_TOP_M else atm.edr_upper)
+        sev, edr = 0, background_edr(self._x[self.ix["alt_m"]], atm.edr_mid, atm.edr_upper)
         for seg, seg_edr in zip(self.plan.turbulence, atm.patch_edr):
             if seg.start_s <= since < seg.start_s + seg.duration_s:
                 sev, edr = SEVERITY_CODE[seg.severity], seg_edr

@@ -143,6 +143,13 @@ def _mechanical(h_m: float, sigma_high_mps: float, w20_mps: float) -> tuple[floa
     return L_HIGH_M, L_HIGH_M, sigma_high_mps, sigma_high_mps
 
 
+def background_edr(alt_m: float, edr_mid: float, edr_upper: float) -> float:
+    """The calm background's EDR at an altitude above sea level: the mid levels' below FL200
+    (:data:`MID_TOP_M`), the upper levels' above (the pilot's gust feed, and validate's boundary-layer
+    anchor, which must take the same one)."""
+    return edr_mid if alt_m < MID_TOP_M else edr_upper
+
+
 # the height of the convective sigma_w's maximum, as a fraction of z_i: d/dx [x^(1/3) (1 - 0.8 x)] = 0
 # at x = 1 / 3.2 (Lenschow et al. 1980, eq. 3, as in convective_sigmas)
 CONVECTIVE_PEAK_FRACTION = 1.0 / 3.2
