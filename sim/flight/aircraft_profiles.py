@@ -226,6 +226,10 @@ class AircraftProfile:
     # a flare entered with little sink to lose (a firm or hard landing) is held at its entry sink until
     # h / tau_max falls under the sink it has to lose
     flare_tau_max_s: float = 6.0
+    # the exponential law's attitude for the lift the flare loses as the speed bleeds at idle (rad;
+    # sim.flight.controllers.Flare): this times ((V_0 / V)^2 - 1), V_0 the true airspeed at the flare height;
+    # 0: none
+    flare_lift_attitude_rad: float = 0.0
     # the main gear's height at which the flare pulls the thrust to idle ("retard")
     retard_height_ft: float = 20.0
     # the approach speed's wind additive (sim.flight.autopilot.Autopilot.vapp_mps): this fraction of
@@ -288,6 +292,10 @@ class AircraftProfile:
         if self.flare_law not in FLARE_LAWS:
             raise AircraftError(f"aircraft profile '{self.model}': unknown flare_law {self.flare_law!r}; "
                                 f"use one of {', '.join(FLARE_LAWS)}")
+        if not self.flare_lift_attitude_rad >= 0.0:
+            raise AircraftError(f"aircraft profile '{self.model}': flare_lift_attitude_rad "
+                                f"{self.flare_lift_attitude_rad:g} must not be negative (0: no attitude "
+                                "for the lift lost as the speed bleeds)")
         if self.flare_aim_m < 0.0 or self.flare_predict_s < 0.0:
             raise AircraftError(f"aircraft profile '{self.model}': flare_aim_m {self.flare_aim_m:g} and "
                                 f"flare_predict_s {self.flare_predict_s:g} must not be negative")
@@ -388,6 +396,13 @@ PROFILES: dict[str, AircraftProfile] = {
         flare_height_ft=55.0,
         flare_pitch_kp=4.0,
         flare_law="exponential",  # it balloons and drops under the constant-deceleration law (Flare)
+        # the attitude for the lift lost as the speed bleeds (Flare), chosen among 0.1-0.3 on still-air
+        # pattern landings (seeds 0-7; flown minus drawn touchdown sink +0.53 ft/s without, -0.08 at 0.1,
+        # -0.70 at 0.2). In gusts, seeds 16-55 / held-out 56-95: +1.16 / +0.92 ft/s (sd 1.36 / 1.32) -> +0.56
+        # / +0.31 (1.13 / 1.13), median 3.28 / 2.88 -> 2.56 / 2.49 ft/s, p90 4.83 / 4.78 -> 3.65 / 3.57;
+        # touchdown 30 m further on (median 588 / 598 m); firm (seeds 0-15) -0.48 -> -0.65; hard (seeds 12-39)
+        # over 10 ft/s 5 -> 4 of 28
+        flare_lift_attitude_rad=0.1,
         # the 737's nose fell at 3-4 deg/s after its elevator relaxed at touchdown (the nose wheels
         # down 0.8-1.9 s after the mains, 8 pattern landings); kept: 2.0-4.0 s, at most 0.9-2.6 deg/s
         touchdown_elevator_keep=1.0,
@@ -639,8 +654,9 @@ PROFILES: dict[str, AircraftProfile] = {
         climb_throttle=0.95,
         taxi_throttle_max=0.35,
         reverse_throttle=0.6,
-        # the exponential flare from 80 ft, its time constant unbounded in practice (30 s); measured on
-        # route landings (gva-lhr, seeds 0-11; normal / firm / hard landings 12 / 8 / 8):
+        # the exponential flare (from 80 ft until the lift attitude below), its time constant unbounded in
+        # practice (30 s); measured on route landings (gva-lhr, seeds 0-11; normal / firm / hard landings 12 /
+        # 8 / 8):
         # - the constant-deceleration law from 50 ft ballooned near the runway and floated: 7 of 11
         #   normal landings past 900 m (up to 1,255 m), one flare begun too late for the 787's slow
         #   pitch response (10.6 ft/s, a failed flight; a failed firm and hard landing too);
@@ -655,11 +671,22 @@ PROFILES: dict[str, AircraftProfile] = {
         # 3.15 / 4.39 / 5.82 ft/s, past 900 m 9 -> 6 of 12. The floats left come from the long
         # flare (13 s from 80 ft) and a fast, heavy approach: on short routes the 50 t fuel floor
         # (fuel_kg) of the time landed it at about 177 t, above the 787-8's 172 t maximum landing mass,
-        # and its mass-scaled Vapp (autopilot.vapp_mps) was then 158 kt, 13 kt over vapp_kt
-        flare_height_ft=80.0,
+        # and its mass-scaled Vapp (autopilot.vapp_mps) was then 158 kt, 13 kt over vapp_kt.
+        # Then the attitude for the lift lost as the speed bleeds (flare_lift_attitude_rad, Flare): without it
+        # the sink, arrested near the target 5 ft up, rose to about 2.9 ft/s whatever was drawn (still air,
+        # seeds 0-7: 1.36-3.49 ft/s drawn, 2.89-3.40 flown, +0.94 on average). With it the flare is firmer and
+        # begins at 70 ft: from 80 ft, 0.25 rad floated past 914 m in 21 of 40 landings in gusts (seeds
+        # 16-55), against 12 before; from 65 ft the late tail grew. From 70 ft in still air 0.2 / 0.25 rad
+        # give -0.07 / -0.24 ft/s (0.2 / 0.25 / 0.3 from 80 ft: +0.28 / +0.08 / -0.13). In gusts, seeds 16-55
+        # / held-out 56-95: flown minus drawn +1.66 / +1.53 ft/s (sd 1.60 / 1.19) -> +0.81 / +0.66 (1.44 /
+        # 1.12), median 3.38 / 3.52 -> 2.76 / 2.51 ft/s, p90 5.16 / 4.78 -> 3.86 / 4.12, past 914 m 12 / 14 ->
+        # 10 / 14 of 40 (0.25 rad: +0.77 / +0.51, 11 / 14 past); firm (seeds 0-15) +0.01 -> -0.48; hard (seeds
+        # 12-39) over 10 ft/s 6 -> 6 of 28
+        flare_height_ft=70.0,
         flare_pitch_kp=4.0,
         flare_tau_max_s=30.0,
         flare_law="exponential",
+        flare_lift_attitude_rad=0.2,
         # WRAP B788
         climb=ClimbSchedule(Spread(9.58, 1.38, 7.32, 11.85), Spread(9.02, 1.77, 6.12, 11.93),
                             Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68,

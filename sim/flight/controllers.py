@@ -522,6 +522,13 @@ class Flare(Controller):
       On the A320 the same law flared too little (its flare is
       shorter and its lift answers the attitude more slowly: median 6.5 ft/s on 16 landings, against
       3.7 with the constant deceleration), so each type keeps the law that lands it best.
+      The thrust at idle, the speed bleeds through the flare (8-10 kt), and the wing holds its lift
+      1/2 rho V^2 S CL_alpha (alpha - alpha_0L) only if alpha - alpha_0L grows as (V_0 / V)^2 (V_0:
+      the true airspeed at the flare height). The type's ``flare_lift_attitude_rad`` A adds
+      A ((V_0 / V)^2 - 1) to the attitude goal for it, ahead of the sink-rate loop, whose integral is
+      too slow for the last seconds; a pilot raises the nose through the flare for the same reason.
+      Without it the 787-8's attitude stood still over the last 3 s while it lost 8 kt, and its sink,
+      arrested near the target 5 ft up, rose to about 2.9 ft/s whatever was drawn (still air).
     """
 
     approaches = 0  # approaches flown to the flare height, this one included (one Flare per flight)
@@ -533,6 +540,7 @@ class Flare(Controller):
         self.tau_s = exponential_flare_tau_s(x[ix["agl_m"]] - prof.cg_height_m, self.sink_0,
                                              self.ap.draws.touchdown_sink_mps, prof.flare_tau_max_s)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
+        self.v_0 = max(x[ix["tas_mps"]], 30.0)  # the exponential law's speed at the flare height
         self.retarded = False  # the thrust pulled to idle at the type's retard height: for good
         self.approaches += 1
         self.float_limit_m = FLOAT_LIMIT_FRACTION * self.ap.dest.rwy.length_m
@@ -581,6 +589,9 @@ class Flare(Controller):
         lim = FLARE_EXP_INTEGRAL_MAX_RAD / ki  # anti-windup: the integral moves the attitude 3 deg at most
         self.sink_err_int = clamp(self.sink_err_int + err * dt, -lim, lim)
         goal = self.theta_0 + (self.sink_0 - sink_cmd) / v + kp * err + ki * self.sink_err_int
+        # the lift 1/2 rho V^2 S CL_alpha (alpha - alpha_0L) holds as V bleeds only if alpha - alpha_0L grows
+        # as (V_0 / V)^2: the attitude for it is given ahead, not left to the slow integral
+        goal += prof.flare_lift_attitude_rad * ((self.v_0 / v) ** 2 - 1.0)
         return clamp((goal - self.theta_cmd) / dt, -FLARE_PITCH_DOWN_RADPS, FLARE_PITCH_UP_RADPS)
 
     def tick(self, x) -> None:
