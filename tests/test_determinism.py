@@ -74,3 +74,20 @@ def test_another_seed_changes_the_unit_the_noise_and_the_turbulence_stream_only(
     s2 = other.child("flight").integer_seed("turbulence")
     assert s1 != s2
     assert dataclasses.replace(sc, seed=sc.seed + 1).plan == sc.plan  # the seed is not part of the plan
+
+
+def test_the_digest_hashes_each_arrays_bytes_in_c_order_whatever_its_layout():
+    """The digest reads each array's own buffer (no copy): a C-ordered array, the same values in Fortran
+    order and a strided view of them all hash as SHA-256 over the dtype, the shape and the C-order
+    bytes, as run.json's truth digest always has; other values change it."""
+    import hashlib
+
+    a = np.arange(24.0).reshape(4, 6)
+    want = hashlib.sha256(b"float64(4, 6)" + a.tobytes()).hexdigest()
+    assert digest(a) == want
+    assert digest(np.asfortranarray(a)) == want
+    assert digest(np.arange(48.0).reshape(8, 6)[::2]) != want  # rows 0, 2, 4, 6 of 0..47: other values
+    view = np.arange(48.0).reshape(4, 12)[:, ::2]
+    assert digest(view) == hashlib.sha256(b"float64(4, 6)" + np.ascontiguousarray(view).tobytes()).hexdigest()
+    flags = np.array([[True, False], [False, True]])
+    assert digest(flags.T) == hashlib.sha256(b"bool(2, 2)" + flags.T.copy().tobytes()).hexdigest()
