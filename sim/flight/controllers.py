@@ -527,6 +527,8 @@ class Flare(Controller):
       the true airspeed at the flare height). The type's ``flare_lift_attitude_rad`` A adds
       A ((V_0 / V)^2 - 1) to the attitude goal for it, ahead of the sink-rate loop, whose integral is
       too slow for the last seconds; a pilot raises the nose through the flare for the same reason.
+      A is at most alpha - alpha_0L = CL / CL_alpha at the flare height; the sink-rate loop does part
+      of the work, so A is chosen per type on still-air landings (aircraft_profiles).
       Without it the 787-8's attitude stood still over the last 3 s while it lost 8 kt, and its sink,
       arrested near the target 5 ft up, rose to about 2.9 ft/s whatever was drawn (still air).
     """
