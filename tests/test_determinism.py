@@ -77,9 +77,10 @@ def test_another_seed_changes_the_unit_the_noise_and_the_turbulence_stream_only(
 
 
 def test_the_digest_hashes_each_arrays_bytes_in_c_order_whatever_its_layout():
-    """The digest reads each array's own buffer (no copy): a C-ordered array, the same values in Fortran
-    order and a strided view of them all hash as SHA-256 over the dtype, the shape and the C-order
-    bytes, as run.json's truth digest always has; other values change it."""
+    """The digest reads each array's own buffer (no copy), and still hashes SHA-256 over the dtype, the
+    shape and the values' bytes in C order, as run.json's truth digest always has: a C-ordered array and
+    the same values in Fortran order hash alike, a strided view as its values copied in C order, a
+    transposed bool array too; other values change it."""
     import hashlib
 
     a = np.arange(24.0).reshape(4, 6)
