@@ -627,7 +627,8 @@ class Flare(Controller):
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
             if sink > ap.tune.max_touchdown_sink_mps:
                 p.fail(f"hard landing: touchdown sink rate {sink / FT_M:.1f} ft/s exceeds "
-                       f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s")
+                       f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s, the gear's reserve-energy sink "
+                       "(14 CFR 25.723(b))")
             p.fire("touchdown")
 
     def _go_around(self, x, gear_h_m: float, rx_m: float) -> bool:
