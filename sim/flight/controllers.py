@@ -542,7 +542,8 @@ class Flare(Controller):
         self.tau_s = exponential_flare_tau_s(x[ix["agl_m"]] - prof.cg_height_m, self.sink_0,
                                              self.ap.draws.touchdown_sink_mps, prof.flare_tau_max_s)
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
-        self.v_0 = max(x[ix["tas_mps"]], 30.0)  # the exponential law's speed at the flare height
+        # the exponential law's speed at the flare height
+        self.v_0 = max(x[ix["tas_mps"]], FLARE_EXP_MIN_TAS_MPS)
         self.retarded = False  # the thrust pulled to idle at the type's retard height: for good
         self.approaches += 1
         self.float_limit_m = FLOAT_LIMIT_FRACTION * self.ap.dest.rwy.length_m
@@ -584,7 +585,7 @@ class Flare(Controller):
         goal, within the flare's pitch-rate limits."""
         ix, prof, dt = self.p.ix, self.p.prof, self.ap.dt
         sink_cmd = exponential_flare_sink_cmd_mps(gear_h_m, target, self.tau_s, self.sink_0)
-        v = max(x[ix["tas_mps"]], 30.0)
+        v = max(x[ix["tas_mps"]], FLARE_EXP_MIN_TAS_MPS)
         kp = prof.flare_path_gain / v  # rad per m/s of sink-rate error
         ki = FLARE_EXP_INTEGRAL_PER_S * kp
         err = sink - sink_cmd
@@ -799,6 +800,7 @@ FLARE_PITCH_DOWN_RADPS = math.radians(2.0)  # and down
 FLARE_TAU_MIN_S = 1.5
 FLARE_EXP_INTEGRAL_PER_S = 0.15
 FLARE_EXP_INTEGRAL_MAX_RAD = math.radians(3.0)
+FLARE_EXP_MIN_TAS_MPS = 30.0  # the exponential law's airspeed floor (its gains and lift ratio divide by it)
 FLARE_BALLOON_FACTOR = 2.0  # a flare that climbs above twice its height is a balloon (Flare._go_around)
 FLARE_START_MAX_FACTOR = 1.5  # a steep approach's flare begins at most this many flare heights up
 # the flare's bank limit (deg): wings nearly level at touchdown (its value before the track law too)

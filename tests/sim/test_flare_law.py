@@ -16,7 +16,7 @@ from flightmode.sim.flight.controllers import (
     exponential_flare_sink_cmd_mps,
     exponential_flare_tau_s,
 )
-from flightmode.units import FPS_MPS
+from flightmode.units import FPS_MPS, G0_MPS2
 
 FLARE_TAU_MAX_S = get_profile("737").flare_tau_max_s  # 6 s
 
@@ -235,5 +235,5 @@ def test_a_touchdown_over_the_design_sink_is_a_hard_landing_not_a_failed_flight(
     sink_fps = -tr.vertical_speed_mps[i - 1] / FPS_MPS
     assert 10.0 < sink_fps < 12.0, sink_fps
     near = (tr.t_s >= tr.t_s[i] - 0.5) & (tr.t_s <= tr.t_s[i] + 3.0)
-    assert (-tr.specific_force_body_mps2[near, 2] / 9.80665).max() < 3.0
+    assert (-tr.specific_force_body_mps2[near, 2] / G0_MPS2).max() < 3.0
     assert tr.phase[-1] == "parked"
