@@ -81,6 +81,7 @@ class Autopilot:
         self.set_route(list(plan.waypoints))
         self.loc_mode = False  # on the localizer
         self.theta_final: float | None = None  # pitch held on short final (deg)
+        self.theta_mean: float | None = None  # the pitch attitude's running mean on the localizer (deg)
         self.v_tgt: float | None = None
         self.vs_cmd: float | None = None
 
