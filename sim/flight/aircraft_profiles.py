@@ -687,10 +687,12 @@ PROFILES: dict[str, AircraftProfile] = {
         # 10 / 14 of 40 (0.25 rad: +0.77 / +0.51, 11 / 14 past); firm (seeds 0-15) +0.01 -> -0.48; hard (seeds
         # 12-39) over 10 ft/s, then failed flights, 6 -> 6 of 28 (1 fails now, at 13.6 ft/s).
         # Most of those floats began above the glideslope: the short-final pitch floor held the nose up
-        # (controllers.FINAL_PITCH_MARGIN_DEG). On the glideslope, the flare from 70 ft landed firmer (seeds
-        # 56-95 / 96-135: flown minus drawn +0.66 / +0.88 -> +0.77 / +1.32 ft/s, p90 4.12 / 5.46 -> 4.50 /
-        # 6.82), from 75 ft +0.71 / +0.87 (p90 4.64 / 5.33), as before; past 914 m 14 / 12 -> 6 / 3 of 40
-        # (from 70 ft 2 / 1), touchdown median 796 / 744 -> 638 / 576 m; from 80 ft +0.64, 6 past (56-95)
+        # (controllers.FINAL_PITCH_MARGIN_DEG). With the floor lowered (its 10 s mean), the flare from 70 ft,
+        # begun on the glideslope, landed firmer (seeds 56-95 / 96-135: flown minus drawn +0.66 / +0.88 ->
+        # +0.77 / +1.32 ft/s, p90 4.12 / 5.46 -> 4.50 / 6.82), from 75 ft +0.71 / +0.87 (p90 4.64 / 5.33),
+        # as before; past 914 m 14 / 12 -> 6 / 3 of 40 (from 70 ft 2 / 1), touchdown median 796 / 744 ->
+        # 638 / 576 m; from 80 ft +0.64, 6 past (56-95). With the floor's 30 s mean, from 75 ft, seeds 56-95
+        # / 96-135 / 136-175: +0.74 / +0.54 / +0.78 ft/s, p90 4.40 / 4.56 / 3.98, past 914 m 3 / 3 / 6 of 40
         flare_height_ft=75.0,
         flare_pitch_kp=4.0,
         flare_tau_max_s=30.0,
