@@ -39,6 +39,11 @@ def clamp(x: float, lo: float, hi: float) -> float:
     return min(hi, max(lo, x))
 
 
+def first_order_lag(current: float, target: float, dt_s: float, tau_s: float) -> float:
+    """One step of a first-order low-pass of time constant ``tau_s`` (forward Euler, its gain capped at 1)."""
+    return current + (target - current) * min(1.0, dt_s / tau_s)
+
+
 def rate_limit(current: float, target: float, max_step: float) -> float:
     """Move ``current`` toward ``target`` by at most ``max_step``."""
     if target > current + max_step:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from flightmode.sim.flight.control import PID, clamp, rate_limit
+from flightmode.sim.flight.control import PID, clamp, first_order_lag, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
 from flightmode.units import FPM_MPS, FT_M, G0_MPS2, KT_MPS, NM_M, SLUG_FT3_KGM3
@@ -293,7 +293,7 @@ class EnergyRateThrottle:
         self.rate_mps = energy_rate_mps(x, ix)  # low-passed
 
     def __call__(self, x, target_mps: float, dt_s: float) -> float:
-        self.rate_mps += (energy_rate_mps(x, self.ix) - self.rate_mps) * min(1.0, dt_s / ENERGY_RATE_TAU_S)
+        self.rate_mps = first_order_lag(self.rate_mps, energy_rate_mps(x, self.ix), dt_s, ENERGY_RATE_TAU_S)
         return self.pid(target_mps - self.rate_mps, dt_s)
 
 
@@ -433,7 +433,7 @@ class EnRoute(Controller):
         if ap.loc_mode:
             th = math.degrees(x[ix["theta_rad"]])
             ap.theta_mean = th if ap.theta_mean is None else \
-                ap.theta_mean + (th - ap.theta_mean) * min(1.0, ap.dt / THETA_FINAL_TAU_S)
+                first_order_lag(ap.theta_mean, th, ap.dt, THETA_FINAL_TAU_S)
         if ap.loc_mode and mg < 200 * FT_M:
             # short final: no diving into ground effect below the stabilised attitude (THETA_FINAL_TAU_S)
             if ap.theta_final is None:
