@@ -692,7 +692,8 @@ PROFILES: dict[str, AircraftProfile] = {
         # +0.77 / +1.32 ft/s, p90 4.12 / 5.46 -> 4.50 / 6.82), from 75 ft +0.71 / +0.87 (p90 4.64 / 5.33),
         # as before; past 914 m 14 / 12 -> 6 / 3 of 40 (from 70 ft 2 / 1), touchdown median 796 / 744 ->
         # 638 / 576 m; from 80 ft +0.64, 6 past (56-95). With the floor's 30 s mean, from 75 ft, seeds 56-95
-        # / 96-135 / 136-175: +0.74 / +0.54 / +0.78 ft/s, p90 4.40 / 4.56 / 3.98, past 914 m 3 / 3 / 6 of 40
+        # / 96-135 / 136-175: +0.74 / +0.54 / +0.78 ft/s, p90 4.40 / 4.56 / 3.98, past 914 m 3 / 3 / 6 of 40;
+        # in still air (seed 0) 1.5 / 3.0 ft/s targets land at 0.98 / 3.40 (1.74 / 2.53 from 70 ft before)
         flare_height_ft=75.0,
         flare_pitch_kp=4.0,
         flare_tau_max_s=30.0,

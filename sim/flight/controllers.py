@@ -430,7 +430,7 @@ class EnRoute(Controller):
         ap.vs_cmd = rate_limit(ap.vs_cmd, vs_cmd, 0.8 * ap.dt)
         lo_deg = -8.0
         mg = x[ix["agl_m"]] - prof.cg_height_m
-        if ap.loc_mode:
+        if ap.loc_mode and ap.theta_final is None:  # the approach's mean attitude, until it is held
             th = math.degrees(x[ix["theta_rad"]])
             ap.theta_mean = th if ap.theta_mean is None else \
                 first_order_lag(ap.theta_mean, th, ap.dt, THETA_FINAL_TAU_S)
