@@ -268,8 +268,8 @@ class AircraftProfile:
     # the descent path's angle from cruise to the glideslope on flights between any two airports
     # (flightmode.scenarios.routes; a scenario file sets its own). One geometric path: the vertical rate
     # is the ground speed times its tangent, about 11.7 m/s at 2.8 deg in the constant-Mach band (240 m/s)
-    # and 9-10 m/s at constant CAS, inside WRAP's A320 / B737 / B788 ranges (-13.1 to -14.2 m/s at most
-    # at constant Mach, default -9.1 to -10.0 at constant CAS)
+    # and 9-10 m/s at constant CAS, inside WRAP's A320 / B738 ranges (-13.5 / -12.7 m/s at most at
+    # constant Mach, defaults -10.0 at constant CAS); the faster types fly shallower paths (their profiles)
     descent_angle_deg: float = 2.8
     # flights between any two airports (flightmode.scenarios.routes): the type's usual cruise level
     # and Mach (OpenAP WRAP ``cruise_alt`` / ``cruise_mach`` defaults where WRAP has the type), its
@@ -611,6 +611,12 @@ PROFILES: dict[str, AircraftProfile] = {
         range_km=13_600.0,  # Boeing 787-8 published range 7,305 NM (OpenAP prop B788: 14,800 km)
         min_runway_m=2600.0,  # Boeing 787 Airplane Characteristics for Airport Planning (787-8)
         wrap_type="B788",
+        # WRAP B788 descends from its 12.01 km cruise over a 292 km descent range (defaults), a mean
+        # path of 2.36 deg (A320 and B738: 2.67 deg, E190 2.50). At the 2.8 deg of the narrow-bodies
+        # this model's 280-290 m/s ground speeds at Mach 0.85 put the constant-Mach band at 13.8-14.4
+        # m/s (european-787, members 0-19: 8 of 20 past WRAP B788's steepest, -14.16 m/s; default -7.6)
+        # and 4 of 20 past its steepest below the CAS crossover (-7.94)
+        descent_angle_deg=2.4,
         cabin_half_width_m=2.9,
         n_engines=2,
         length_m=56.7,

@@ -59,6 +59,9 @@ def test_builtin_families_load_and_their_first_members_are_valid_scenarios():
     parcels = [Family.builtin("parcel-express").member(i) for i in range(20)]
     assert all(m.carrier.kind == "parcel" and m.carrier.placement == "hold" and 600 <= m.carrier.truck_s <= 3600
                for m in parcels)
+    # the 787-8's population for validate: every member a 787-8 that climbs through 30,000 ft
+    wide = [Family.builtin("european-787").member(i) for i in range(20)]
+    assert all(m.aircraft == "787-8" and m.plan.cruise_alt_m > 30_000 * 0.3048 for m in wide)
     rough = [Family.builtin("rough-air").member(i) for i in range(20)]
     assert all(len(m.plan.turbulence) == 1 and m.plan.turbulence[0].severity in ("moderate", "severe") for m in rough)
 
