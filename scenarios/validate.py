@@ -609,11 +609,14 @@ def _order_check(group: str, figure: str, ours: float, interval: tuple[float, fl
 # Tables 4 / 5 are judged only for a bag whose sensor x axis lay within this angle of the fuselage
 # axis in flight. Seed 000 does not say how its phone lay, but its x axis was by far the quietest in
 # both flights (Tables 4-5: x fractions 30-71 times y's at 3 sigma^2), which here is the fore-aft axis
-# (the soft supports isolate it best; sim.sensor.mount). Past 45 deg the sensor's x sees more of the
-# floor's lateral vibration than of its fore-aft, a different experiment from the paper's: its cells
-# are shown, not judged (measured on the default flight re-sensed at fixed yaws: at 0-30 deg the x
-# cells pass, at 60-90 deg they are 1-1.9 decades off).
-COMPARABLE_X_FROM_FUSELAGE_DEG = 45.0
+# (the soft supports isolate it best; sim.sensor.mount). At an angle psi from the fuselage the sensor's
+# x sees the floor's fore-aft vibration times cos(psi) and its lateral times sin(psi); past
+# tan(psi) = fore-aft / lateral share (sim.sensor.vibration.VibrationModel.axis_share, 0.3 / 0.6:
+# 26.6 deg) it sees more of the lateral than of the fore-aft, a different experiment from the paper's:
+# its cells are shown, not judged. (This was 45 deg, right only for equal shares: on a european-trio
+# population all 21 bags judged at 21-45 deg failed 4 to 11 of their 12 cells, their x fractions 1.6-1.9
+# decades short of the paper's; tests/scenarios/test_validate.py ties the angle to the shares.)
+COMPARABLE_X_FROM_FUSELAGE_DEG = 26.6
 COMPARABLE_SHARE = 0.9  # of the time the bag lay stowed in the in-flight window
 
 
