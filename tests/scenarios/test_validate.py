@@ -328,8 +328,10 @@ def test_tables_4_and_5_are_judged_while_the_sensor_x_sees_more_fore_aft_than_la
     from flightmode.sim.sensor.vibration import VibrationModel
 
     fore_aft, lateral, _ = VibrationModel().axis_share
-    assert COMPARABLE_X_FROM_FUSELAGE_DEG == pytest.approx(math.degrees(math.atan(fore_aft / lateral)), abs=0.05)
-    for angle, judged in ((COMPARABLE_X_FROM_FUSELAGE_DEG - 0.5, True), (COMPARABLE_X_FROM_FUSELAGE_DEG + 0.5, False)):
+    psi = COMPARABLE_X_FROM_FUSELAGE_DEG
+    assert psi == pytest.approx(math.degrees(math.atan(fore_aft / lateral)), abs=0.05)
+    for angle, judged in ((psi - 0.5, True), (psi + 0.5, False)):
         part = {"placement": "under_seat", "yaw_deg": angle, "tilt_deg": 0.0, "x_from_fuselage_deg": angle}
-        stowage = {"in_flight": part | {"cabin_row": "mid", "packing": "soft"}, "in_flight_segments": [part | {"share": 1.0}]}
+        stowage = {"in_flight": part | {"cabin_row": "mid", "packing": "soft"},
+                   "in_flight_segments": [part | {"share": 1.0}]}
         assert placement_text(stowage)[1] is judged
