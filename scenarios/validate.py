@@ -615,15 +615,22 @@ def _order_check(group: str, figure: str, ours: float, interval: tuple[float, fl
 # 26.6 deg) it sees more of the lateral than of the fore-aft, a different experiment from the paper's:
 # its cells are shown, not judged. (This was 45 deg, right only for equal shares: on a european-trio
 # population all 21 bags judged at 21-45 deg failed 4 to 11 of their 12 cells, those on the floor, in a
-# bin or in the hold with x fractions 1.6-2.1 decades under the paper's; tests/scenarios/test_validate.py
-# ties the angle to the shares.)
-COMPARABLE_X_FROM_FUSELAGE_DEG = 26.6
+# bin or in the hold with x fractions 1.6-2.1 decades under the paper's.)
 COMPARABLE_SHARE = 0.9  # of the time the bag lay stowed in the in-flight window
+
+
+def comparable_x_from_fuselage_deg() -> float:
+    """The largest angle (deg) of the sensor's x axis from the fuselage at which Tables 4 / 5 are judged:
+    where it sees as much of the floor's lateral vibration as of its fore-aft (comment above)."""
+    from flightmode.sim.sensor.vibration import VibrationModel
+
+    fore_aft, lateral, _ = VibrationModel().axis_share
+    return math.degrees(math.atan(fore_aft / lateral))
 
 
 def placement_text(stowage: dict | None) -> tuple[str, bool]:
     """(a note on where and how the bag lay in flight, whether seed 000's Tables 4 / 5 are comparable).
-    Comparable: the sensor's x axis lay within :data:`COMPARABLE_X_FROM_FUSELAGE_DEG` of the fuselage
+    Comparable: the sensor's x axis lay within :func:`comparable_x_from_fuselage_deg` of the fuselage
     for at least :data:`COMPARABLE_SHARE` of the time the bag lay stowed in the in-flight window (a
     handling sets it down anew, at a new yaw). Without a record (a run or manifest made before it was
     kept): the note says so and the cells are judged, as they always were."""
@@ -632,12 +639,13 @@ def placement_text(stowage: dict | None) -> tuple[str, bool]:
         return "; the bag's placement was not recorded", True
     parts = stowage.get("in_flight_segments") or [f | {"share": 1.0}]
     stowed = sum(p["share"] for p in parts)
-    near = sum(p["share"] for p in parts if p["x_from_fuselage_deg"] <= COMPARABLE_X_FROM_FUSELAGE_DEG)
+    limit = comparable_x_from_fuselage_deg()
+    near = sum(p["share"] for p in parts if p["x_from_fuselage_deg"] <= limit)
     comparable = stowed > 0.0 and near >= COMPARABLE_SHARE * stowed
     row = f" {f['cabin_row']} row," if f.get("cabin_row") not in (None, "hold") else ""
     xs = "/".join(f"{p['x_from_fuselage_deg']:.0f}" for p in sorted(parts, key=lambda p: -p["share"]))
     share = near / stowed if stowed else 0.0
-    judged = "" if comparable else (f" (not judged: within {COMPARABLE_X_FROM_FUSELAGE_DEG:g} deg for "
+    judged = "" if comparable else (f" (not judged: within {limit:.1f} deg for "
                                     f"{share:.0%} of the time stowed, the paper's quiet x lay along it)")
     return f"; bag {f['placement']},{row} sensor x {xs} deg from the fuselage{judged}", comparable
 

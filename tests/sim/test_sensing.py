@@ -381,7 +381,7 @@ def test_eobs_bursts_and_a_parcel_in_the_hold(fly_cached):
 
 @pytest.mark.slow
 def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
-    from flightmode.scenarios.validate import COMPARABLE_X_FROM_FUSELAGE_DEG, placement_text
+    from flightmode.scenarios.validate import comparable_x_from_fuselage_deg, placement_text
     from flightmode.sim.sensor.carrier import orientation_angles
 
     _, tr = fly_cached("gva-lhr-a320")
@@ -412,10 +412,11 @@ def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
     assert {k: f[k] for k in best if k != "share"} == {k: v for k, v in best.items() if k != "share"}
     assert (f["cabin_row"], f["packing"]) == ("rear", "soft")
     assert rec.summary()["stowage"] == st
-    # validate judges seed 000's tables by the share of that time with x within COMPARABLE_X_FROM_FUSELAGE_DEG
-    # (26.6 deg) of the fuselage
-    near = (sum(p["share"] for p in parts if p["x_from_fuselage_deg"] <= COMPARABLE_X_FROM_FUSELAGE_DEG)
-            / sum(p["share"] for p in parts))
+    # validate judges seed 000's tables by the share of that time with x within 26.6 deg of the fuselage
+    # (validate.comparable_x_from_fuselage_deg)
+    limit = comparable_x_from_fuselage_deg()
+    stowed = sum(p["share"] for p in parts)
+    near = sum(p["share"] for p in parts if p["x_from_fuselage_deg"] <= limit) / stowed
     assert placement_text(st)[1] == (near >= 0.9)
     # with every segment at yaw 0 they are comparable whatever their shares; at yaw 90, never
     for yaw, comparable in ((0.0, True), (90.0, False)):
