@@ -784,7 +784,7 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
             axes = ", ".join(f"{ax} {int(round(w[f'P_FA_{ax}'] * n_w))}" for ax in "xyz")
             out.append(Check("seed 000", "in-flight checks under 4 sigma^2 on all axes at once", "checks", float(joint),
                              0.0, None, "seed 000 eq. 7 (the temporary static decision); informational",
-                             f"per axis: {axes} of {n_w} (the whole in-flight window, run-down included)"))
+                             f"the whole in-flight window (run-down included); per axis: {axes} of {n_w}"))
         # the paper's P_FA^t is the product of the axes' fractions (seed 000 eq. 14's independence);
         # its interval here: the product of the axes' bounds (each at 95 %, so wider than 95 %)
         out.append(judge(_order_check("seed 000", f"Table {table} P_FA^t at {k:g} sigma^2", r["P_FA_t"],
