@@ -29,6 +29,10 @@ CARRIER_PHASES = ("terminal_walk", "terminal_rest", "boarding", "deplaning", "ar
 PHASES = FLIGHT_PHASES + CARRIER_PHASES
 PHASE_CODE = {name: i for i, name in enumerate(PHASES)}
 
+# the in-flight window ends when every engine's N2 is below this after fuel cut-off ("engines off": the
+# pilot's shutdown, sim.flight.controllers.Shutdown); the engines excite no vibration from there on
+ENGINES_OFF_N2_PCT = 5.0
+
 AIRBORNE_PHASES = frozenset({"initial_climb", "climb", "cruise", "descent", "approach", "flare", "go_around"})
 
 SEVERITIES = ("none", "light", "moderate", "severe")

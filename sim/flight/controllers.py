@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from flightmode.labels import ENGINES_OFF_N2_PCT
 from flightmode.sim.flight.control import PID, clamp, first_order_lag, rate_limit
 from flightmode.sim.flight.step_climb import STEP_MIN_CRUISE_S, STEP_VS_MPS, next_level_m
 from flightmode.sim.flight.taxi_route import taxi_in_route
@@ -950,7 +951,7 @@ class Shutdown(Controller):
     def tick(self, x) -> None:
         self.ap.set_parking_brake(PARKING_BRAKE_RATE_PER_S)
         # engines off: every N2 below 5 % after fuel cut-off (the end of the seed's flight time)
-        if all(x[self.p.ix[f"n2_pct_{i}"]] < 5.0 for i in range(self.p.prof.n_engines)):
+        if all(x[self.p.ix[f"n2_pct_{i}"]] < ENGINES_OFF_N2_PCT for i in range(self.p.prof.n_engines)):
             self.p.t_engines_off = self.p.t
             self.p.event("engines_off")
             self.p.fire("engines_off")

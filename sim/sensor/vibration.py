@@ -8,7 +8,8 @@ Components (:class:`VibrationModel`):
   second harmonics; amplitude ``engine_idle_share`` + (1 - it) (N1/100)^2 of its full-power value
   while running (a fixed residual unbalance m e gives a force m e omega^2, growing as the square of
   the shaft speed: Den Hartog, "Mechanical Vibrations", 4th ed., 1956, ch. 6; the share felt at idle
-  is seed 000 section 2's "as soon as the engines are turned on"), fading out below 15 % N1;
+  is seed 000 section 2's "as soon as the engines are turned on"), fading out below 15 % N1 and
+  as N2 runs down to the engines-off mark (5 %);
 - airframe structural modes between 10 and 30 Hz (seed 000 section 4.2, Fig. 6: peaks between 10
   and 30 Hz in every flight stage), resonators driven by white noise whose RMS is the sum of an
   engine part (the same N1 law) and an airflow part proportional to the dynamic pressure q (the
@@ -57,6 +58,8 @@ from functools import lru_cache
 
 import numpy as np
 from scipy.signal import iirpeak, lfilter, sosfilt, zpk2sos
+
+from flightmode.labels import ENGINES_OFF_N2_PCT
 
 ENGINE_RPM = {  # model -> (N1 rpm at 100 %, N2 rpm at 100 %)
     "A320": (5000.0, 14460.0),
@@ -195,7 +198,7 @@ def vibration_g(
     rpm1, rpm2 = ENGINE_RPM[aircraft]
     dt = 1.0 / fs_hz
     share = np.asarray(model.axis_share)
-    level_e = _running_level(n1_pct, model)  # (n_engines, N)
+    level_e = _running_level(n1_pct, n2_pct, model)  # (n_engines, N)
     # engine lines: phase = integral of 2 pi f dt, continuous across chunks
     phases = state.phases.copy()
     line = np.zeros(n, dtype=np.float32)
@@ -235,14 +238,22 @@ def vibration_g(
     return y, VibrationState(phases, state.detune, mode_zi, new_joint)
 
 
-def _running_level(n1_pct: np.ndarray, model: VibrationModel) -> np.ndarray:
+def _running_level(n1_pct: np.ndarray, n2_pct: np.ndarray, model: VibrationModel) -> np.ndarray:
     """Engine excitation level relative to full power: ``engine_idle_share`` + (1 - it) (N1/100)^2
     while running (the rotor's unbalance force grows as the square of its speed, m e omega^2; the
     share that does not is what is felt at idle, seed 000 section 2), fading linearly to zero as
-    the engine spools down below 15 % N1."""
+    the engine spools down below 15 % N1, and as its N2 runs down from 15 % to the engines-off mark
+    (:data:`~flightmode.labels.ENGINES_OFF_N2_PCT`, 5 %), where the truth labels have the engines off
+    and a stowed bag at rest. With the N1 fade alone the engines were still felt for seconds after
+    it (N1 about 2.5 %, a sixth of the idle level): a bag in the hold was labelled at rest while
+    its 1 s variances stood at 5-20 sigma^2, which broke seed 000 Table 2's spread on 3 of 69
+    european-trio flights. At 5 % N2 the core turns at a twelfth of its idle speed (60 %), and
+    m e omega^2 is under 1 % of its idle value: the fade ends where the force has all but gone."""
     n1 = np.asarray(n1_pct, float)
     s = model.engine_idle_share
-    return (s + (1.0 - s) * (n1 / 100.0) ** 2) * np.clip(n1 / 15.0, 0.0, 1.0)
+    off = ENGINES_OFF_N2_PCT
+    spool = np.clip(n1 / 15.0, 0.0, 1.0) * np.clip((np.asarray(n2_pct, float) - off) / (15.0 - off), 0.0, 1.0)
+    return (s + (1.0 - s) * (n1 / 100.0) ** 2) * spool
 
 
 @lru_cache(maxsize=16)

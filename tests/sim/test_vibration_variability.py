@@ -88,12 +88,29 @@ def test_orderings_of_rows_engine_position_and_axes():
 def test_engine_excitation_grows_with_spool_speed_and_is_felt_at_idle():
     model = vib.VibrationModel()
     n1 = np.array([[0.0, 10.0, 30.0, 80.0, 100.0]])
-    level = vib._running_level(n1, model)[0]
+    n2 = np.array([[0.0, 40.0, 60.0, 90.0, 100.0]])
+    level = vib._running_level(n1, n2, model)[0]
     assert level[0] == 0.0  # stopped
     assert np.all(np.diff(level) > 0)
     # idle (30 % N1) keeps the idle share plus the square law's part; full power is 1
     assert level[2] == pytest.approx(model.engine_idle_share + (1 - model.engine_idle_share) * 0.09)
     assert level[4] == pytest.approx(1.0)
+
+
+def test_engines_are_felt_until_the_labels_turn_them_off_and_not_after():
+    """The run-down after fuel cut-off (JSBSim: N1 and N2 fall together, N1 / N2 = 0.5 for the
+    CFM56 at idle): the excitation falls with them and is exactly zero once N2 is under the mark at
+    which the in-flight window ends and a stowed bag is labelled at rest (labels.ENGINES_OFF_N2_PCT);
+    the N1 fade alone left a sixth of the idle level there (N1 2.5 %: 2.5 / 15)."""
+    from flightmode.labels import ENGINES_OFF_N2_PCT
+
+    model = vib.VibrationModel()
+    n2 = np.array([[60.0, 30.0, 15.0, 10.0, ENGINES_OFF_N2_PCT, 2.0, 0.0]])
+    level = vib._running_level(0.5 * n2, n2, model)[0]
+    assert np.all(np.diff(level[:5]) < 0) and np.all(level[:4] > 0.0)
+    assert np.all(level[4:] == 0.0)
+    # above 15 % N2 only the N1 fade acts: at N1 7.5 % it is half the idle share's level
+    assert level[2] == pytest.approx((model.engine_idle_share + (1 - model.engine_idle_share) * 0.075**2) * 0.5)
 
 
 def test_floor_rms_matches_the_documented_cruise_level():
