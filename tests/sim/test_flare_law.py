@@ -93,6 +93,7 @@ def test_the_a320s_approach_speed_adds_airbus_wind_additive(wind_kt, extra_kt):
     """Airbus's rule: VAPP = VLS + 1/3 of the headwind, 5 kt at least and 15 kt at most (A320 FCOM).
     The profile's vapp_kt holds the 5 kt already, so the additive beyond it is 1/3 of the wind less
     5 kt, between 0 (winds up to 15 kt) and 10 kt (winds of 45 kt and more). Exact arithmetic: 1e-9."""
+    import dataclasses
     from types import SimpleNamespace
 
     from flightmode.sim.flight.autopilot import Autopilot
@@ -101,7 +102,9 @@ def test_the_a320s_approach_speed_adds_airbus_wind_additive(wind_kt, extra_kt):
     ap = SimpleNamespace(prof=get_profile("A320"),
                          draws=SimpleNamespace(atmosphere=SimpleNamespace(w20_mps=wind_kt * KT_MPS)))
     assert Autopilot.vapp_wind_additive_mps(ap) / KT_MPS == pytest.approx(extra_kt, abs=1e-9)
-    ap.prof = get_profile("fokker100")  # a type without the rule: no additive
+    # a type without the rule (all three parameters 0): no additive
+    ap.prof = dataclasses.replace(get_profile("fokker100"), vapp_wind_fraction=0.0, vapp_wind_included_kt=0.0,
+                                  vapp_wind_max_kt=0.0)
     assert Autopilot.vapp_wind_additive_mps(ap) == 0.0
 
 
@@ -109,15 +112,17 @@ def test_the_a320s_approach_speed_adds_airbus_wind_additive(wind_kt, extra_kt):
 def test_the_737s_approach_speed_adds_boeing_wind_additive(wind_kt, extra_kt):
     """Boeing's rule: half the headwind, VREF + 5 kt at least and VREF + 20 kt at most (737 FCTM). The
     profile's vapp_kt holds the 5 kt, so the additive beyond it is half the wind less 5 kt, between 0
-    (winds up to 10 kt) and 15 kt (winds of 40 kt and more). Exact arithmetic: 1e-9."""
+    (winds up to 10 kt) and 15 kt (winds of 40 kt and more). Exact arithmetic: 1e-9. The Fokker 100
+    flies the same rule (the common practice; no Fokker manual found: aircraft_profiles)."""
     from types import SimpleNamespace
 
     from flightmode.sim.flight.autopilot import Autopilot
     from flightmode.units import KT_MPS
 
-    ap = SimpleNamespace(prof=get_profile("737"),
-                         draws=SimpleNamespace(atmosphere=SimpleNamespace(w20_mps=wind_kt * KT_MPS)))
-    assert Autopilot.vapp_wind_additive_mps(ap) / KT_MPS == pytest.approx(extra_kt, abs=1e-9)
+    for aircraft in ("737", "fokker100"):
+        ap = SimpleNamespace(prof=get_profile(aircraft),
+                             draws=SimpleNamespace(atmosphere=SimpleNamespace(w20_mps=wind_kt * KT_MPS)))
+        assert Autopilot.vapp_wind_additive_mps(ap) / KT_MPS == pytest.approx(extra_kt, abs=1e-9), aircraft
 
 
 @pytest.mark.slow
