@@ -753,9 +753,10 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
     # Tables 4 / 5: the paper counts "only the part of the series where the sensor is subject to a dynamic
     # movement" (seed 000 sec. 5.1.2, step (i)); the in-flight window's last seconds, the engines' run-down
     # after fuel cut-off at the stand (phase "shutdown", until every N2 is under 5 %), are the vibration's
-    # decay to rest with the aircraft parked, and are left out here (:func:`dynamic_part`). Its z cells
-    # (9e-7 / 2e-6 at 3 / 4 sigma^2) say none of its thousands of checks was quiet on z, as a series that
-    # ran into the run-down could not be. The in-flight count under 4 sigma^2 keeps the whole window.
+    # decay to rest with the aircraft parked, and are left out here (:func:`dynamic_part`). The paper's z
+    # cells (9e-7 / 2e-6 at 3 / 4 sigma^2) say none of its thousands of checks was quiet on z, which a
+    # series run into the run-down could hardly give. The in-flight count under 4 sigma^2 keeps the whole
+    # window.
     rows = {r["T_sigma"]: r for r in pfa_table(t, acc, dynamic_part(labels), params, sigma2, ks=TABLE_KS,
                                                time_thresholds_s=(4.0,))}
     whole = {r["T_sigma"]: r

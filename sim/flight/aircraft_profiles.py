@@ -659,9 +659,9 @@ PROFILES: dict[str, AircraftProfile] = {
         go_around_climb_fpm=2000.0,
         # no approach-speed wind additive (the 737's Boeing rule was tried): without it the 787-8 lands
         # firmer the stronger the wind (european-787, members 0-19: flown minus drawn touchdown sink
-        # +2.7 ft/s median in over 6 m/s at 20 ft, -0.6 under 3 m/s), but with it 30 seeded pattern
-        # landings in a 10 m/s wind, +1.76 ft/s mean (flown p90 5.99) without and +1.36 (4.68) with it,
-        # floated past the touchdown zone (914 m) 9 times against 5, once to 1,927 m
+        # +2.7 ft/s median in over 6 m/s at 20 ft, -0.6 under 3 m/s). 30 seeded pattern landings in a
+        # 10 m/s wind: +1.76 ft/s mean (flown p90 5.99) without it, +1.36 (4.68) with it, but with it 9
+        # of the 30 floated past the touchdown zone (914 m) against 5, one to 1,927 m
         vr_kt=150.0,
         v2_kt=160.0,
         descent_ias_kt=290.0,
