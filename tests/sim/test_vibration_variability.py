@@ -109,7 +109,7 @@ def test_engines_are_felt_until_the_labels_turn_them_off_and_not_after():
     level = vib._running_level(0.5 * n2, n2, model)[0]
     assert np.all(np.diff(level[:5]) < 0) and np.all(level[:4] > 0.0)
     assert np.all(level[4:] == 0.0)
-    # above 15 % N2 only the N1 fade acts: at N1 7.5 % it is half the idle share's level
+    # above 15 % N2 only the N1 fade acts: at N1 7.5 % it halves the running level
     assert level[2] == pytest.approx((model.engine_idle_share + (1 - model.engine_idle_share) * 0.075**2) * 0.5)
 
 
