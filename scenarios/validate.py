@@ -707,6 +707,7 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
     from scipy.signal import welch
 
     from flightmode.detector.evaluation import pfa_table
+    from flightmode.detector.flight_mode import detect
     from flightmode.detector.moving_variance import moving_variance
     from flightmode.detector.recommended import labels_of, recommended_params
 
@@ -757,10 +758,11 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
     # cells (9e-7 / 2e-6 at 3 / 4 sigma^2) say none of its thousands of checks was quiet on z, which a
     # series run into the run-down could hardly give. The in-flight count under 4 sigma^2 keeps the whole
     # window.
+    checks = detect(t, acc, params, sigma2)  # one detector pass for both windows
     rows = {r["T_sigma"]: r for r in pfa_table(t, acc, dynamic_part(labels), params, sigma2, ks=TABLE_KS,
-                                               time_thresholds_s=(4.0,))}
-    whole = {r["T_sigma"]: r
-             for r in pfa_table(t, acc, labels, params, sigma2, ks=(4.0,), time_thresholds_s=(4.0,))}
+                                               time_thresholds_s=(4.0,), checks=checks)}
+    whole = {r["T_sigma"]: r for r in pfa_table(t, acc, labels, params, sigma2, ks=(4.0,),
+                                                time_thresholds_s=(4.0,), checks=checks)}
     paper = PAPER_TABLES[paper_flight]
     table = 4 if paper_flight == 1 else 5
     where, comparable = placement_text(stowage)
