@@ -528,9 +528,8 @@ class Flare(Controller):
       error between a_req and the measured vertical acceleration (from the specific force), as a
       pilot eases the stick back while watching the sink rate. The guidance corrects itself: a flare
       begun late asks for more, one overdone asks for less (a float above the aim height is allowed a
-      gentle push, never a dive, while the sink is still above twice its target or the landing is
-      firm or hard; otherwise, and below the aim height, only a balloon is). Stock autoland flare laws
-      are of this kinematic kind (e.g. NASA TN D-6544, exponential and constant-deceleration flare paths).
+      gentle push, never a dive; below it, only a balloon is). Stock autoland flare laws are of this
+      kinematic kind (e.g. NASA TN D-6544, exponential and constant-deceleration flare paths).
     - ``"exponential"``: the classic automatic flare (Blakelock, *Automatic Control of Aircraft and
       Missiles*, 2nd ed. 1991, automatic flare control): the sink rate is commanded along the
       exponential path v_cmd = v_td + h / tau, which meets the runway at v_td; tau is set at the flare
@@ -582,26 +581,16 @@ class Flare(Controller):
         now were kept: sink v - a T at height h - v T + a T^2 / 2 (a predictor of the simplest kind:
         the deceleration already under way is not asked for a second time). Below the aim height it
         pulls against a sink above the target and otherwise holds the attitude, lowering the nose only
-        when the aircraft climbs (a balloon), as a pilot holds the flare attitude in the last feet.
-        Above the aim height a normal landing lowers the nose only while the sink is more than
-        FLARE_HOLD_SINK_FACTOR times the target (a high roundout is held, not pushed out of)."""
+        when the aircraft climbs (a balloon), as a pilot holds the flare attitude in the last feet."""
         ix, prof = self.p.ix, self.p.prof
         # vertical acceleration (up) from the specific force: a = -f_z cos(theta) - g (near wings level)
         a_up = -x[ix["fz_mps2"]] * math.cos(x[ix["theta_rad"]]) - G0_MPS2
-        # a normal landing's roundout that has brought the sink to within FLARE_HOLD_SINK_FACTOR times its
-        # aim holds the attitude rather than lowering the nose, unless the aircraft climbs (the measured
-        # sink, not the predicted one: a pilot lowers the nose for what the aircraft does, not for a
-        # forecast). A firm or hard landing is the scenario's request for the tail, flown onto the runway
-        # at its drawn sink: held, it floated (6 firm pattern landings: flown minus drawn -0.45 -> -1.91
-        # ft/s, one to 1,093 m past the threshold)
-        hold_attitude = (self.p.plan.landing_quality == "normal"
-                         and 0.0 <= sink <= FLARE_HOLD_SINK_FACTOR * target)
         h_m = gear_h_m - prof.flare_aim_m
         if prof.flare_predict_s > 0.0:
             lead = prof.flare_predict_s
             h_m -= sink * lead - 0.5 * a_up * lead * lead
             sink -= a_up * lead
-        lowest = 0.0 if hold_attitude else -FLARE_PITCH_DOWN_RADPS
+        lowest = -FLARE_PITCH_DOWN_RADPS
         if h_m > FLARE_MIN_H_M:
             a_req = (sink * abs(sink) - target * target) / (2.0 * h_m)
         else:  # at the aim height: limit the sink to the target until the wheels meet the runway
@@ -827,21 +816,6 @@ FLARE_MIN_H_M = 0.3  # the guidance's height floor (a_req stays finite at contac
 FLARE_HOLD_PER_S = 1.0  # below the aim height: upward acceleration per m/s of sink above the target
 FLARE_PITCH_UP_RADPS = math.radians(3.0)  # the flare's attitude command moves at most this fast up
 FLARE_PITCH_DOWN_RADPS = math.radians(2.0)  # and down
-# a normal landing's roundout that has brought the sink rate to within this factor of its target holds
-# the attitude and lowers the nose only if the aircraft climbs (Flare._rate_decel). FAA Airplane Flying
-# Handbook (FAA-H-8083-3, "High roundout"): when the roundout has been made too rapidly, "the pitch attitude
-# should be held constant until the airplane decelerates enough to again start descending", and "the
-# nose should not be lowered any perceptible amount to make the airplane descend when fairly close to
-# the runway". Before it the Fokker 100's 1 s predictor, moved by a gust, lowered the nose by 1 deg in a
-# flare that had brought its sink to 3.5 ft/s 7 ft up, and it touched down at 4.9 ft/s (pattern seed 31,
-# 7 m/s of wind, target 2.2 ft/s; now 3.6). 40 pattern landings per column (seeds 0-39), flown minus drawn
-# sink, paired by seed:
-#   Fokker 100, drawn atmosphere: factor 1.5 -0.15 ft/s (se 0.07), 2 -0.27 (0.09), 3 -0.49 (0.13);
-#   Fokker 100, 7 m/s of wind: factor 2 -0.36 (0.13); A320, drawn atmosphere: factor 2 -0.05 (0.14).
-# The held flares float longer: at 2 the farthest touchdown was 861 m past the threshold (696 m
-# before), at 3 one floated to 1,275 m, past the touchdown zone; unbounded (never push while descending)
-# the median moved from 433 to 651 m in the 7 m/s wind. 2 keeps every landing inside the zone.
-FLARE_HOLD_SINK_FACTOR = 2.0
 # the exponential flare (Flare): its time constant's lower bound (a 40-80 ft flare height and 8-12 ft/s
 # of sink above the target give 3-9 s; the upper bound is the type's flare_tau_max_s); the integral's
 # rate per second relative to the proportional gain (the profile's flare_path_gain) and its largest
