@@ -168,6 +168,26 @@ def low_to_high_sigma_w_ratio(w20_mps: float, w_star_mps: float, edr_background:
     return math.hypot(0.1 * w20_mps, conv_w) / (EDR_TO_SIGMA_W * edr_background)
 
 
+def _first_order_filter():
+    """``f(b0, a1, x, z0)``: y[n] = b0 x[n] + a1 y[n-1], started from the state ``z0`` (the value that
+    ``a1 y[-1]`` adds to the first output), as ``scipy.signal.lfilter([b0], [1, -a1], x, zi=[z0])[0]``.
+
+    It calls lfilter's own C core (``scipy.signal._sigtools._linear_filter``, the routine lfilter hands
+    every filter with a denominator to) without lfilter's argument checks, which cost three quarters of a
+    120-sample filter: measured in a flight, where JSBSim's stepping between two blocks leaves the
+    processor's caches cold, a block took 440 us through lfilter. The output is lfilter's, bit for bit
+    (the same routine on the same float64 arrays; tests/sim/test_turbulence.py checks it); a SciPy
+    without that core falls back to lfilter itself."""
+    try:
+        from scipy.signal._sigtools import _linear_filter
+    except ImportError:  # pragma: no cover - a SciPy that moved its core: the public route
+        from scipy.signal import lfilter
+
+        return lambda b0, a1, x, z0: lfilter([b0], [1.0, -a1], x, zi=[z0])[0]
+    array = np.array
+    return lambda b0, a1, x, z0: _linear_filter(array([b0]), array([1.0, -a1]), x, -1, array([z0]))[0]
+
+
 class GustField:
     """Gust velocities for JSBSim, generated a block of ``block_steps`` FDM steps at a time with the
     state carried across blocks (vectorised: scipy.signal.lfilter). The height, airspeed, heading and
@@ -178,6 +198,7 @@ class GustField:
         self.rng = rng
         self.n = block_steps
         self.state = np.zeros(3)  # x_u, x_v, x_w (m/s)
+        self._filter = None  # _first_order_filter(), made at the first block
 
     def reset(self) -> None:
         self.state[:] = 0.0
@@ -186,27 +207,34 @@ class GustField:
               atmosphere: Atmosphere) -> np.ndarray:
         """(block_steps, 3) gust velocity, north/east/down, m/s, in the flight's drawn ``atmosphere``
         (its surface wind and mixed layer)."""
-        from scipy.signal import lfilter
+        north, east, down = self._ned(h_agl_m, tas_mps, heading_rad, sigma_high_mps, atmosphere)
+        return np.stack([north, east, down], axis=1)
 
+    def block_fps(self, h_agl_m: float, tas_mps: float, heading_rad: float, sigma_high_mps: float,
+                  atmosphere: Atmosphere) -> tuple[list[float], list[float], list[float]]:
+        """The next block as :meth:`block` gives it, in ft/s, as three lists (north, east, down): what
+        the flight loop writes to JSBSim one float at a time. The same values as ``block(...) / FT_M``,
+        bit for bit, without the (n, 3) array (small-array work costs more than the filtering here)."""
+        north, east, down = self._ned(h_agl_m, tas_mps, heading_rad, sigma_high_mps, atmosphere)
+        return (north / FT_M).tolist(), (east / FT_M).tolist(), (down / FT_M).tolist()
+
+    def _ned(self, h_agl_m, tas_mps, heading_rad, sigma_high_mps, atmosphere):
+        if self._filter is None:
+            self._filter = _first_order_filter()
+        filt = self._filter
         lu, lw, su, sw = dryden_parameters(h_agl_m, sigma_high_mps, atmosphere.w20_mps, atmosphere.w_star_mps,
                                            atmosphere.z_i_m)
         tv = self.dt * max(tas_mps, 10.0)
         st = self.state
         noise = self.rng.standard_normal((3, self.n))
-        # Yeager (1998) eq. 30-32: u first-order in tau_u; v and w with 2 T / tau. Coefficients as
-        # plain floats: this runs once a simulated second, and small NumPy arrays cost more to set up
-        # than the filtering
+        # Yeager (1998) eq. 30-32: u first-order in tau_u; v and w with 2 T / tau
         au, av, aw = 1.0 - tv / lu, 1.0 - 2.0 * tv / lu, 1.0 - 2.0 * tv / lw
-        u = lfilter([su * math.sqrt(2.0 * tv / lu)], [1.0, -au], noise[0], zi=[au * st[0]])[0]
-        v = lfilter([su * math.sqrt(4.0 * tv / lu)], [1.0, -av], noise[1], zi=[av * st[1]])[0]
-        w = lfilter([sw * math.sqrt(4.0 * tv / lw)], [1.0, -aw], noise[2], zi=[aw * st[2]])[0]
+        u = filt(su * math.sqrt(2.0 * tv / lu), au, noise[0], au * st[0])
+        v = filt(su * math.sqrt(4.0 * tv / lu), av, noise[1], av * st[1])
+        w = filt(sw * math.sqrt(4.0 * tv / lw), aw, noise[2], aw * st[2])
         st[0], st[1], st[2] = u[-1], v[-1], w[-1]
         c, s = math.cos(heading_rad), math.sin(heading_rad)
-        gust = np.empty((self.n, 3))
-        gust[:, 0] = c * u - s * v  # u along the heading, v to its right
-        gust[:, 1] = s * u + c * v
-        gust[:, 2] = w
-        return gust
+        return c * u - s * v, s * u + c * v, w  # u along the heading, v to its right
 
 
 def sigma_high_mps(edr: float) -> float:
@@ -239,9 +267,9 @@ class GustFeed:
         if len(self.buffer[0]) - pos < n:
             rest = [b[pos:] for b in self.buffer]
             while len(rest[0]) < n:
-                g = self.field.block(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps,
-                                     self.atmosphere)
-                for r, col in zip(rest, (g.T / FT_M).tolist()):
+                g = self.field.block_fps(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps,
+                                         self.atmosphere)
+                for r, col in zip(rest, g):
                     r.extend(col)
             self.buffer, pos = tuple(rest), 0
         self.pos = pos + n
