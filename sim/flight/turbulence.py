@@ -220,6 +220,7 @@ class GustField:
         return (north / FT_M).tolist(), (east / FT_M).tolist(), (down / FT_M).tolist()
 
     def _ned(self, h_agl_m, tas_mps, heading_rad, sigma_high_mps, atmosphere):
+        """The next block's gust velocity, m/s: three (block_steps,) arrays, north, east and down."""
         if self._filter is None:
             self._filter = _first_order_filter()
         filt = self._filter

@@ -27,7 +27,9 @@ def test_block_fps_is_the_block_in_feet_per_second_bit_for_bit():
     a, b = GustField(120.0, np.random.default_rng(5)), GustField(120.0, np.random.default_rng(5))
     rng = np.random.default_rng(6)
     for _ in range(50):
-        args = (rng.uniform(0.0, 12_000.0), rng.uniform(0.0, 260.0), rng.uniform(-4.0, 4.0), rng.uniform(0.0, 3.0), atm)
+        h_m, tas_mps = rng.uniform(0.0, 12_000.0), rng.uniform(0.0, 260.0)
+        heading_rad = rng.uniform(-4.0, 4.0)
+        args = (h_m, tas_mps, heading_rad, rng.uniform(0.0, 3.0), atm)
         assert (a.block(*args).T / FT_M).tolist() == list(b.block_fps(*args))
 
 
@@ -50,6 +52,6 @@ def test_the_gusts_have_the_dryden_intensity_and_the_vertical_gust_its_time_scal
     w = g[:, 2] - g[:, 2].mean()
     lag = round(tau_s * 120.0)
     rho = float(np.dot(w[:-lag], w[lag:]) / np.dot(w, w))
-    # Bartlett's formula for an AR(1) sample autocorrelation: var ~ 2 / (N (1 - a^2)) = 2 / (360,000 x 0.0125),
-    # a scatter of 0.021: 0.08 is about 4 of it
+    # Bartlett's formula for an AR(1) sample autocorrelation: var ~ 2 / (N (1 - a^2)),
+    # 2 / (360,000 x 0.0125): a scatter of 0.021, and 0.08 is about 4 of it
     assert abs(rho - math.exp(-2.0)) < 0.08
