@@ -66,3 +66,50 @@ def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
         return time.perf_counter() - t0
 
     return min(bare() for _ in range(repeats))
+
+
+def in_flight_stepping_s(scenario) -> tuple[float, int]:
+    """(seconds inside JSBSim's ``fdm.run``, steps) over one whole flight of ``scenario`` flown as
+    ``flightmode.run`` flies it: the part of the fly stage that is JSBSim's own. Each step is timed on its
+    own (the timer's calls are outside the sum), so the flight this measures is slower than an untimed
+    one; what it sums is not."""
+    from flightmode.scenarios import pipeline
+    from flightmode.sim.flight import jsbsim_adapter
+
+    total = [0.0, 0]
+    clock = time.perf_counter
+
+    class TimedFDM:
+        """The FGFDMExec with ``run`` timed; everything else passed through."""
+
+        def __init__(self, fdm):
+            self._fdm = fdm
+
+        def __getattr__(self, name):
+            return getattr(self._fdm, name)
+
+        def __getitem__(self, key):
+            return self._fdm[key]
+
+        def __setitem__(self, key, value):
+            self._fdm[key] = value
+
+        def run(self):
+            t0 = clock()
+            out = self._fdm.run()
+            total[0] += clock() - t0
+            total[1] += 1
+            return out
+
+    init = jsbsim_adapter.JSBSimAircraft.__init__
+
+    def timed_init(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        self.fdm = TimedFDM(self.fdm)
+
+    jsbsim_adapter.JSBSimAircraft.__init__ = timed_init
+    try:
+        pipeline.fly(scenario, pipeline.streams_of(scenario.seed).child("flight"))
+    finally:
+        jsbsim_adapter.JSBSimAircraft.__init__ = init
+    return total[0], total[1]

@@ -4,7 +4,9 @@
 
 Timed: ``flightmode.run`` with every stage (fly, sense, detect, path, and write: truth.parquet,
 samples.parquet, run.json, recording.rrd) into a temporary folder, in a warm process (imports done),
-and once the whole ``flightmode fly`` command in a fresh interpreter (imports included).
+and once the whole ``flightmode fly`` command in a fresh interpreter (imports included). One more,
+instrumented flight reports how much of the fly stage is JSBSim's own stepping
+(``_bench.in_flight_stepping_s``).
 Baseline: the same JSBSim model stepped with bare ``fdm.run()`` for as many steps as the flight took
 (benchmarks/_bench.py ``bare_stepping_s``). The run and the baseline are timed in turn, three times each,
 and each keeps its least time. Goal: ratio <= 1.8 (aim 1.3).
@@ -16,7 +18,7 @@ import subprocess
 import sys
 import tempfile
 
-from _bench import bare_stepping_s, report, timed
+from _bench import bare_stepping_s, in_flight_stepping_s, report, timed
 
 
 def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
@@ -41,10 +43,16 @@ def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
                 t_run, best = t, r.wall_s
         _, t_cli = timed(lambda: subprocess.run(["flightmode", "fly", name, "--out", d], check=True,
                                                 capture_output=True))
+    # where the fly stage's time goes: JSBSim's own stepping inside the flight (one more, instrumented
+    # flight), the rest being flightmode's work in the loop (pilot, gusts, roughness, recording)
+    t_jsb, n_jsb = in_flight_stepping_s(sc)
     res = {"scenario": name, "steps": steps, "simulated_s": r.track.duration_s, "bare_run_wall_s": t_bare,
            "run_wall_s": t_run, "ratio": t_run / t_bare, "cli_wall_s (fresh process)": t_cli,
            "cli_ratio": t_cli / t_bare}
     res |= {f"stage {k} s (fastest run)": v for k, v in best.items()}
+    res |= {"JSBSim stepping inside the flight s": t_jsb,
+            "JSBSim us per step inside the flight": t_jsb / n_jsb * 1e6,
+            "bare us per step": t_bare / steps * 1e6}
     report(res)
     print(f"goal: ratio <= 1.8 -> {'met' if res['ratio'] <= 1.8 else 'NOT met'} (aim 1.3)")
     return res
