@@ -58,7 +58,9 @@ def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
 
     def bare() -> float:
         ac = JSBSimAircraft(plan.aircraft, 1.0 / plan.fdm_hz, prof.n_engines, edits=edits_for(prof))
-        ac.init_on_ground(plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg)
+        ac.init_on_ground(
+            plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg
+        )
         run = ac.fdm.run
         t0 = time.perf_counter()
         for _ in range(steps):

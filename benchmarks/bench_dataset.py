@@ -42,7 +42,9 @@ def main(n: int = 6, family: str = "regional-hops") -> dict:
 
         def baseline():
             for i, m in enumerate(members):
-                flightmode.run(m, stages=("fly", "sense", "detect", "write"), out=Path(d) / f"base{i}", rrd=False)
+                flightmode.run(
+                    m, stages=("fly", "sense", "detect", "write"), out=Path(d) / f"base{i}", rrd=False
+                )
 
         _, t_base = timed(baseline)
         _, t1 = timed(lambda: make_dataset(fam, n, Path(d) / "w1", workers=1))
@@ -53,10 +55,14 @@ def main(n: int = 6, family: str = "regional-hops") -> dict:
         rss_per_h = max(t["peak_rss_mb"] / (t["gate_to_gate_s"] / 3600.0) for t in timings)
         root = Path(d) / "w2"
         res = {
-            "family": fam.name, "flights": n, "flight_hours": hours,
+            "family": fam.name,
+            "flights": n,
+            "flight_hours": hours,
             "baseline_s (in process, one by one)": t_base,
-            "1 worker s": t1, "2 workers s": t2,
-            "flights/h, 1 worker": n / t1 * 3600.0, "flights/h, 2 workers": n / t2 * 3600.0,
+            "1 worker s": t1,
+            "2 workers s": t2,
+            "flights/h, 1 worker": n / t1 * 3600.0,
+            "flights/h, 2 workers": n / t2 * 3600.0,
             "scaling efficiency (goal >= 0.8)": (t1 / t2) / 2.0,
             "overhead per flight, 1 worker / baseline (goal <= 1.25)": t1 / t_base,
             "peak RSS MB per flight-hour (worst flight)": rss_per_h,

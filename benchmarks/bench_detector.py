@@ -67,7 +67,9 @@ def main(hours: float = 2.0) -> dict:
         "stream_1000_over_batch": t_s1000 / t_batch,
     }
     report(res)
-    print(f"goal: batch >= 20x the naive reference -> {'met' if res['speedup_vs_naive'] >= 20 else 'NOT met'}")
+    print(
+        f"goal: batch >= 20x the naive reference -> {'met' if res['speedup_vs_naive'] >= 20 else 'NOT met'}"
+    )
     return res
 
 

@@ -74,8 +74,11 @@ def main(seconds: float = 60.0, windows: tuple[int, ...] = (10, 20)) -> dict:
         sub = x[: NAIVE_WINDOWS + n - 1]
         for name, fast, naive in (
             ("MBGTD", lambda y, n=n: mbgtd_merits(y, n), lambda y, n=n: _naive_mbgtd(y, n)),
-            ("MBCD", lambda y, n=n: mbcd_merits(y, n, BANDWIDTH_G),
-             lambda y, n=n: _naive_mbcd(y, n, BANDWIDTH_G)),
+            (
+                "MBCD",
+                lambda y, n=n: mbcd_merits(y, n, BANDWIDTH_G),
+                lambda y, n=n: _naive_mbcd(y, n, BANDWIDTH_G),
+            ),
         ):
             np.testing.assert_allclose(fast(sub), naive(sub), rtol=1e-9, atol=1e-12)
             t_fast = best(lambda f=fast: f(x))

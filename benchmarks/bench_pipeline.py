@@ -41,18 +41,28 @@ def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
             r, t = timed(lambda: flightmode.run(sc, out=d))
             if t < t_run:
                 t_run, best = t, r.wall_s
-        _, t_cli = timed(lambda: subprocess.run(["flightmode", "fly", name, "--out", d], check=True,
-                                                capture_output=True))
+        _, t_cli = timed(
+            lambda: subprocess.run(["flightmode", "fly", name, "--out", d], check=True, capture_output=True)
+        )
     # where the fly stage's time goes: JSBSim's own stepping inside the flight (one more, instrumented
     # flight), the rest being flightmode's work in the loop (pilot, gusts, roughness, recording)
     t_jsb, n_jsb = in_flight_stepping_s(sc)
-    res = {"scenario": name, "steps": steps, "simulated_s": r.track.duration_s, "bare_run_wall_s": t_bare,
-           "run_wall_s": t_run, "ratio": t_run / t_bare, "cli_wall_s (fresh process)": t_cli,
-           "cli_ratio": t_cli / t_bare}
+    res = {
+        "scenario": name,
+        "steps": steps,
+        "simulated_s": r.track.duration_s,
+        "bare_run_wall_s": t_bare,
+        "run_wall_s": t_run,
+        "ratio": t_run / t_bare,
+        "cli_wall_s (fresh process)": t_cli,
+        "cli_ratio": t_cli / t_bare,
+    }
     res |= {f"stage {k} s (fastest run)": v for k, v in best.items()}
-    res |= {"JSBSim stepping inside the flight s": t_jsb,
-            "JSBSim us per step inside the flight": t_jsb / n_jsb * 1e6,
-            "bare us per step": t_bare / steps * 1e6}
+    res |= {
+        "JSBSim stepping inside the flight s": t_jsb,
+        "JSBSim us per step inside the flight": t_jsb / n_jsb * 1e6,
+        "bare us per step": t_bare / steps * 1e6,
+    }
     report(res)
     print(f"goal: ratio <= 1.8 -> {'met' if res['ratio'] <= 1.8 else 'NOT met'} (aim 1.3)")
     return res

@@ -31,13 +31,20 @@ def main(name: str = "gva-lhr-a320") -> dict:
         size = (Path(d) / "recording.rrd").stat().st_size
     hours = float(rec.t_s[-1] - rec.t_s[0]) / 3600.0
     res = {
-        "scenario": name, "fly_wall_s": t_fly, "rrd_wall_s": t_rrd, "ratio": t_rrd / t_fly,
-        "rrd_mb": size / 1e6, "recording_hours": hours, "mb_per_hour": size / 1e6 / hours,
+        "scenario": name,
+        "fly_wall_s": t_fly,
+        "rrd_wall_s": t_rrd,
+        "ratio": t_rrd / t_fly,
+        "rrd_mb": size / 1e6,
+        "recording_hours": hours,
+        "mb_per_hour": size / 1e6 / hours,
         "samples": rec.n,
     }
     report(res)
-    print(f"goal: ratio <= 0.2 -> {'met' if res['ratio'] <= 0.2 else 'NOT met'}; "
-          f"size <= 60 MB per hour -> {'met' if res['mb_per_hour'] <= 60 else 'NOT met'}")
+    print(
+        f"goal: ratio <= 0.2 -> {'met' if res['ratio'] <= 0.2 else 'NOT met'}; "
+        f"size <= 60 MB per hour -> {'met' if res['mb_per_hour'] <= 60 else 'NOT met'}"
+    )
     return res
 
 

@@ -59,15 +59,26 @@ def _measure(dataset: str) -> dict:
     # static-MV histograms; against the same flight's one detector run with its reading
     from flightmode.scenarios.sweep import sweep_flight
 
-    g624 = Grid((("nmv", 1.0), ("emv", 5.0)), (0.5, 1.0, 2.0), tuple(np.arange(2.0, 8.01, 0.5)),
-                tuple(float(x) for x in range(1, 9)))
+    g624 = Grid(
+        (("nmv", 1.0), ("emv", 5.0)),
+        (0.5, 1.0, 2.0),
+        tuple(np.arange(2.0, 8.01, 0.5)),
+        tuple(float(x) for x in range(1, 9)),
+    )
     t_read_one = best(lambda: evaluate(*_read(dataset, row, fs), one, s2))
     t624 = best(lambda: sweep_flight(str(dataset), row, g624, "preset", ""))
-    res = {"samples": int(t.shape[0]), "one detector run s": t_one, "200-point grid s": t200,
-           "200-point grid / one run (goal <= 3)": t200 / t_one, "1,200-point grid s": t1200,
-           "1,200-point grid / one run": t1200 / t_one, "per point, 200 grid (ms)": t200 / 200 * 1e3,
-           "read + one detector run s": t_read_one, "sweep_flight, 624-point default grid s": t624,
-           "sweep_flight 624 / (read + one run)": t624 / t_read_one}
+    res = {
+        "samples": int(t.shape[0]),
+        "one detector run s": t_one,
+        "200-point grid s": t200,
+        "200-point grid / one run (goal <= 3)": t200 / t_one,
+        "1,200-point grid s": t1200,
+        "1,200-point grid / one run": t1200 / t_one,
+        "per point, 200 grid (ms)": t200 / 200 * 1e3,
+        "read + one detector run s": t_read_one,
+        "sweep_flight, 624-point default grid s": t624,
+        "sweep_flight 624 / (read + one run)": t624 / t_read_one,
+    }
     report(res)
     return res
 

@@ -59,14 +59,21 @@ class Evaluation:
 
     def summary(self) -> dict:
         return {
-            "method": self.params.method, "window_s": self.params.window_s, "k_sigma": self.params.k_sigma,
-            "time_threshold_s": self.params.time_threshold_s, "weight": self.params.weight,
+            "method": self.params.method,
+            "window_s": self.params.window_s,
+            "k_sigma": self.params.k_sigma,
+            "time_threshold_s": self.params.time_threshold_s,
+            "weight": self.params.weight,
             "sigma2_g2": self.sigma2.tolist(),
-            "checks": int(self.checks.t_s.shape[0]), "in_flight_checks": self.in_flight_checks,
+            "checks": int(self.checks.t_s.shape[0]),
+            "in_flight_checks": self.in_flight_checks,
             "false_static_events": self.false_static_events,
-            "false_static_count": self.false_static_count, "false_static_s": self.false_static_s,
-            "missed_static_s": self.missed_static_s, "response_s": self.response_s,
-            "accuracy": self.accuracy, "correlation": self.correlation,
+            "false_static_count": self.false_static_count,
+            "false_static_s": self.false_static_s,
+            "missed_static_s": self.missed_static_s,
+            "response_s": self.response_s,
+            "accuracy": self.accuracy,
+            "correlation": self.correlation,
         }
 
 
@@ -74,9 +81,13 @@ def _check_labels(t_s, acc_g, labels: dict) -> None:
     n = np.asarray(t_s).shape[0]
     for name in ("in_flight_window", "sensor_static", "phase"):
         if name not in labels:
-            raise DetectorError(f"label '{name}' missing: evaluation needs in_flight_window, sensor_static and phase")
+            raise DetectorError(
+                f"label '{name}' missing: evaluation needs in_flight_window, sensor_static and phase"
+            )
         if np.asarray(labels[name]).shape[0] != n:
-            raise DetectorError(f"label '{name}' has {np.asarray(labels[name]).shape[0]} rows, the stream {n}")
+            raise DetectorError(
+                f"label '{name}' has {np.asarray(labels[name]).shape[0]} rows, the stream {n}"
+            )
 
 
 def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
@@ -86,8 +97,9 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(d[::2].tolist(), d[1::2].tolist()))
 
 
-def evaluate(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, params: DetectorParams,
-             sigma2: np.ndarray) -> Evaluation:
+def evaluate(
+    t_s: np.ndarray, acc_g: np.ndarray, labels: dict, params: DetectorParams, sigma2: np.ndarray
+) -> Evaluation:
     """Run the detector over a labelled stream and score it (module docstring)."""
     _check_labels(t_s, acc_g, labels)
     return score(detect(t_s, acc_g, params, sigma2), t_s, labels, params, sigma2)
@@ -103,7 +115,9 @@ def score(c: Checks, t_s: np.ndarray, labels: dict, params: DetectorParams, sigm
     fin = c.final_static
     events = []
     for s, e in _runs(fin & in_w):
-        events.append({"t_s": float(c.t_s[s]), "duration_s": (e - s) * params.window_s, "phase": str(phase[k[s]])})
+        events.append(
+            {"t_s": float(c.t_s[s]), "duration_s": (e - s) * params.window_s, "phase": str(phase[k[s]])}
+        )
     missed = float(np.sum(truth & ~fin & ~in_w)) * params.window_s
     response = None
     if window.any():
@@ -116,7 +130,9 @@ def score(c: Checks, t_s: np.ndarray, labels: dict, params: DetectorParams, sigm
                 response = float(c.t_s[hit[0]] - t_rest)
     acc = float(np.mean(fin == truth)) if fin.size else math.nan
     corr = _phi(fin, truth)
-    return Evaluation(params, np.asarray(sigma2, float), c, events, int(in_w.sum()), missed, response, acc, corr)
+    return Evaluation(
+        params, np.asarray(sigma2, float), c, events, int(in_w.sum()), missed, response, acc, corr
+    )
 
 
 def _phi(a: np.ndarray, b: np.ndarray) -> float:
@@ -126,8 +142,16 @@ def _phi(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.corrcoef(a, b)[0, 1])
 
 
-def pfa_table(t_s, acc_g, labels: dict, params: DetectorParams, sigma2,
-              ks=(3.0, 4.0, 5.0), time_thresholds_s=(3.0, 4.0), checks: Checks | None = None) -> list[dict]:
+def pfa_table(
+    t_s,
+    acc_g,
+    labels: dict,
+    params: DetectorParams,
+    sigma2,
+    ks=(3.0, 4.0, 5.0),
+    time_thresholds_s=(3.0, 4.0),
+    checks: Checks | None = None,
+) -> list[dict]:
     """Rows in the form of seed 000 Tables 4-5 (module docstring), one per (T_sigma, T_th). ``checks``:
     the detector already run over this stream with these parameters (``detect``), to count another
     window of the same stream without running it again."""
@@ -147,20 +171,27 @@ def pfa_table(t_s, acc_g, labels: dict, params: DetectorParams, sigma2,
         for tth in time_thresholds_s:
             need = dataclasses.replace(params, time_threshold_s=float(tth)).checks_needed
             final = final_static(temp, c.after_reset, need)[in_w]  # eq. 8
-            rows.append({
-                "T_sigma": k, "T_th_s": tth, "checks": n,
-                "P_FA_x": float(pa[0]), "P_FA_y": float(pa[1]), "P_FA_z": float(pa[2]),
-                "P_FA_t": pt,
-                "P_FA_t_joint": float(below.all(axis=1).mean()) if n else math.nan,
-                "P_FA": pt ** (tth / params.window_s),  # eq. 14
-                "observed_final_static_rate": float(final.mean()) if n else math.nan,
-                "observed_final_static_checks": int(final.sum()),
-            })
+            rows.append(
+                {
+                    "T_sigma": k,
+                    "T_th_s": tth,
+                    "checks": n,
+                    "P_FA_x": float(pa[0]),
+                    "P_FA_y": float(pa[1]),
+                    "P_FA_z": float(pa[2]),
+                    "P_FA_t": pt,
+                    "P_FA_t_joint": float(below.all(axis=1).mean()) if n else math.nan,
+                    "P_FA": pt ** (tth / params.window_s),  # eq. 14
+                    "observed_final_static_rate": float(final.mean()) if n else math.nan,
+                    "observed_final_static_checks": int(final.sum()),
+                }
+            )
     return rows
 
 
-def mv_vs_window(t_s, acc_g, static: np.ndarray, params: DetectorParams, sigma2,
-                 windows_s=(0.5, 1.0, 2.0, 3.0)) -> list[dict]:
+def mv_vs_window(
+    t_s, acc_g, static: np.ndarray, params: DetectorParams, sigma2, windows_s=(0.5, 1.0, 2.0, 3.0)
+) -> list[dict]:
     """Table 3 form: the mean NMV per axis over checks whose whole window is truly static."""
     static = np.asarray(static, bool)
     cs = np.concatenate([[0], np.cumsum(static)])
@@ -171,7 +202,9 @@ def mv_vs_window(t_s, acc_g, static: np.ndarray, params: DetectorParams, sigma2,
         n = p.window
         ok = (c.index + 1 >= n) & (cs[c.index + 1] - cs[np.maximum(c.index + 1 - n, 0)] == n)
         mv = c.mv[ok].mean(axis=0) if ok.any() else np.full(3, math.nan)
-        rows.append({"window_s": w, "checks": int(ok.sum()), "mv_g2": mv.tolist(), "mv_mean_g2": float(np.mean(mv))})
+        rows.append(
+            {"window_s": w, "checks": int(ok.sum()), "mv_g2": mv.tolist(), "mv_mean_g2": float(np.mean(mv))}
+        )
     return rows
 
 
@@ -186,16 +219,23 @@ def turn_on_response(t_s, acc_g, params: DetectorParams, sigma2, weights=(1.0, 5
         c = detect(t, acc_g, p, sigma2)
         first = np.flatnonzero(c.final_static)
         temp = np.flatnonzero(c.temporary_static)
-        mv = moving_variance(np.asarray(acc_g, float), p.window, method, w, p.emv_initial_k * np.asarray(sigma2))
+        mv = moving_variance(
+            np.asarray(acc_g, float), p.window, method, w, p.emv_initial_k * np.asarray(sigma2)
+        )
         below = np.flatnonzero(np.all(mv < p.k_sigma * np.asarray(sigma2)[None, :], axis=1))
-        rows.append({
-            "method": method, "weight": w,
-            # the MV itself (every sample, not only at checks) first below T_sigma on all axes: the
-            # curve of Fig. 18, where a larger EMV weight crosses sooner
-            "mv_below_threshold_s": float(t[below[0]] - t[0] + 1.0 / p.fs_hz) if below.size else None,
-            "first_temporary_static_s": float(c.t_s[temp[0]] - t[0] + 1.0 / p.fs_hz) if temp.size else None,
-            "response_s": float(c.t_s[first[0]] - t[0] + 1.0 / p.fs_hz) if first.size else None,
-        })
+        rows.append(
+            {
+                "method": method,
+                "weight": w,
+                # the MV itself (every sample, not only at checks) first below T_sigma on all axes: the
+                # curve of Fig. 18, where a larger EMV weight crosses sooner
+                "mv_below_threshold_s": float(t[below[0]] - t[0] + 1.0 / p.fs_hz) if below.size else None,
+                "first_temporary_static_s": float(c.t_s[temp[0]] - t[0] + 1.0 / p.fs_hz)
+                if temp.size
+                else None,
+                "response_s": float(c.t_s[first[0]] - t[0] + 1.0 / p.fs_hz) if first.size else None,
+            }
+        )
     return rows
 
 

@@ -111,7 +111,9 @@ def calibrate_sigma2(acc_g: np.ndarray, window: int, lsb_g: float | None = None)
     """
     x = np.asarray(acc_g, float)
     if x.shape[0] < window:
-        raise DetectorError(f"calibration needs at least one {window}-sample window, got {x.shape[0]} samples")
+        raise DetectorError(
+            f"calibration needs at least one {window}-sample window, got {x.shape[0]} samples"
+        )
     n = window * max(1, min(CALIBRATION_BLOCK_WINDOWS, x.shape[0] // window))
     m = x.shape[0] // n
     v = x[: m * n].reshape(m, n, -1).var(axis=1)
@@ -152,7 +154,9 @@ class FlightModeDetector:
             dt = np.diff(t)
             if np.any(dt <= 0):
                 i = int(np.flatnonzero(dt <= 0)[0])
-                raise DetectorError(f"time is not increasing at sample {self._n + i + 1} (t = {t[i + 1]:.4f} s)")
+                raise DetectorError(
+                    f"time is not increasing at sample {self._n + i + 1} (t = {t[i + 1]:.4f} s)"
+                )
             med = float(np.median(dt))
             if abs(med - period) > 0.01 * period:
                 raise DetectorError(

@@ -47,8 +47,12 @@ class Grid:
     def check_axes(self) -> None:
         """What can be checked before the stream's rate is known (every check of :meth:`validate` but
         the window's length in samples)."""
-        for name, axis in (("--method", self.methods), ("--window-s", self.windows_s), ("--k", self.ks),
-                           ("--time-threshold-s", self.time_thresholds_s)):
+        for name, axis in (
+            ("--method", self.methods),
+            ("--window-s", self.windows_s),
+            ("--k", self.ks),
+            ("--time-threshold-s", self.time_thresholds_s),
+        ):
             if not axis:
                 raise DetectorError(f"{name}: the grid axis is empty; give at least one value")
             if len(set(axis)) != len(axis):  # a point twice would count its flights' hours twice
@@ -62,13 +66,18 @@ class Grid:
                     from flightmode.errors import did_you_mean
 
                     names = METHODS + REDUNDANT + registry.NAMES
-                    raise DetectorError(f"--method {method!r}: use nmv, emv, nmv+baro, emv+baro or one of seed 001's detectors "
-                                        f"({', '.join(registry.NAMES)}, a flexible one with :acc, :gyr, :sum or "
-                                        f":product){did_you_mean(name, names)}")
+                    raise DetectorError(
+                        f"--method {method!r}: use nmv, emv, nmv+baro, emv+baro or one of seed 001's detectors "
+                        f"({', '.join(registry.NAMES)}, a flexible one with :acc, :gyr, :sum or "
+                        f":product){did_you_mean(name, names)}"
+                    )
                 d = registry.get(name)
                 if signal and signal not in d.signals:
-                    raise DetectorError(f"--method {method!r}: {d.title} takes no input choice" if not d.signals else
-                                        f"--method {method!r}: {name} takes {', '.join(d.signals)}")
+                    raise DetectorError(
+                        f"--method {method!r}: {d.title} takes no input choice"
+                        if not d.signals
+                        else f"--method {method!r}: {name} takes {', '.join(d.signals)}"
+                    )
             if not weight > 0:
                 raise DetectorError(f"--weight {weight!r}: an EMV weighting factor must be > 0")
         for w in self.windows_s:
@@ -82,13 +91,21 @@ class Grid:
                 raise DetectorError(f"--time-threshold-s {t!r}: must be > 0")
 
     def points(self, fs_hz: float) -> Iterator[DetectorParams]:
-        for (m, wt), w, k, t in itertools.product(self.methods, self.windows_s, self.ks, self.time_thresholds_s):
+        for (m, wt), w, k, t in itertools.product(
+            self.methods, self.windows_s, self.ks, self.time_thresholds_s
+        ):
             yield DetectorParams(fs_hz=fs_hz, window_s=w, k_sigma=k, time_threshold_s=t, method=m, weight=wt)
 
 
-def evaluate_grid(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, grid: Grid, fs_hz: float,
-                  sigma2_of: Callable[[int], np.ndarray], gate: Callable[[np.ndarray], np.ndarray] | None = None,
-                  ) -> Iterator[tuple[DetectorParams, Evaluation]]:
+def evaluate_grid(
+    t_s: np.ndarray,
+    acc_g: np.ndarray,
+    labels: dict,
+    grid: Grid,
+    fs_hz: float,
+    sigma2_of: Callable[[int], np.ndarray],
+    gate: Callable[[np.ndarray], np.ndarray] | None = None,
+) -> Iterator[tuple[DetectorParams, Evaluation]]:
     """(parameters, evaluation) for every point of ``grid`` over one stream. ``sigma2_of(window)``:
     sigma^2 per axis for a window of that many samples (a calibration depends on the window).
     ``gate(check_times)``: another source's "at rest" per check, ANDed with the final static (the
@@ -96,8 +113,14 @@ def evaluate_grid(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, grid: Grid, 
     grid.validate(fs_hz)
     sigma2_by_window: dict[int, np.ndarray] = {}  # a calibration depends on the window, not the method
     for (method, weight), w in itertools.product(grid.methods, grid.windows_s):
-        base = DetectorParams(fs_hz=fs_hz, window_s=w, k_sigma=grid.ks[0], time_threshold_s=grid.time_thresholds_s[0],
-                              method=method, weight=weight)
+        base = DetectorParams(
+            fs_hz=fs_hz,
+            window_s=w,
+            k_sigma=grid.ks[0],
+            time_threshold_s=grid.time_thresholds_s[0],
+            method=method,
+            weight=weight,
+        )
         if base.window not in sigma2_by_window:
             sigma2_by_window[base.window] = np.asarray(sigma2_of(base.window), float)
         sigma2 = sigma2_by_window[base.window]

@@ -37,13 +37,19 @@ from scipy.signal import lfilter
 from flightmode.errors import DetectorError, first_nonfinite
 
 
-
 class MovingVariance:
     """Streaming NMV or EMV over (n, n_axes) chunks. ``push`` returns the MV of every pushed sample
     (NaN for NMV until the first window is full)."""
 
-    def __init__(self, window: int, method: str = "nmv", weight: float = 1.0,
-                 initial_variance: float | np.ndarray = 0.0, n_axes: int = 3, block: int = 4096):
+    def __init__(
+        self,
+        window: int,
+        method: str = "nmv",
+        weight: float = 1.0,
+        initial_variance: float | np.ndarray = 0.0,
+        n_axes: int = 3,
+        block: int = 4096,
+    ):
         if method not in ("nmv", "emv"):
             raise DetectorError(f"moving-variance method '{method}': use 'nmv' or 'emv'")
         if int(window) != window or window < 2:
@@ -52,7 +58,13 @@ class MovingVariance:
             raise DetectorError(f"EMV weight {weight}: must be in (0, window = {window}]")
         if block < window:
             raise DetectorError(f"re-anchoring block {block} shorter than the window {window}")
-        self.window, self.method, self.weight, self.n_axes, self.block = int(window), method, weight, n_axes, block
+        self.window, self.method, self.weight, self.n_axes, self.block = (
+            int(window),
+            method,
+            weight,
+            n_axes,
+            block,
+        )
         self.n = 0  # samples pushed so far
         # NMV state: the last N - 1 samples, and the running sums (relative to the anchor) of the
         # last N samples' prefix values
@@ -122,7 +134,7 @@ class MovingVariance:
             var[~have] = np.nan
             out[i:end] = var
             self._c1, self._c2 = h1[-n_win:], h2[-n_win:]
-            self._tail = np.vstack([self._tail, seg])[-(n_win - 1):]
+            self._tail = np.vstack([self._tail, seg])[-(n_win - 1) :]
             i = end
         return out
 
@@ -136,8 +148,13 @@ class MovingVariance:
         self._c2 = np.cumsum(np.vstack([zero, y * y]), axis=0)[1:]
 
 
-def moving_variance(x: np.ndarray, window: int, method: str = "nmv", weight: float = 1.0,
-                    initial_variance: float | np.ndarray = 0.0) -> np.ndarray:
+def moving_variance(
+    x: np.ndarray,
+    window: int,
+    method: str = "nmv",
+    weight: float = 1.0,
+    initial_variance: float | np.ndarray = 0.0,
+) -> np.ndarray:
     """Batch front end: the MV of every sample of an (n, n_axes) array."""
     x = np.asarray(x, dtype=float)
     if x.ndim == 1:

@@ -78,8 +78,8 @@ import math
 from dataclasses import dataclass, fields
 
 import numpy as np
-from flightmode.detector.flight_mode import Checks, DetectorParams, FlightModeDetector
 
+from flightmode.detector.flight_mode import Checks, DetectorParams, FlightModeDetector
 from flightmode.errors import DetectorError, first_nonfinite
 from flightmode.units import FPM_MPS, FT_M, G0_MPS2
 
@@ -119,22 +119,34 @@ class PressureParams:
         if not (self.fs_hz > 0 and math.isfinite(self.fs_hz)):
             raise DetectorError(f"pressure detector: sampling rate {self.fs_hz} Hz must be > 0")
         if self.window < 3:
-            raise DetectorError(f"pressure detector: window {self.window_s} s at {self.fs_hz:g} Hz is "
-                                f"{self.window} sample(s); a rate needs >= 3")
+            raise DetectorError(
+                f"pressure detector: window {self.window_s} s at {self.fs_hz:g} Hz is "
+                f"{self.window} sample(s); a rate needs >= 3"
+            )
         if self.check < 1 or abs(self.check_s * self.fs_hz - self.check) > 1e-6:
-            raise DetectorError(f"pressure detector: check period {self.check_s} s must be a whole number "
-                                f"(>= 1) of samples at {self.fs_hz:g} Hz")
+            raise DetectorError(
+                f"pressure detector: check period {self.check_s} s must be a whole number "
+                f"(>= 1) of samples at {self.fs_hz:g} Hz"
+            )
         if not self.rate_threshold_pa_s > 0:
-            raise DetectorError(f"pressure detector: rate threshold {self.rate_threshold_pa_s} Pa/s must be > 0")
+            raise DetectorError(
+                f"pressure detector: rate threshold {self.rate_threshold_pa_s} Pa/s must be > 0"
+            )
         if self.level_margin_pa is not None and not self.level_margin_pa > 0:
-            raise DetectorError(f"pressure detector: level margin {self.level_margin_pa} Pa must be > 0 "
-                                "(or None for no level bound)")
+            raise DetectorError(
+                f"pressure detector: level margin {self.level_margin_pa} Pa must be > 0 "
+                "(or None for no level bound)"
+            )
         if not self.hold_s > 0:
             raise DetectorError(f"pressure detector: hold time {self.hold_s} s must be > 0")
         if not self.max_gap_periods > 1:
             raise DetectorError(f"pressure detector: max_gap_periods {self.max_gap_periods} must be > 1")
-        if self.arrival_ground_pa is not None and not (math.isfinite(self.arrival_ground_pa) and self.arrival_ground_pa > 0):
-            raise DetectorError(f"pressure detector: arrival_ground_pa {self.arrival_ground_pa} must be a pressure > 0 Pa")
+        if self.arrival_ground_pa is not None and not (
+            math.isfinite(self.arrival_ground_pa) and self.arrival_ground_pa > 0
+        ):
+            raise DetectorError(
+                f"pressure detector: arrival_ground_pa {self.arrival_ground_pa} must be a pressure > 0 Pa"
+            )
 
 
 def slope_weights(n: int, fs_hz: float) -> np.ndarray:
@@ -215,11 +227,18 @@ def lagged_ramp_response_s(rate_pa_s: float, threshold_pa_s: float, window_s: fl
     if r <= threshold_pa_s:
         return math.inf
     q = np.linspace(threshold_pa_s / r, 1.0, 2002)[1:-1]
-    return float(min(-tau_s * math.log(1.0 - qi) + ramp_response_s(qi * r, threshold_pa_s, window_s) for qi in q))
+    return float(
+        min(-tau_s * math.log(1.0 - qi) + ramp_response_s(qi * r, threshold_pa_s, window_s) for qi in q)
+    )
 
 
-def design(noise_pa: float, params: PressureParams = PressureParams(), slowest_cabin_rate_fpm: float = 60.0,
-           cabin_alt_ft: float = 8000.0, cruise_depth_pa: float | None = None) -> dict:
+def design(
+    noise_pa: float,
+    params: PressureParams = PressureParams(),
+    slowest_cabin_rate_fpm: float = 60.0,
+    cabin_alt_ft: float = 8000.0,
+    cruise_depth_pa: float | None = None,
+) -> dict:
     """The thresholds' statistics for a sensor noise (module docstring): sigma_r, sigma_m, T / sigma_r,
     per-check P_M and P_FA of both bounds, and the ramp response at the slowest cabin rate."""
     params.validate()
@@ -290,14 +309,18 @@ class PressureDetector:
         t = np.asarray(t_s, float)
         x = np.asarray(baro_pa, float)
         if t.ndim != 1 or x.shape != t.shape:
-            raise DetectorError(f"pressure detector: need t_s (n,) and baro_pa (n,); got {t.shape} and {x.shape}")
+            raise DetectorError(
+                f"pressure detector: need t_s (n,) and baro_pa (n,); got {t.shape} and {x.shape}"
+            )
         m = t.shape[0]
         if m == 0:
             return _cat_pressure([])
         for name, v in (("t_s", t), ("baro_pa", x)):
             if (i := first_nonfinite(v)) is not None:
-                raise DetectorError(f"pressure detector: {name} is NaN or inf at sample {self._n + i} "
-                                    f"(t = {t[i]:.3f} s): clean the stream")
+                raise DetectorError(
+                    f"pressure detector: {name} is NaN or inf at sample {self._n + i} "
+                    f"(t = {t[i]:.3f} s): clean the stream"
+                )
         period = 1.0 / p.fs_hz
         tt = t if self._t_last is None else np.concatenate([[self._t_last], t])
         if tt.shape[0] > 1:
@@ -305,18 +328,26 @@ class PressureDetector:
             off = 0 if self._t_last is None else 1
             if np.any(dt <= 0):
                 i = int(np.flatnonzero(dt <= 0)[0])
-                raise DetectorError(f"pressure detector: time is not increasing at sample {self._n + i + 1 - off} "
-                                    f"(t = {tt[i + 1]:.3f} s)")
+                raise DetectorError(
+                    f"pressure detector: time is not increasing at sample {self._n + i + 1 - off} "
+                    f"(t = {tt[i + 1]:.3f} s)"
+                )
             med = float(np.median(dt))
-            if (dt.size >= 3 and abs(med - period) > 0.01 * period) or np.any(dt < period / p.max_gap_periods):
-                raise DetectorError(f"pressure detector: the stream is sampled at {1 / med:.3f} Hz but the detector "
-                                    f"expects {p.fs_hz:g} Hz: set fs_hz to the stream's rate")
+            if (dt.size >= 3 and abs(med - period) > 0.01 * period) or np.any(
+                dt < period / p.max_gap_periods
+            ):
+                raise DetectorError(
+                    f"pressure detector: the stream is sampled at {1 / med:.3f} Hz but the detector "
+                    f"expects {p.fs_hz:g} Hz: set fs_hz to the stream's rate"
+                )
             gap = np.flatnonzero(dt > p.max_gap_periods * period)
             if gap.size:
                 i = int(gap[0])
-                raise DetectorError(f"pressure detector: gap of {dt[i]:.3f} s before t = {tt[i + 1]:.3f} s (sample "
-                                    f"{self._n + i + 1 - off}); a {p.fs_hz:g} Hz stream allows "
-                                    f"{p.max_gap_periods * period:.3f} s: split the stream there")
+                raise DetectorError(
+                    f"pressure detector: gap of {dt[i]:.3f} s before t = {tt[i + 1]:.3f} s (sample "
+                    f"{self._n + i + 1 - off}); a {p.fs_hz:g} Hz stream allows "
+                    f"{p.max_gap_periods * period:.3f} s: split the stream there"
+                )
         if self._p0 is None:
             self._p0 = float(x[0])
         n_w, n_c = p.window, p.check
@@ -347,14 +378,16 @@ class PressureDetector:
             ref[k] = self._ref
             if p.level_margin_pa is not None:
                 level_ok[k] = mean[k] >= self._ref - p.level_margin_pa or (
-                    p.arrival_ground_pa is not None and abs(mean[k] - p.arrival_ground_pa) <= p.level_margin_pa)
+                    p.arrival_ground_pa is not None
+                    and abs(mean[k] - p.arrival_ground_pa) <= p.level_margin_pa
+                )
             quiet[k] = rate_ok[k] and level_ok[k]
             self._run = self._run + 1 if quiet[k] else 0
             static[k] = self._run >= need
             if static[k]:
                 self._ref = float(mean[k])
         keep = min(n_w - 1, buf.shape[0])
-        self._tail = buf[buf.shape[0] - keep:].copy()
+        self._tail = buf[buf.shape[0] - keep :].copy()
         t_chk = t[idx - self._n]
         self._n += m
         self._t_last = float(t[-1])
@@ -371,7 +404,11 @@ def static_at(checks: PressureChecks, t_s) -> np.ndarray:
     its first check): what the redundant rule ANDs with the accelerometer's final static."""
     t = np.asarray(t_s, float)
     j = np.searchsorted(checks.t_s, t, side="right") - 1
-    return np.where(j >= 0, checks.static[np.maximum(j, 0)], False) if checks.t_s.size else np.zeros(t.shape, bool)
+    return (
+        np.where(j >= 0, checks.static[np.maximum(j, 0)], False)
+        if checks.t_s.size
+        else np.zeros(t.shape, bool)
+    )
 
 
 # ---------------------------------------------------------------------------------------------
@@ -456,7 +493,9 @@ class RedundantDetector:
     """Both detectors and the rule, streaming: ``push(t_acc_s, acc_g, t_baro_s, baro_pa)`` (either
     stream may be empty in a push); ``finish()`` at the end of the streams."""
 
-    def __init__(self, accel_params: DetectorParams, sigma2, pressure_params: PressureParams = PressureParams()):
+    def __init__(
+        self, accel_params: DetectorParams, sigma2, pressure_params: PressureParams = PressureParams()
+    ):
         self.accel = FlightModeDetector(accel_params, sigma2)
         self.pressure = PressureDetector(pressure_params)
         self.rule = RedundantRule()
@@ -470,8 +509,15 @@ class RedundantDetector:
         return self.rule.finish()
 
 
-def detect_redundant(t_acc_s, acc_g, t_baro_s, baro_pa, accel_params: DetectorParams, sigma2,
-                     pressure_params: PressureParams = PressureParams()) -> RedundantChecks:
+def detect_redundant(
+    t_acc_s,
+    acc_g,
+    t_baro_s,
+    baro_pa,
+    accel_params: DetectorParams,
+    sigma2,
+    pressure_params: PressureParams = PressureParams(),
+) -> RedundantChecks:
     """Batch front end: the combined checks of whole accelerometer and pressure streams."""
     d = RedundantDetector(accel_params, sigma2, pressure_params)
     return _cat_redundant([d.push(t_acc_s, acc_g, t_baro_s, baro_pa), d.finish()])
@@ -489,17 +535,24 @@ class SourceEvaluation:
     first_source: str  # "accelerometer", "pressure", "both" (same check) or "none"
     cruise_checks: int
     held_by: dict  # counts over the cruise checks: accelerometer_only, pressure_only, both, neither
-    held_by_pressure: dict  # the pressure suspensions in cruise by bound: rate, level, hold (both ok, in hold)
+    held_by_pressure: (
+        dict  # the pressure suspensions in cruise by bound: rate, level, hold (both ok, in hold)
+    )
     resume_s: dict  # per source: first static check at/after t_end minus t_end (nan: never; None: no t_end)
 
 
-def evaluate_sources(checks: RedundantChecks, t_pushback_s: float, cruise_windows, t_end_s: float | None = None
-                     ) -> SourceEvaluation:
+def evaluate_sources(
+    checks: RedundantChecks, t_pushback_s: float, cruise_windows, t_end_s: float | None = None
+) -> SourceEvaluation:
     """Which source suspended first after pushback; which held the suspension in (calm) cruise, over
     the checks inside ``cruise_windows`` ((t0, t1) pairs, seconds); and, with ``t_end_s`` (engines off,
     or the bag set down at arrival), each source's response: the time to its first static check."""
     t = checks.t_s
-    susp = {"accelerometer": ~checks.accel_static, "pressure": ~checks.pressure_static, "combined": ~checks.allowed}
+    susp = {
+        "accelerometer": ~checks.accel_static,
+        "pressure": ~checks.pressure_static,
+        "combined": ~checks.allowed,
+    }
     after = t >= t_pushback_s
     first = {}
     for s, m in susp.items():
@@ -518,12 +571,19 @@ def evaluate_sources(checks: RedundantChecks, t_pushback_s: float, cruise_window
     for t0, t1 in cruise_windows:
         win |= (t >= t0) & (t <= t1)
     a, p = susp["accelerometer"][win], susp["pressure"][win]
-    held = {"accelerometer_only": int((a & ~p).sum()), "pressure_only": int((~a & p).sum()),
-            "both": int((a & p).sum()), "neither": int((~a & ~p).sum())}
+    held = {
+        "accelerometer_only": int((a & ~p).sum()),
+        "pressure_only": int((~a & p).sum()),
+        "both": int((a & p).sum()),
+        "neither": int((~a & ~p).sum()),
+    }
     rate_bad = ~checks.pressure_rate_ok[win]
     level_bad = ~checks.pressure_level_ok[win]
-    by_p = {"rate": int((p & rate_bad).sum()), "level": int((p & ~rate_bad & level_bad).sum()),
-            "hold": int((p & ~rate_bad & ~level_bad).sum())}
+    by_p = {
+        "rate": int((p & rate_bad).sum()),
+        "level": int((p & ~rate_bad & level_bad).sum()),
+        "hold": int((p & ~rate_bad & ~level_bad).sum()),
+    }
     resume = {}
     for s, m in susp.items():
         if t_end_s is None:
@@ -550,21 +610,38 @@ class RedundantEvaluation:
     def summary(self) -> dict:
         a, c, s = self.accel, self.combined, self.sources
         return {
-            "pressure_params": {f.name: getattr(self.pressure_params, f.name) for f in fields(PressureParams)},
-            "accel_false_static_count": a.false_static_count, "accel_false_static_s": a.false_static_s,
-            "combined_false_static_count": c.false_static_count, "combined_false_static_s": c.false_static_s,
+            "pressure_params": {
+                f.name: getattr(self.pressure_params, f.name) for f in fields(PressureParams)
+            },
+            "accel_false_static_count": a.false_static_count,
+            "accel_false_static_s": a.false_static_s,
+            "combined_false_static_count": c.false_static_count,
+            "combined_false_static_s": c.false_static_s,
             "combined_false_static_events": c.false_static_events,
-            "accel_response_s": a.response_s, "combined_response_s": c.response_s,
-            "accel_missed_static_s": a.missed_static_s, "combined_missed_static_s": c.missed_static_s,
-            "first_suspend_s": s.first_suspend_s, "first_source": s.first_source,
-            "cruise_checks": s.cruise_checks, "held_by": s.held_by, "held_by_pressure": s.held_by_pressure,
+            "accel_response_s": a.response_s,
+            "combined_response_s": c.response_s,
+            "accel_missed_static_s": a.missed_static_s,
+            "combined_missed_static_s": c.missed_static_s,
+            "first_suspend_s": s.first_suspend_s,
+            "first_source": s.first_source,
+            "cruise_checks": s.cruise_checks,
+            "held_by": s.held_by,
+            "held_by_pressure": s.held_by_pressure,
             "resume_s": s.resume_s,
         }
 
 
-def evaluate_redundant(t_s, acc_g, t_baro_s, baro_pa, labels: dict, accel_params: DetectorParams, sigma2,
-                       pressure_params: PressureParams | None = None, t_pushback_s: float | None = None
-                       ) -> RedundantEvaluation:
+def evaluate_redundant(
+    t_s,
+    acc_g,
+    t_baro_s,
+    baro_pa,
+    labels: dict,
+    accel_params: DetectorParams,
+    sigma2,
+    pressure_params: PressureParams | None = None,
+    t_pushback_s: float | None = None,
+) -> RedundantEvaluation:
     """Seed 000's detector, the pressure detector and the redundant rule over one labelled recording
     (``labels``: ``in_flight_window``, ``sensor_static``, ``phase`` per accelerometer sample; the
     pressure stream at its own rate, ``pressure_params.fs_hz`` defaulting to it). The rule's checks are
@@ -588,16 +665,20 @@ def evaluate_redundant(t_s, acc_g, t_baro_s, baro_pa, labels: dict, accel_params
     rule = RedundantRule()
     rc = _cat_redundant([rule.push(acc_checks, pc), rule.finish()])
     accel = score(acc_checks, t_s, labels, accel_params, sigma2)
-    combined = score(dataclasses.replace(acc_checks, final_static=rc.allowed), t_s, labels, accel_params, sigma2)
+    combined = score(
+        dataclasses.replace(acc_checks, final_static=rc.allowed), t_s, labels, accel_params, sigma2
+    )
     window = np.asarray(labels["in_flight_window"], bool)
     t = np.asarray(t_s, float)
     win_idx = np.flatnonzero(window)
-    t_push = t_pushback_s if t_pushback_s is not None else (float(t[win_idx[0]]) if win_idx.size else float(t[0]))
+    t_push = (
+        t_pushback_s if t_pushback_s is not None else (float(t[win_idx[0]]) if win_idx.size else float(t[0]))
+    )
     cruise = np.asarray(labels["phase"], dtype=object) == "cruise"
     cruise_windows = [(float(t[a]), float(t[b - 1])) for a, b in _runs(cruise)]
     t_end = None
     if win_idx.size:
-        after = np.flatnonzero(np.asarray(labels["sensor_static"], bool)[win_idx[-1]:])
+        after = np.flatnonzero(np.asarray(labels["sensor_static"], bool)[win_idx[-1] :])
         t_end = float(t[win_idx[-1] + after[0]]) if after.size else None
     sources = evaluate_sources(rc, t_push, cruise_windows, t_end)
     return RedundantEvaluation(accel, combined, pc, rc, sources, pressure_params)

@@ -34,12 +34,19 @@ def labels_of(columns: dict) -> dict:
     """The truth labels evaluation needs, from a dict of columns (a Recording's or a samples file's)."""
     missing = [k for k in LABELS if k not in columns]
     if missing:
-        raise DetectorError(f"the samples have no {', '.join(missing)} column(s): evaluation needs the truth labels")
+        raise DetectorError(
+            f"the samples have no {', '.join(missing)} column(s): evaluation needs the truth labels"
+        )
     return {k: columns[k] for k in LABELS}
 
 
-def sigma2_from_rest(acc_g: np.ndarray, sensor_static: np.ndarray, in_flight_window: np.ndarray, window: int,
-                     lsb_g: float | None = None) -> tuple[np.ndarray, int]:
+def sigma2_from_rest(
+    acc_g: np.ndarray,
+    sensor_static: np.ndarray,
+    in_flight_window: np.ndarray,
+    window: int,
+    lsb_g: float | None = None,
+) -> tuple[np.ndarray, int]:
     """sigma^2 per axis from the truly static samples a tracker saw before the flight (the terminal
     and gate rests), as a tracker calibrating in place would; all static samples if those are fewer
     than one window. Returns (sigma^2, samples used)."""
@@ -55,7 +62,8 @@ def sigma2_from_rest(acc_g: np.ndarray, sensor_static: np.ndarray, in_flight_win
     return calibrate_sigma2(np.asarray(acc_g, float)[sel], window, lsb_g), int(sel.sum())
 
 
-def evaluate_recommended(t_s: np.ndarray, acc_g: np.ndarray, labels: dict, fs_hz: float,
-                         sigma2: np.ndarray) -> Evaluation:
+def evaluate_recommended(
+    t_s: np.ndarray, acc_g: np.ndarray, labels: dict, fs_hz: float, sigma2: np.ndarray
+) -> Evaluation:
     """The recommended detector run over a labelled stream and scored against its labels."""
     return evaluate(t_s, acc_g, labels, recommended_params(fs_hz), sigma2)

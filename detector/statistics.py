@@ -67,13 +67,15 @@ def table2(ks=(2.0, 2.5, 3.0, 4.0, 5.0), window_s: float = 1.0, fs_hz: float = 1
     rows = []
     for k in ks:
         pg, pe = pm_gaussian(k, n), pm_exact(k, n)
-        rows.append({
-            "T_sigma": f"{k:g} sigma^2",
-            "P_M_gaussian": pg,
-            "P_M_exact": pe,
-            "time_error_gaussian_s": window_s / pg if pg > 0 else np.inf,
-            "time_error_exact_s": window_s / pe if pe > 0 else np.inf,
-        })
+        rows.append(
+            {
+                "T_sigma": f"{k:g} sigma^2",
+                "P_M_gaussian": pg,
+                "P_M_exact": pe,
+                "time_error_gaussian_s": window_s / pg if pg > 0 else np.inf,
+                "time_error_exact_s": window_s / pe if pe > 0 else np.inf,
+            }
+        )
     return rows
 
 

@@ -14,8 +14,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from flightmode.eobs.tag import ADC_MAX_COUNT, ADC_MIN_COUNT
 
+from flightmode.eobs.tag import ADC_MAX_COUNT, ADC_MIN_COUNT
 from flightmode.errors import SensorError, did_you_mean
 
 # seed 003 section 5.2, Table 1: every non-empty subset of X, Y, Z, in alphabetical order

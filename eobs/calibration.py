@@ -45,6 +45,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.tag import (
     ADC_MAX_COUNT,
@@ -55,7 +56,6 @@ from flightmode.eobs.tag import (
     tag_number_from_id,
     y_sign,
 )
-
 from flightmode.errors import InputDataError, SensorError, did_you_mean
 
 RECORDING_KEYS = ("+x", "-x", "+y", "-y", "+z", "-z")  # the tag's own axis at +1 g / -1 g

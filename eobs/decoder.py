@@ -42,6 +42,7 @@ import math
 from collections.abc import Iterable
 
 import numpy as np
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.spectrum import burst_dft, burst_hp_std
 

@@ -45,9 +45,9 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+
 from flightmode.detector.flight_mode import final_static
 from flightmode.detector.statistics import pm_exact, pm_gaussian
-
 from flightmode.errors import DetectorError, did_you_mean
 
 # ------------------------------------------------------------------------------------ the decision

@@ -35,11 +35,15 @@ def recording_bursts(rec, tag_id: str = "9999", epoch: np.datetime64 = EPOCH) ->
     from flightmode.eobs.burst import AccBurst
 
     if not rec.preset.startswith("eobs"):
-        raise SensorError(f"recording of a {rec.preset!r} sensor: e-obs bursts need the eobs preset (eobs_preset)")
+        raise SensorError(
+            f"recording of a {rec.preset!r} sensor: e-obs bursts need the eobs preset (eobs_preset)"
+        )
     out = []
     for s in burst_slices(rec.t_s, rec.odr_hz):
         start = epoch + np.timedelta64(int(round(float(rec.t_s[s.start]) * 1e9)), "ns")
-        out.append(AccBurst(tag_id, start, "XYZ", float(rec.odr_hz), np.asarray(rec.counts[s], np.int64), checksum=0))
+        out.append(
+            AccBurst(tag_id, start, "XYZ", float(rec.odr_hz), np.asarray(rec.counts[s], np.int64), checksum=0)
+        )
     return out
 
 
@@ -73,7 +77,9 @@ def rest_after_window_s(rec, track, step_s: float = 0.01) -> float | None:
     return float(grid[ok[0]]) if ok.size else None
 
 
-def duty_cycle_on_flight(rec, sigma2: np.ndarray, k: float, m: int, t_rest_s: float | None = None) -> DutyCycleOnFlight:
+def duty_cycle_on_flight(
+    rec, sigma2: np.ndarray, k: float, m: int, t_rest_s: float | None = None
+) -> DutyCycleOnFlight:
     """The duty-cycled detector over a burst recording, scored against its labels: a burst's truth is
     its last sample's (in the in-flight window, truly static). ``t_rest_s``: when the bag truly came to
     rest after the window (:func:`rest_after_window_s`); the response counts from it. Without it, from
@@ -99,12 +105,22 @@ def duty_cycle_on_flight(rec, sigma2: np.ndarray, k: float, m: int, t_rest_s: fl
         response = float(t[hit[0]] - t_rest) if hit.size else None
     interval = float(np.median(np.diff([float(rec.t_s[s.start]) for s in sl]))) if len(sl) > 1 else math.nan
     n = int(np.median([s.stop - s.start for s in sl]))
-    return DutyCycleOnFlight(interval, n, m, k, len(sl), int(in_w.sum()), int((runs == 1).sum()), response,
-                             n * 3600.0 / interval if interval > 0 else math.nan)
+    return DutyCycleOnFlight(
+        interval,
+        n,
+        m,
+        k,
+        len(sl),
+        int(in_w.sum()),
+        int((runs == 1).sum()),
+        response,
+        n * 3600.0 / interval if interval > 0 else math.nan,
+    )
 
 
-def tradeoff_on_track(track, scenario, intervals_s, byte_count: int, ms, k: float = 4.0,
-                      odr_per_axis_hz: float = 10.0) -> list[DutyCycleOnFlight]:
+def tradeoff_on_track(
+    track, scenario, intervals_s, byte_count: int, ms, k: float = 4.0, odr_per_axis_hz: float = 10.0
+) -> list[DutyCycleOnFlight]:
     """The battery trade-off on one flown track: the scenario's bag re-sensed by an e-obs tag at each
     ACC interval (``byte_count`` sets the burst, seed 003 section 9), its sigma^2 from the unit's bench
     recording cut into bursts of the same length, and the detector at each ``m``."""
@@ -120,8 +136,12 @@ def tradeoff_on_track(track, scenario, intervals_s, byte_count: int, ms, k: floa
         streams = pipeline.streams_of(scenario.seed)
         rec = pipeline.sense(track, scenario.carrier, preset, streams.child("sensor"))
         n = preset.burst_samples
-        bench = bench_static(dataclasses.replace(preset, burst_interval_s=None, burst_samples=None),
-                             UnitDraw.from_dict(rec.unit), streams.rng("detector/bench"), duration_s=600.0)
+        bench = bench_static(
+            dataclasses.replace(preset, burst_interval_s=None, burst_samples=None),
+            UnitDraw.from_dict(rec.unit),
+            streams.rng("detector/bench"),
+            duration_s=600.0,
+        )
         cut = bench.acc_g[: (bench.acc_g.shape[0] // n) * n].reshape(-1, n, 3)
         s2 = calibrate_sigma2_bursts(list(cut), lsb_g=preset.lsb_g)
         t_rest = rest_after_window_s(rec, track)
@@ -129,5 +149,11 @@ def tradeoff_on_track(track, scenario, intervals_s, byte_count: int, ms, k: floa
     return rows
 
 
-__all__ = ["recording_bursts", "burst_slices", "duty_cycle_on_flight", "rest_after_window_s", "tradeoff_on_track",
-           "DutyCycleOnFlight"]
+__all__ = [
+    "recording_bursts",
+    "burst_slices",
+    "duty_cycle_on_flight",
+    "rest_after_window_s",
+    "tradeoff_on_track",
+    "DutyCycleOnFlight",
+]

@@ -41,9 +41,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
 from flightmode.eobs.burst import AXES_SETS, UINT32_MAX, AccBurst
 from flightmode.eobs.tag import ADC_MAX_COUNT, ADC_MIN_COUNT
-
 from flightmode.errors import InputDataError, did_you_mean
 
 # seed 003 section 5.4, the decoder's first line (its line wrap joined)

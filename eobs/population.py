@@ -17,8 +17,15 @@ import numpy as np
 from flightmode.errors import InputDataError
 
 
-def tradeoff_flight(dataset: str, row: dict, intervals_s: Sequence[float], byte_count: int, ms: Sequence[int],
-                    k: float, odr_per_axis_hz: float) -> list[dict]:
+def tradeoff_flight(
+    dataset: str,
+    row: dict,
+    intervals_s: Sequence[float],
+    byte_count: int,
+    ms: Sequence[int],
+    k: float,
+    odr_per_axis_hz: float,
+) -> list[dict]:
     """One flight's rows (:func:`flightmode.eobs.flight.tradeoff_on_track` on its full-rate truth)."""
     from flightmode.eobs.flight import tradeoff_on_track
     from flightmode.scenarios.scenario import Scenario
@@ -29,17 +36,30 @@ def tradeoff_flight(dataset: str, row: dict, intervals_s: Sequence[float], byte_
     in_window_h = float(np.count_nonzero(track.in_flight_window)) / track.fs_hz / 3600.0
     out = []
     for r in tradeoff_on_track(track, sc, intervals_s, byte_count, ms, k, odr_per_axis_hz):
-        out.append({"dataset": dataset, "flight_id": row["flight_id"], "aircraft": row.get("aircraft"),
-                    "interval_s": r.burst_interval_s, "burst_samples": r.burst_samples, "m": r.m, "k": r.k,
-                    "in_window_h": in_window_h, "bursts": r.bursts, "in_window_bursts": r.in_window_bursts,
-                    "false_statics": r.false_statics,
-                    # at rest after the flight but never answered: infinitely slow (counted by percentiles)
-                    "response_s": math.inf if r.response_s is None else r.response_s,
-                    "samples_per_hour_per_axis": r.samples_per_hour})
+        out.append(
+            {
+                "dataset": dataset,
+                "flight_id": row["flight_id"],
+                "aircraft": row.get("aircraft"),
+                "interval_s": r.burst_interval_s,
+                "burst_samples": r.burst_samples,
+                "m": r.m,
+                "k": r.k,
+                "in_window_h": in_window_h,
+                "bursts": r.bursts,
+                "in_window_bursts": r.in_window_bursts,
+                "false_statics": r.false_statics,
+                # at rest after the flight but never answered: infinitely slow (counted by percentiles)
+                "response_s": math.inf if r.response_s is None else r.response_s,
+                "samples_per_hour_per_axis": r.samples_per_hour,
+            }
+        )
     return out
 
 
-def check_request(datasets, intervals_s, byte_count: int, ms, k: float, odr_per_axis_hz: float) -> list[tuple]:
+def check_request(
+    datasets, intervals_s, byte_count: int, ms, k: float, odr_per_axis_hz: float
+) -> list[tuple]:
     """(dataset, row) of every successful flight, after checking the request (one-line errors)."""
     from flightmode.errors import DetectorError
     from flightmode.scenarios.dataset import ok_flights
@@ -47,7 +67,9 @@ def check_request(datasets, intervals_s, byte_count: int, ms, k: float, odr_per_
 
     paths = [Path(d) for d in datasets]
     if not paths:
-        raise InputDataError("no dataset given: name at least one folder made by `flightmode dataset --truth full`")
+        raise InputDataError(
+            "no dataset given: name at least one folder made by `flightmode dataset --truth full`"
+        )
     if not intervals_s or not ms:
         raise DetectorError("give at least one ACC interval and one m")
     for m in ms:
@@ -64,10 +86,17 @@ def check_request(datasets, intervals_s, byte_count: int, ms, k: float, odr_per_
     return jobs
 
 
-def tradeoff_population(datasets, intervals_s: Sequence[float], byte_count: int, ms: Sequence[int], k: float = 4.0,
-                        odr_per_axis_hz: float = 10.0, workers: int = 1,
-                        on_start: Callable[[int], None] | None = None,
-                        on_flight: Callable[[int], None] | None = None) -> list[dict]:
+def tradeoff_population(
+    datasets,
+    intervals_s: Sequence[float],
+    byte_count: int,
+    ms: Sequence[int],
+    k: float = 4.0,
+    odr_per_axis_hz: float = 10.0,
+    workers: int = 1,
+    on_start: Callable[[int], None] | None = None,
+    on_flight: Callable[[int], None] | None = None,
+) -> list[dict]:
     """Every flight's rows (:func:`tradeoff_flight`), in dataset and flight order."""
     from flightmode.scenarios.sweep import map_flights
 
@@ -88,10 +117,22 @@ def summarise(rows: list[dict], confidence: float = 0.95) -> list[dict]:
         groups.setdefault((r["interval_s"], r["burst_samples"], r["m"], r["k"]), []).append(r)
     out = []
     for (interval, n, m, k), rs in sorted(groups.items()):
-        out.append({"interval_s": interval, "burst_samples": n, "m": m, "k": k, "flights": len(rs),
-                    **rate_and_response(sum(r["false_statics"] for r in rs), sum(r["in_window_h"] for r in rs),
-                                        [r["response_s"] for r in rs], confidence),
-                    "samples_per_hour_per_axis": float(np.mean([r["samples_per_hour_per_axis"] for r in rs]))})
+        out.append(
+            {
+                "interval_s": interval,
+                "burst_samples": n,
+                "m": m,
+                "k": k,
+                "flights": len(rs),
+                **rate_and_response(
+                    sum(r["false_statics"] for r in rs),
+                    sum(r["in_window_h"] for r in rs),
+                    [r["response_s"] for r in rs],
+                    confidence,
+                ),
+                "samples_per_hour_per_axis": float(np.mean([r["samples_per_hour_per_axis"] for r in rs])),
+            }
+        )
     return out
 
 

@@ -17,6 +17,7 @@ as the sensitivity", i.e. a noise fixed in g, as modelled here.
 from __future__ import annotations
 
 import numpy as np
+
 from flightmode.eobs.burst import AccBurst, check_axes
 from flightmode.eobs.calibration import ORIENTATIONS, RECORDING_KEYS, Calibration
 from flightmode.eobs.tag import (
@@ -27,7 +28,6 @@ from flightmode.eobs.tag import (
     nominal_slope_g_per_count,
     y_sign,
 )
-
 from flightmode.errors import SensorError
 
 

@@ -19,8 +19,8 @@ is shortened to N - 1 for bursts shorter than that.
 from __future__ import annotations
 
 import numpy as np
-from flightmode.eobs.burst import AccBurst
 
+from flightmode.eobs.burst import AccBurst
 from flightmode.errors import SensorError
 
 HP_BESSEL_ORDER = 10  # seed 003 section 12

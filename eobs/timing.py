@@ -28,9 +28,9 @@ Choices where the note is silent:
 from __future__ import annotations
 
 import numpy as np
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.tag import is_old_tag
-
 from flightmode.errors import SensorError
 
 OLD_TAG_MAX_START_DELAY_S = 1.0  # seed 003 sections 4.2 and 5.4: "up to one second" (older tags)

@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 
-def open(path, part: str = "samples"):  # noqa: A001
+def open(path, part: str = "samples"):
     from flightmode.scenarios.dataset import open_dataset
 
     return open_dataset(path, part)

@@ -25,7 +25,16 @@ FLIGHT_PHASES = (
     "shutdown",
     "parked",
 )
-CARRIER_PHASES = ("terminal_walk", "terminal_rest", "boarding", "deplaning", "arrival_rest", "truck", "loading", "unloading")
+CARRIER_PHASES = (
+    "terminal_walk",
+    "terminal_rest",
+    "boarding",
+    "deplaning",
+    "arrival_rest",
+    "truck",
+    "loading",
+    "unloading",
+)
 PHASES = FLIGHT_PHASES + CARRIER_PHASES
 PHASE_CODE = {name: i for i, name in enumerate(PHASES)}
 

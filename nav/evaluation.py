@@ -30,8 +30,12 @@ from flightmode.nav.spline_path import NavError, RecurrencePath, recurrence_path
 
 def errors(t_s, est, truth) -> dict:
     e = np.linalg.norm(np.atleast_2d(np.asarray(est) - np.asarray(truth)).reshape(len(t_s), -1), axis=1)
-    return {"max_m": float(e.max()), "rms_m": float(np.sqrt(np.mean(e * e))), "final_m": float(e[-1]),
-            "t_max_s": float(np.asarray(t_s)[int(np.argmax(e))])}
+    return {
+        "max_m": float(e.max()),
+        "rms_m": float(np.sqrt(np.mean(e * e))),
+        "final_m": float(e[-1]),
+        "t_max_s": float(np.asarray(t_s)[int(np.argmax(e))]),
+    }
 
 
 def zupt_path(t_s, acc, pos0, static_mask) -> np.ndarray:
@@ -78,7 +82,10 @@ def estimate_paths(track, rec, lever_arm_body_m, truth: frames.TruthPath | None 
     pos = truth.position(tt)
     a = frames.truth_aided_acceleration(rec, track, tt, rec.acc_g[s], truth)
     return {
-        "t_s": tt, "truth": pos, "acc": a, "mask": s,
+        "t_s": tt,
+        "truth": pos,
+        "acc": a,
+        "mask": s,
         "tridiagonal": tridiagonal_path(tt, a, pos[0], pos[-1])(tt),
         "recurrence": recurrence_path(tt, a, pos[0], np.zeros(3))(tt),
     }
@@ -97,12 +104,27 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
     a_int = bag.acceleration(t, integrating=True)
     a_pt = bag.acceleration(t, integrating=False)
     v0 = np.zeros(3)  # the aircraft stands at the gate when the bag is stowed
-    rows.append({"source": "truth acceleration", "method": "tridiagonal (gate positions)",
-                 **errors(t, tridiagonal_path(t, a_int, truth[0], truth[-1])(t), truth)})
-    rows.append({"source": "truth acceleration", "method": "recurrence (gate, at rest)",
-                 **errors(t, recurrence_path(t, a_int, truth[0], v0)(t), truth)})
-    rows.append({"source": "truth acceleration, point samples", "method": "tridiagonal (gate positions)",
-                 **errors(t, tridiagonal_path(t, a_pt, truth[0], truth[-1])(t), truth)})
+    rows.append(
+        {
+            "source": "truth acceleration",
+            "method": "tridiagonal (gate positions)",
+            **errors(t, tridiagonal_path(t, a_int, truth[0], truth[-1])(t), truth),
+        }
+    )
+    rows.append(
+        {
+            "source": "truth acceleration",
+            "method": "recurrence (gate, at rest)",
+            **errors(t, recurrence_path(t, a_int, truth[0], v0)(t), truth),
+        }
+    )
+    rows.append(
+        {
+            "source": "truth acceleration, point samples",
+            "method": "tridiagonal (gate positions)",
+            **errors(t, tridiagonal_path(t, a_pt, truth[0], truth[-1])(t), truth),
+        }
+    )
     for label, rec in recordings.items():
         est = estimate_paths(track, rec, lever_arm_body_m, bag)
         s, tt, tr_pos, a = est["mask"], est["t_s"], est["truth"], est["acc"]
@@ -111,8 +133,13 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
             continue
         c, window = checks_of(rec)
         static = frames.static_periods(c, window, rec.n)
-        rows.append({"source": f"{label}, truth-aided", "method": "recurrence + ZUPT (detector statics)",
-                     **errors(tt, zupt_path(tt, a, tr_pos[0], static[s]), tr_pos)})
+        rows.append(
+            {
+                "source": f"{label}, truth-aided",
+                "method": "recurrence + ZUPT (detector statics)",
+                **errors(tt, zupt_path(tt, a, tr_pos[0], static[s]), tr_pos),
+            }
+        )
         try:
             vert, _ = frames.tilt_only_acceleration(rec.acc_g, static)
         except NavError:
@@ -121,22 +148,34 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
         if np.isnan(v).any():
             continue
         est = zupt_path(tt, v[:, None], tr_pos[:1, 2], static[s])[:, 0]
-        rows.append({"source": f"{label}, tilt-only (vertical only)", "method": "recurrence + ZUPT",
-                     **errors(tt, est[:, None], tr_pos[:, 2:3])})
+        rows.append(
+            {
+                "source": f"{label}, tilt-only (vertical only)",
+                "method": "recurrence + ZUPT",
+                **errors(tt, est[:, None], tr_pos[:, 2:3]),
+            }
+        )
     return rows
 
 
 def path_rows(est: dict, label: str) -> list[dict]:
     return [
-        {"source": f"{label}, truth-aided", "method": "tridiagonal (gate positions)",
-         **errors(est["t_s"], est["tridiagonal"], est["truth"])},
-        {"source": f"{label}, truth-aided", "method": "recurrence (gate, at rest)",
-         **errors(est["t_s"], est["recurrence"], est["truth"])},
+        {
+            "source": f"{label}, truth-aided",
+            "method": "tridiagonal (gate positions)",
+            **errors(est["t_s"], est["tridiagonal"], est["truth"]),
+        },
+        {
+            "source": f"{label}, truth-aided",
+            "method": "recurrence (gate, at rest)",
+            **errors(est["t_s"], est["recurrence"], est["truth"]),
+        },
     ]
 
 
-def random_walk_exponent(noise_mps2: float, fs_hz: float, duration_s: float, runs: int,
-                         rng: np.random.Generator) -> tuple[float, np.ndarray, np.ndarray]:
+def random_walk_exponent(
+    noise_mps2: float, fs_hz: float, duration_s: float, runs: int, rng: np.random.Generator
+) -> tuple[float, np.ndarray, np.ndarray]:
     """Fit ``rms position error ~ t^p`` for white acceleration noise integrated by the recurrence
     from the true initial state (Monte Carlo over ``runs`` realisations): the random-walk law
     predicts p = 1.5 (sigma_x(t) = sigma_a sqrt(dt) t^1.5 / sqrt(3)). Returns (p, t, rms)."""

@@ -67,7 +67,9 @@ def gravity_ecef_mps2(lat_deg, lon_deg, alt_m) -> np.ndarray:
 
 def gravity_ned_mps2(lat_deg, lon_deg, alt_m) -> np.ndarray:
     """:func:`gravity_ecef_mps2` in local north/east/down."""
-    return np.einsum("...ij,...j->...i", ecef_to_ned_matrix(lat_deg, lon_deg), gravity_ecef_mps2(lat_deg, lon_deg, alt_m))
+    return np.einsum(
+        "...ij,...j->...i", ecef_to_ned_matrix(lat_deg, lon_deg), gravity_ecef_mps2(lat_deg, lon_deg, alt_m)
+    )
 
 
 def _world_rotation(track) -> np.ndarray:
@@ -162,8 +164,9 @@ def truth_aided_acceleration(rec, track, t_s=None, acc_g=None, truth: TruthPath 
     a = rec.acc_g if acc_g is None else np.asarray(acc_g, float)
     seg_t0 = np.array([s.t0_s for s in rec.segments])
     si = np.searchsorted(seg_t0, t, side="right") - 1
-    if np.any(si < 0) or not all(rec.segments[k].on_board and rec.segments[k].state != "carried"
-                                 for k in np.unique(si)):
+    if np.any(si < 0) or not all(
+        rec.segments[k].on_board and rec.segments[k].state != "carried" for k in np.unique(si)
+    ):
         raise NavError("truth-aided frames need samples while the bag is on board and not carried")
     if t[0] < track.t_s[0] or t[-1] > track.t_s[-1]:
         raise NavError("samples outside the FlightTrack's time span")

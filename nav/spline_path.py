@@ -32,7 +32,6 @@ from scipy.linalg import solve_banded
 from flightmode.errors import NavError
 
 
-
 def _check(t_s, acc, min_samples: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     t = np.asarray(t_s, dtype=float)
     a = np.asarray(acc, dtype=float)

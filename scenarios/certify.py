@@ -37,7 +37,13 @@ import numpy as np
 
 from flightmode.errors import InputDataError
 
-SEED000_POINT = {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0}  # seed 000, Table 9
+SEED000_POINT = {
+    "method": "nmv",
+    "weight": 1.0,
+    "window_s": 1.0,
+    "k": 4.0,
+    "time_threshold_s": 4.0,
+}  # seed 000, Table 9
 
 
 @dataclass(frozen=True)
@@ -54,11 +60,15 @@ class Target:
         if not (self.rate_per_h > 0 and math.isfinite(self.rate_per_h)):
             raise InputDataError(f"--target-fa-per-h {self.rate_per_h!r}: must be a rate > 0 (e.g. 1e-4)")
         if not 0.0 < self.confidence < 1.0:
-            raise InputDataError(f"--confidence {self.confidence!r}: must be strictly between 0 and 1 (e.g. 0.95)")
+            raise InputDataError(
+                f"--confidence {self.confidence!r}: must be strictly between 0 and 1 (e.g. 0.95)"
+            )
         if self.max_response_s is not None and not self.max_response_s > 0:
             raise InputDataError(f"--max-response-s {self.max_response_s!r}: must be > 0 s")
         if not 0.0 < self.pm < 1.0:
-            raise InputDataError(f"--pm {self.pm!r}: a probability of misdetection strictly between 0 and 1 (e.g. 1e-3)")
+            raise InputDataError(
+                f"--pm {self.pm!r}: a probability of misdetection strictly between 0 and 1 (e.g. 1e-3)"
+            )
 
 
 @dataclass(frozen=True)
@@ -115,7 +125,14 @@ def _hours_per_flight(points, point: dict) -> dict[str, float]:
 
 def _fixed_order(r: dict) -> tuple:
     """A total order on points for ties: whatever order the grid was given in, the same choice."""
-    return r["method"], r["weight"], r["window_s"], r["k"], r["time_threshold_s"], str(r.get("sensor_preset", ""))
+    return (
+        r["method"],
+        r["weight"],
+        r["window_s"],
+        r["k"],
+        r["time_threshold_s"],
+        str(r.get("sensor_preset", "")),
+    )
 
 
 def hours_at_rate(target_rate_per_h: float, confidence: float, rate_per_h: float) -> float:
@@ -137,7 +154,9 @@ def hours_at_rate(target_rate_per_h: float, confidence: float, rate_per_h: float
     return float(brentq(excess, lo * 0.999, hi)) if hi > lo else float(lo)
 
 
-def recommend(summary: Sequence[dict], target: Target, hours_per_flight: Callable[[dict], dict[str, float]]) -> dict:
+def recommend(
+    summary: Sequence[dict], target: Target, hours_per_flight: Callable[[dict], dict[str, float]]
+) -> dict:
     """The point to ship, or why the dataset cannot show one (module docstring). Statuses: ``meets``;
     ``too_slow`` (points meet the rate but none answers within ``max_response_s``); ``unreachable``
     (even the best point's lower bound on its rate is above the target); ``too_small`` (more
@@ -158,55 +177,88 @@ def recommend(summary: Sequence[dict], target: Target, hours_per_flight: Callabl
     meets = [r for r in rate_ok if fast(r)]
     if meets:
         best = min(meets, key=by_response)
-        return {"status": "meets", "point": best, "candidates": len(meets),
-                "text": f"{point_name(best)} meets the target: at most {best['rate_upper_per_h']:.3g} false statics "
-                        f"per flight-hour ({target.confidence:.0%} bound, {best['false_statics']} in "
-                        f"{best['in_window_h']:,.0f} h), response p95 {best['response_p95_s']:.1f} s, "
-                        f"availability {best['availability']:.3f}"}
+        return {
+            "status": "meets",
+            "point": best,
+            "candidates": len(meets),
+            "text": f"{point_name(best)} meets the target: at most {best['rate_upper_per_h']:.3g} false statics "
+            f"per flight-hour ({target.confidence:.0%} bound, {best['false_statics']} in "
+            f"{best['in_window_h']:,.0f} h), response p95 {best['response_p95_s']:.1f} s, "
+            f"availability {best['availability']:.3f}",
+        }
     if rate_ok:  # the rate is shown, the response limit is what fails
         best = min(rate_ok, key=by_response)
-        return {"status": "too_slow", "point": best, "candidates": 0,
-                "text": f"{len(rate_ok)} points meet {target.rate_per_h:g} false statics per flight-hour, but none "
-                        f"answers within {target.max_response_s:g} s at the gate (p95); the fastest of them, "
-                        f"{point_name(best)}, answers in {best['response_p95_s']:.1f} s: raise --max-response-s or "
-                        "widen the grid (shorter T_th)"}
+        return {
+            "status": "too_slow",
+            "point": best,
+            "candidates": 0,
+            "text": f"{len(rate_ok)} points meet {target.rate_per_h:g} false statics per flight-hour, but none "
+            f"answers within {target.max_response_s:g} s at the gate (p95); the fastest of them, "
+            f"{point_name(best)}, answers in {best['response_p95_s']:.1f} s: raise --max-response-s or "
+            "widen the grid (shorter T_th)",
+        }
     pool = [r for r in summary if fast(r)] or list(summary)
     fewest = min(r["false_statics"] for r in pool)
     best = min((r for r in pool if r["false_statics"] == fewest), key=by_response)
     out = {"status": "too_small", "point": best, "candidates": 0}
-    limit = "" if fast(best) else (f"; and no point answers within {target.max_response_s:g} s (p95), so the "
-                                   "response limit fails too")
+    limit = (
+        ""
+        if fast(best)
+        else (
+            f"; and no point answers within {target.max_response_s:g} s (p95), so the "
+            "response limit fails too"
+        )
+    )
     x, t_h = best["false_statics"], best["in_window_h"]
     lower = chi2.ppf(1.0 - target.confidence, 2 * x) / (2.0 * t_h) if x > 0 else 0.0  # Garwood's lower bound
     if lower > target.rate_per_h:
         out["status"] = "unreachable"
         out["rate_lower_per_h"] = float(lower)
-        out["text"] = (f"no grid point can meet {target.rate_per_h:g} per flight-hour on such flights: the one with "
-                       f"the fewest false statics, {point_name(best)}, has {x} in {t_h:,.0f} h, and even the "
-                       f"{target.confidence:.0%} lower bound on its rate, {lower:.3g} /h, is above the target; widen "
-                       f"the grid (lower k, longer T_th){limit}")
+        out["text"] = (
+            f"no grid point can meet {target.rate_per_h:g} per flight-hour on such flights: the one with "
+            f"the fewest false statics, {point_name(best)}, has {x} in {t_h:,.0f} h, and even the "
+            f"{target.confidence:.0%} lower bound on its rate, {lower:.3g} /h, is above the target; widen "
+            f"the grid (lower k, longer T_th){limit}"
+        )
         return out
     need = hours_needed(target.rate_per_h, target.confidence, x)
     short = max(0.0, need - t_h)
     per = hours_per_flight(_point(best))
-    out |= {"hours_needed": need, "hours_short": short,
-            "flights_short": {f: int(math.ceil(short / h)) for f, h in per.items() if h > 0}}
+    out |= {
+        "hours_needed": need,
+        "hours_short": short,
+        "flights_short": {f: int(math.ceil(short / h)) for f, h in per.items() if h > 0},
+    }
     if x > 0:  # if the events keep coming at the observed rate, the claim needs more
         out["hours_needed_at_rate"] = hours_at_rate(target.rate_per_h, target.confidence, best["rate_per_h"])
-    more = " or ".join(f"{n:,} more flights of {f} ({per[f]:.2f} in-window h each)" for f, n in out["flights_short"].items())
-    at_rate = ("" if x == 0 else
-               f"; never, if they keep coming at {best['rate_per_h']:.2g} /h" if math.isinf(out["hours_needed_at_rate"])
-               else f"; {out['hours_needed_at_rate']:,.0f} h in all if they keep coming at {best['rate_per_h']:.2g} /h")
-    out["text"] = (f"the dataset is too small to show {target.rate_per_h:g} false statics per flight-hour at "
-                   f"{target.confidence:.0%}: the best point, {point_name(best)}, has {x} false statics in "
-                   f"{t_h:,.0f} in-window h (bound {best['rate_upper_per_h']:.3g} /h); the claim needs {need:,.0f} h "
-                   f"{'with no more events' if x else 'with none'}, {short:,.0f} h more: {more}{at_rate}{limit}")
+    more = " or ".join(
+        f"{n:,} more flights of {f} ({per[f]:.2f} in-window h each)" for f, n in out["flights_short"].items()
+    )
+    at_rate = (
+        ""
+        if x == 0
+        else f"; never, if they keep coming at {best['rate_per_h']:.2g} /h"
+        if math.isinf(out["hours_needed_at_rate"])
+        else f"; {out['hours_needed_at_rate']:,.0f} h in all if they keep coming at {best['rate_per_h']:.2g} /h"
+    )
+    out["text"] = (
+        f"the dataset is too small to show {target.rate_per_h:g} false statics per flight-hour at "
+        f"{target.confidence:.0%}: the best point, {point_name(best)}, has {x} false statics in "
+        f"{t_h:,.0f} in-window h (bound {best['rate_upper_per_h']:.3g} /h); the claim needs {need:,.0f} h "
+        f"{'with no more events' if x else 'with none'}, {short:,.0f} h more: {more}{at_rate}{limit}"
+    )
     return out
 
 
 # ---------------------------------------------------------------------- seed 000 section 5.1.1
-def threshold_from_static(static, pm: float, method: str = "nmv", weight: float = 1.0, window_s: float = 1.0,
-                          confidence: float = 0.95) -> dict:
+def threshold_from_static(
+    static,
+    pm: float,
+    method: str = "nmv",
+    weight: float = 1.0,
+    window_s: float = 1.0,
+    confidence: float = 0.95,
+) -> dict:
     """Seed 000 section 5.1.1's threshold for a probability of misdetection ``pm``, in units of
     sigma^2, from the truly static checks of the swept flights (module docstring), beside eq. 13 and
     the exact chi-square for white noise over the window's N samples (the streams of the most common
@@ -218,10 +270,16 @@ def threshold_from_static(static, pm: float, method: str = "nmv", weight: float 
     from flightmode.detector.statistics import nmv_moments
     from flightmode.scenarios.sweep import AXES, STATIC_EDGES
 
-    sel = static.filter(pc.and_(pc.and_(pc.equal(static["method"], method), pc.equal(static["weight"], weight)),
-                                pc.equal(static["window_s"], window_s)))
+    sel = static.filter(
+        pc.and_(
+            pc.and_(pc.equal(static["method"], method), pc.equal(static["weight"], weight)),
+            pc.equal(static["window_s"], window_s),
+        )
+    )
     if sel.num_rows == 0:
-        raise InputDataError(f"the sweep has no {method} W_s {window_s:g} s: section 5.1.1 needs that window in the grid")
+        raise InputDataError(
+            f"the sweep has no {method} W_s {window_s:g} s: section 5.1.1 needs that window in the grid"
+        )
     rates = sel["fs_hz"].to_pylist()
     fs = max(set(rates), key=lambda f: (rates.count(f), f))
     sel = sel.filter(pc.equal(sel["fs_hz"], fs))
@@ -229,9 +287,18 @@ def threshold_from_static(static, pm: float, method: str = "nmv", weight: float 
     d = sel.to_pydict()
     n = int(sum(d["static_checks"]))
     if n == 0:
-        raise InputDataError("no check of the swept flights has a truly static window: section 5.1.1 needs static data")
-    out: dict = {"method": method, "weight": weight, "window_s": window_s, "pm": pm, "static_checks": n,
-                 "static_h": n * window_s / 3600.0, "flights": sel.num_rows}
+        raise InputDataError(
+            "no check of the swept flights has a truly static window: section 5.1.1 needs static data"
+        )
+    out: dict = {
+        "method": method,
+        "weight": weight,
+        "window_s": window_s,
+        "pm": pm,
+        "static_checks": n,
+        "static_h": n * window_s / 3600.0,
+        "flights": sel.num_rows,
+    }
     pm_axis = 1.0 - (1.0 - pm) ** (1.0 / 3.0)  # three independent axes, any of which misdetects
     out["pm_per_axis"] = pm_axis
     edges = STATIC_EDGES
@@ -257,8 +324,12 @@ def threshold_from_static(static, pm: float, method: str = "nmv", weight: float 
         sd = math.sqrt(max(ss / n - mu * mu, 0.0))
         i_a = np.flatnonzero(surv[a] <= pm_axis)[0]
         k_a = math.inf if i_a >= edges.size - 2 else float(edges[i_a])
-        per_axis[a] = {"mean": mu, "sd": sd, "empirical_k": k_a,
-                       "gaussian_k": mu + sd * float(norm.isf(pm_axis))}  # eq. 13 inverted, measured mu, sigma_MV
+        per_axis[a] = {
+            "mean": mu,
+            "sd": sd,
+            "empirical_k": k_a,
+            "gaussian_k": mu + sd * float(norm.isf(pm_axis)),
+        }  # eq. 13 inverted, measured mu, sigma_MV
     out["axes"] = per_axis
     out["gaussian_measured_k"] = max(v["gaussian_k"] for v in per_axis.values())
     mu, sd = nmv_moments(n_window)
@@ -277,7 +348,11 @@ def worst_flight(points, phases, point: dict) -> dict | None:
     if not rows:
         return None
     under: dict[tuple, int] = {}
-    for r in where(phases, {k: point[k] for k in ("method", "weight", "window_s", "k")}).select(["dataset", "flight_id", "sensor_preset", "under_all"]).to_pylist():
+    for r in (
+        where(phases, {k: point[k] for k in ("method", "weight", "window_s", "k")})
+        .select(["dataset", "flight_id", "sensor_preset", "under_all"])
+        .to_pylist()
+    ):
         key = (r["dataset"], r["flight_id"], r["sensor_preset"])
         under[key] = under.get(key, 0) + r["under_all"]
 
@@ -285,11 +360,18 @@ def worst_flight(points, phases, point: dict) -> dict | None:
         return r["dataset"], r["flight_id"], r["sensor_preset"]
 
     best = max(rows, key=lambda r: (r["false_static_s"], under.get(key(r), 0)))
-    return {"dataset": best["dataset"], "flight_id": best["flight_id"], "sensor_preset": best["sensor_preset"],
-            "false_static_s": best["false_static_s"], "false_statics": best["false_static_count"],
-            "under_all": under.get(key(best), 0),
-            "aircraft": best.get("aircraft"), "placement": best.get("placement"), "turbulence": best.get("turbulence"),
-            "family": best.get("family")}
+    return {
+        "dataset": best["dataset"],
+        "flight_id": best["flight_id"],
+        "sensor_preset": best["sensor_preset"],
+        "false_static_s": best["false_static_s"],
+        "false_statics": best["false_static_count"],
+        "under_all": under.get(key(best), 0),
+        "aircraft": best.get("aircraft"),
+        "placement": best.get("placement"),
+        "turbulence": best.get("turbulence"),
+        "family": best.get("family"),
+    }
 
 
 # ---------------------------------------------------------------------- the whole job
@@ -299,19 +381,30 @@ def _sweep_matches(meta: dict, datasets: list[Path], grid, sigma2_from: str, sen
     have = [(d["path"], d["manifest_sha256"]) for d in meta.get("datasets", [])]
     want = [(str(p), manifest_digest(p)) for p in datasets]
     g = meta.get("grid", {})
-    return (have == want and meta.get("sigma2_from") == sigma2_from and meta.get("sensors") == (list(sensors) if sensors else None)
-            and g.get("methods") == [list(m) for m in grid.methods] and g.get("windows_s") == list(grid.windows_s)
-            and g.get("ks") == list(grid.ks) and g.get("time_thresholds_s") == list(grid.time_thresholds_s))
+    return (
+        have == want
+        and meta.get("sigma2_from") == sigma2_from
+        and meta.get("sensors") == (list(sensors) if sensors else None)
+        and g.get("methods") == [list(m) for m in grid.methods]
+        and g.get("windows_s") == list(grid.windows_s)
+        and g.get("ks") == list(grid.ks)
+        and g.get("time_thresholds_s") == list(grid.time_thresholds_s)
+    )
 
 
-def command_of(datasets_meta: list[dict], grid, target: Target, sigma2_from: str, out: Path,
-               sensors=None) -> list[str]:
+def command_of(
+    datasets_meta: list[dict], grid, target: Target, sigma2_from: str, out: Path, sensors=None
+) -> list[str]:
     """The commands that make the datasets again and certify them (for the report)."""
     lines = []
     for d in datasets_meta:
         opts = d.get("options") or {}
-        extra = "".join([f" --truth {opts['truth']}" if opts.get("truth") not in (None, "10hz") else "",
-                         " --rrd" if opts.get("rrd") else ""])
+        extra = "".join(
+            [
+                f" --truth {opts['truth']}" if opts.get("truth") not in (None, "10hz") else "",
+                " --rrd" if opts.get("rrd") else "",
+            ]
+        )
         lines.append(f"flightmode dataset {d['family']} --n {d['flights']} --out {d['path']}{extra}")
     methods = list(dict.fromkeys(m for m, _ in grid.methods))  # the grid's own order (ties follow it nowhere)
     weights = list(dict.fromkeys(w for m, w in grid.methods if m == "emv"))
@@ -319,19 +412,34 @@ def command_of(datasets_meta: list[dict], grid, target: Target, sigma2_from: str
     def axis(v):
         return ",".join(f"{x:g}" for x in v)
 
-    cmd = (f"flightmode certify {' '.join(d['path'] for d in datasets_meta)} --target-fa-per-h {target.rate_per_h:g} "
-           f"--confidence {target.confidence:g} --pm {target.pm:g}"
-           + (f" --max-response-s {target.max_response_s:g}" if target.max_response_s else "")
-           + f" --method {','.join(methods)}" + (f" --weight {axis(weights)}" if weights else "")
-           + f" --window-s {axis(grid.windows_s)} --k {axis(grid.ks)} --time-threshold-s {axis(grid.time_thresholds_s)}"
-           + f" --sigma2-from {sigma2_from}" + (f" --sensor {','.join(sensors)}" if sensors else "") + f" --out {out}")
+    cmd = (
+        f"flightmode certify {' '.join(d['path'] for d in datasets_meta)} --target-fa-per-h {target.rate_per_h:g} "
+        f"--confidence {target.confidence:g} --pm {target.pm:g}"
+        + (f" --max-response-s {target.max_response_s:g}" if target.max_response_s else "")
+        + f" --method {','.join(methods)}"
+        + (f" --weight {axis(weights)}" if weights else "")
+        + f" --window-s {axis(grid.windows_s)} --k {axis(grid.ks)} --time-threshold-s {axis(grid.time_thresholds_s)}"
+        + f" --sigma2-from {sigma2_from}"
+        + (f" --sensor {','.join(sensors)}" if sensors else "")
+        + f" --out {out}"
+    )
     return lines + [cmd]
 
 
-def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from: str = "preset", workers: int = 1,
-            sensors: Sequence[str] | None = None, out: str | Path, on_start: Callable[[int], None] | None = None,
-            on_flight: Callable[[str], None] | None = None, figures: bool = True,
-            log: Callable[[str], None] = lambda s: None) -> Certification:
+def certify(
+    datasets: Sequence[str | Path],
+    grid,
+    target: Target,
+    *,
+    sigma2_from: str = "preset",
+    workers: int = 1,
+    sensors: Sequence[str] | None = None,
+    out: str | Path,
+    on_start: Callable[[int], None] | None = None,
+    on_flight: Callable[[str], None] | None = None,
+    figures: bool = True,
+    log: Callable[[str], None] = lambda s: None,
+) -> Certification:
     """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``."""
     from flightmode.scenarios.dataset import atomic_text
     from flightmode.scenarios.sweep import breakdown, read_sweep, summarise, sweep
@@ -352,16 +460,30 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
             log(f"reusing the sweep in {sweep_dir} (same datasets, grid and sigma^2 source)")
             result = cached
     if result is None:
-        result = sweep(paths, grid, sigma2_from=sigma2_from, workers=workers, sensors=sensors, out=sweep_dir,
-                       on_start=on_start, on_flight=on_flight)
-    summary = summarise(result.points, target.confidence, target.rate_per_h, by_sensor=bool(result.meta.get("sensors")))
+        result = sweep(
+            paths,
+            grid,
+            sigma2_from=sigma2_from,
+            workers=workers,
+            sensors=sensors,
+            out=sweep_dir,
+            on_start=on_start,
+            on_flight=on_flight,
+        )
+    summary = summarise(
+        result.points, target.confidence, target.rate_per_h, by_sensor=bool(result.meta.get("sensors"))
+    )
     summary.sort(key=_fixed_order)
     front = pareto_front(summary)
     rec = recommend(summary, target, lambda p: _hours_per_flight(result.points, p))
     seed000 = next((r for r in summary if {k: r[k] for k in SEED000_POINT} == SEED000_POINT), None)
     if seed000 is not None:
-        seed000 = seed000 | {"meets": bool(seed000["rate_upper_per_h"] <= target.rate_per_h and (
-            target.max_response_s is None or seed000["response_p95_s"] <= target.max_response_s))}
+        seed000 = seed000 | {
+            "meets": bool(
+                seed000["rate_upper_per_h"] <= target.rate_per_h
+                and (target.max_response_s is None or seed000["response_p95_s"] <= target.max_response_s)
+            )
+        }
     rp = _point(rec["point"])
     # section 5.1.1 is about the moving variance: seed 000's NMV at 1 s if the grid has it, else the
     # first moving-variance method and window of the grid; none at all: no section 5.1.1
@@ -373,13 +495,19 @@ def certify(datasets: Sequence[str | Path], grid, target: Target, *, sigma2_from
         th = threshold_from_static(result.static, target.pm, *method_5_1_1, window_5_1_1, target.confidence)
         th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
     breakdowns = {"recommended": breakdown(result.points, rp, result.phases)}
-    seed_point = SEED000_POINT | ({"sensor_preset": seed000["sensor_preset"]} if seed000 and "sensor_preset" in seed000 else {})
+    seed_point = SEED000_POINT | (
+        {"sensor_preset": seed000["sensor_preset"]} if seed000 and "sensor_preset" in seed000 else {}
+    )
     if seed000 is not None:
         breakdowns["seed000"] = breakdown(result.points, seed_point, result.phases)
     worst = worst_flight(result.points, result.phases, seed_point if seed000 is not None else rp)
-    meta = result.meta | {"excluded": [{"dataset": r["dataset"], "flight_id": r["flight_id"],
-                                         "error": (r.get("error") or "")[:300]} for r in result.failed],
-                          "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors)}
+    meta = result.meta | {
+        "excluded": [
+            {"dataset": r["dataset"], "flight_id": r["flight_id"], "error": (r.get("error") or "")[:300]}
+            for r in result.failed
+        ],
+        "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors),
+    }
     cert = Certification(target, summary, front, rec, seed000, th, breakdowns, worst, meta)
     out.mkdir(parents=True, exist_ok=True)
     atomic_text(json.dumps(as_dict(cert), indent=2, default=_jsonable), out / "certify.json")
@@ -403,16 +531,28 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
     if not below:
         return None
     kg = below[-1]
-    d = where(phases, {"method": method[0], "weight": method[1], "window_s": window_s, "k": kg}).select(["checks", "under_all"]).to_pydict()
+    d = (
+        where(phases, {"method": method[0], "weight": method[1], "window_s": window_s, "k": kg})
+        .select(["checks", "under_all"])
+        .to_pydict()
+    )
     checks, under = int(sum(d["checks"])), int(sum(d["under_all"]))
-    rows = [r for r in summary if (r["method"], r["weight"], r["window_s"], r["k"]) == (*method, window_s, kg)]
+    rows = [
+        r for r in summary if (r["method"], r["weight"], r["window_s"], r["k"]) == (*method, window_s, kg)
+    ]
     tths = sorted(r["time_threshold_s"] for r in rows)
     tth = min(tths, key=lambda t: abs(t - 4.0))
     r = next(x for x in rows if x["time_threshold_s"] == tth)
-    return {"k": kg, "in_window_checks": checks, "under_all": under,
-            "p_fa_t_joint": under / checks if checks else math.nan, "time_threshold_s": tth,
-            "false_statics": r["false_statics"], "rate_upper_per_h": r["rate_upper_per_h"],
-            "meets": bool(r["rate_upper_per_h"] <= target.rate_per_h)}
+    return {
+        "k": kg,
+        "in_window_checks": checks,
+        "under_all": under,
+        "p_fa_t_joint": under / checks if checks else math.nan,
+        "time_threshold_s": tth,
+        "false_statics": r["false_statics"],
+        "rate_upper_per_h": r["rate_upper_per_h"],
+        "meets": bool(r["rate_upper_per_h"] <= target.rate_per_h),
+    }
 
 
 def as_dict(cert: Certification) -> dict:
@@ -433,5 +573,15 @@ def _jsonable(v):
     return str(v)
 
 
-__all__ = ["certify", "Certification", "Target", "pareto_front", "recommend", "threshold_from_static",
-           "worst_flight", "SEED000_POINT", "point_name", "command_of"]
+__all__ = [
+    "certify",
+    "Certification",
+    "Target",
+    "pareto_front",
+    "recommend",
+    "threshold_from_static",
+    "worst_flight",
+    "SEED000_POINT",
+    "point_name",
+    "command_of",
+]

@@ -120,8 +120,10 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
 
     def watchdog(t_s: float, phase: str) -> None:
         if limit is not None and time.perf_counter() - t0 > limit:
-            raise FlightTimeoutError(f"flight {flight_id(i)} exceeded the {limit:g} s wall-time limit while "
-                                     f"flying; raise --flight-timeout-s and --resume")
+            raise FlightTimeoutError(
+                f"flight {flight_id(i)} exceeded the {limit:g} s wall-time limit while "
+                f"flying; raise --flight-timeout-s and --resume"
+            )
 
     r = pipeline.run(sc, stages=("fly", "sense", "detect"), progress=watchdog)
     fid = flight_id(i)
@@ -139,7 +141,8 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         truth = truth.append_column("flight_id", pa.array(np.full(truth.num_rows, fid)))
         if options["truth"] == "full":  # what rebuilds the FlightTrack, so that the flight can be re-sensed
             truth = truth.replace_schema_metadata(
-                {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(r.track), default=run_io._json_default)})
+                {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(r.track), default=run_io._json_default)}
+            )
         files["truth"] = f"truth/{part}"
         atomic_parquet(truth, out / files["truth"])
     if options.get("rrd"):
@@ -157,27 +160,40 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
     dt = 1.0 / tr.fs_hz
     phase_s = np.bincount(tr.phase_code, minlength=len(PHASES)) * dt
     row = {
-        "flight_id": fid, "index": i, "status": "ok", "error": None, "attempts": 1,
-        "name": sc.name, "seed": sc.seed, "aircraft": sc.aircraft,
-        "origin": sc.plan.origin.icao, "destination": sc.plan.destination.icao,
-        "scenario_sha256": sc.digest(), "scenario_toml": sc.to_toml(),
-        "gate_to_gate_s": float(tr.duration_s), "airborne_s": float(tr.airborne.sum() * dt),
+        "flight_id": fid,
+        "index": i,
+        "status": "ok",
+        "error": None,
+        "attempts": 1,
+        "name": sc.name,
+        "seed": sc.seed,
+        "aircraft": sc.aircraft,
+        "origin": sc.plan.origin.icao,
+        "destination": sc.plan.destination.icao,
+        "scenario_sha256": sc.digest(),
+        "scenario_toml": sc.to_toml(),
+        "gate_to_gate_s": float(tr.duration_s),
+        "airborne_s": float(tr.airborne.sum() * dt),
         **{f"phase_{p}_s": float(phase_s[k]) for k, p in enumerate(PHASES)},
         "samples": int(rec.t_s.shape[0]),
         "samples_in_flight_window": int(np.count_nonzero(rec.in_flight_window)),
         "samples_airborne": int(np.count_nonzero(rec.airborne)),
         "samples_static": int(np.count_nonzero(rec.sensor_static)),
         "turbulence": ",".join(t.severity for t in sc.plan.turbulence),
-        "landing_quality": sc.plan.landing_quality, "placement": sc.carrier.placement,
-        "carrier_kind": sc.carrier.kind, "sensor_preset": sc.sensor.preset,
+        "landing_quality": sc.plan.landing_quality,
+        "placement": sc.carrier.placement,
+        "carrier_kind": sc.carrier.kind,
+        "sensor_preset": sc.sensor.preset,
         **stowage_columns(rec.stowage),
         "touchdown_sink_mps": float(r.metrics.get("touchdown_sink_mps", float("nan"))),
         "detector_false_static_count": det.false_static_count,
         "detector_false_static_s": det.false_static_s,
         "detector_response_s": float("nan") if det.response_s is None else float(det.response_s),
         "detector_in_flight_checks": det.in_flight_checks,
-        "samples_file": files["samples"], "samples_sha256": _sha256(out / files["samples"]),
-        "truth_file": files.get("truth"), "truth_sha256": _sha256(out / files["truth"]) if "truth" in files else None,
+        "samples_file": files["samples"],
+        "samples_sha256": _sha256(out / files["samples"]),
+        "truth_file": files.get("truth"),
+        "truth_sha256": _sha256(out / files["truth"]) if "truth" in files else None,
         "rrd_file": files.get("rrd"),
     }
     row["wall_s"] = time.perf_counter() - t0
@@ -189,10 +205,15 @@ def stowage_columns(stowage: dict | None) -> dict:
     """The manifest's record of where and how the bag lay in flight (``Recording.stowage["in_flight"]``,
     None where the flight has none): what seed 000's Tables 4 / 5 depend on most."""
     f = (stowage or {}).get("in_flight") or {}
-    return {"inflight_placement": f.get("placement"), "cabin_row": f.get("cabin_row"),
-            "packing": f.get("packing"), "stowed_yaw_deg": f.get("yaw_deg"),
-            "stowed_tilt_deg": f.get("tilt_deg"), "sensor_x_from_fuselage_deg": f.get("x_from_fuselage_deg"),
-            "stowage_json": None if stowage is None else json.dumps(stowage)}
+    return {
+        "inflight_placement": f.get("placement"),
+        "cabin_row": f.get("cabin_row"),
+        "packing": f.get("packing"),
+        "stowed_yaw_deg": f.get("yaw_deg"),
+        "stowed_tilt_deg": f.get("tilt_deg"),
+        "sensor_x_from_fuselage_deg": f.get("x_from_fuselage_deg"),
+        "stowage_json": None if stowage is None else json.dumps(stowage),
+    }
 
 
 def stowage_of_row(row: dict) -> dict | None:
@@ -204,21 +225,33 @@ def stowage_of_row(row: dict) -> dict | None:
         return json.loads(text)
     if row.get("sensor_x_from_fuselage_deg") is None:
         return None
-    return {"in_flight": {"placement": row["inflight_placement"], "cabin_row": row["cabin_row"],
-                          "packing": row["packing"], "yaw_deg": row["stowed_yaw_deg"],
-                          "tilt_deg": row["stowed_tilt_deg"],
-                          "x_from_fuselage_deg": row["sensor_x_from_fuselage_deg"]}}
+    return {
+        "in_flight": {
+            "placement": row["inflight_placement"],
+            "cabin_row": row["cabin_row"],
+            "packing": row["packing"],
+            "yaw_deg": row["stowed_yaw_deg"],
+            "tilt_deg": row["stowed_tilt_deg"],
+            "x_from_fuselage_deg": row["sensor_x_from_fuselage_deg"],
+        }
+    }
 
 
 def _failed_row(fam, i: int, error: str, attempts: int) -> dict:
     row = {"flight_id": flight_id(i), "index": i, "status": "failed", "error": error, "attempts": attempts}
     try:
         sc = fam.member(i)
-    except Exception:  # noqa: BLE001  the member itself is what failed: the error says so
+    except Exception:
         return row
-    return row | {"name": sc.name, "seed": sc.seed, "aircraft": sc.aircraft, "origin": sc.plan.origin.icao,
-                  "destination": sc.plan.destination.icao, "scenario_sha256": sc.digest(),
-                  "scenario_toml": sc.to_toml()}
+    return row | {
+        "name": sc.name,
+        "seed": sc.seed,
+        "aircraft": sc.aircraft,
+        "origin": sc.plan.origin.icao,
+        "destination": sc.plan.destination.icao,
+        "scenario_sha256": sc.digest(),
+        "scenario_toml": sc.to_toml(),
+    }
 
 
 def _remove_flight_files(out: Path, i: int) -> None:
@@ -253,8 +286,9 @@ def is_dataset(path: str | Path) -> bool:
     return (Path(path) / MANIFEST).is_file()
 
 
-def ok_flights(dataset: str | Path, purpose: str = "sweep", full_truth_for: str | None = None
-               ) -> tuple[list[dict], list[dict], dict]:
+def ok_flights(
+    dataset: str | Path, purpose: str = "sweep", full_truth_for: str | None = None
+) -> tuple[list[dict], list[dict], dict]:
     """A dataset's flights for ``purpose`` (a verb, for the error): the manifest rows of the flights
     that flew and of those that failed (each with its ``dataset``), in manifest order, and its
     dataset.json. An InputDataError if the folder is not a dataset or no flight of it flew, or, when
@@ -272,8 +306,10 @@ def ok_flights(dataset: str | Path, purpose: str = "sweep", full_truth_for: str 
     meta = json.loads(meta_p.read_text()) if meta_p.exists() else {}
     truth = (meta.get("options") or {}).get("truth")
     if full_truth_for is not None and truth != "full":
-        raise InputDataError(f"{dataset}: {full_truth_for} from its full-rate truth, and this dataset keeps truth "
-                             f"{truth!r}; make it with `flightmode dataset ... --truth full`")
+        raise InputDataError(
+            f"{dataset}: {full_truth_for} from its full-rate truth, and this dataset keeps truth "
+            f"{truth!r}; make it with `flightmode dataset ... --truth full`"
+        )
     return ok, failed, meta
 
 
@@ -285,17 +321,49 @@ def manifest_schema():
     from flightmode.labels import PHASES
 
     f64, i64, s = pa.float64(), pa.int64(), pa.string()
-    fields = [("flight_id", s), ("index", i64), ("status", s), ("error", s), ("attempts", i64), ("name", s),
-              ("seed", i64), ("aircraft", s), ("origin", s), ("destination", s), ("scenario_sha256", s),
-              ("scenario_toml", s), ("gate_to_gate_s", f64), ("airborne_s", f64),
-              *((f"phase_{p}_s", f64) for p in PHASES),
-              ("samples", i64), ("samples_in_flight_window", i64), ("samples_airborne", i64), ("samples_static", i64),
-              ("turbulence", s), ("landing_quality", s), ("placement", s), ("carrier_kind", s), ("sensor_preset", s),
-              ("inflight_placement", s), ("cabin_row", s), ("packing", s), ("stowed_yaw_deg", f64),
-              ("stowed_tilt_deg", f64), ("sensor_x_from_fuselage_deg", f64), ("stowage_json", s),
-              ("touchdown_sink_mps", f64), ("detector_false_static_count", i64), ("detector_false_static_s", f64),
-              ("detector_response_s", f64), ("detector_in_flight_checks", i64), ("samples_file", s),
-              ("samples_sha256", s), ("truth_file", s), ("truth_sha256", s), ("rrd_file", s)]
+    fields = [
+        ("flight_id", s),
+        ("index", i64),
+        ("status", s),
+        ("error", s),
+        ("attempts", i64),
+        ("name", s),
+        ("seed", i64),
+        ("aircraft", s),
+        ("origin", s),
+        ("destination", s),
+        ("scenario_sha256", s),
+        ("scenario_toml", s),
+        ("gate_to_gate_s", f64),
+        ("airborne_s", f64),
+        *((f"phase_{p}_s", f64) for p in PHASES),
+        ("samples", i64),
+        ("samples_in_flight_window", i64),
+        ("samples_airborne", i64),
+        ("samples_static", i64),
+        ("turbulence", s),
+        ("landing_quality", s),
+        ("placement", s),
+        ("carrier_kind", s),
+        ("sensor_preset", s),
+        ("inflight_placement", s),
+        ("cabin_row", s),
+        ("packing", s),
+        ("stowed_yaw_deg", f64),
+        ("stowed_tilt_deg", f64),
+        ("sensor_x_from_fuselage_deg", f64),
+        ("stowage_json", s),
+        ("touchdown_sink_mps", f64),
+        ("detector_false_static_count", i64),
+        ("detector_false_static_s", f64),
+        ("detector_response_s", f64),
+        ("detector_in_flight_checks", i64),
+        ("samples_file", s),
+        ("samples_sha256", s),
+        ("truth_file", s),
+        ("truth_sha256", s),
+        ("rrd_file", s),
+    ]
     return pa.schema(fields)
 
 
@@ -317,22 +385,32 @@ def _check_folder(out: Path, fam, options: Options, resume: bool, n: int) -> Non
         raise DatasetError(f"--out {out} is a file: give a folder")
     if out.exists() and any(out.iterdir()):
         if not marker.exists():
-            raise DatasetError(f"{out} is not empty and holds no flightmode dataset: choose an empty or new --out")
+            raise DatasetError(
+                f"{out} is not empty and holds no flightmode dataset: choose an empty or new --out"
+            )
         have = hashlib.sha256(marker.read_bytes()).hexdigest()
         if have != fam.digest():
-            raise DatasetError(f"{out} holds a dataset of another family (SHA-256 {have[:12]}, this one "
-                               f"{fam.digest()[:12]}): choose another --out")
+            raise DatasetError(
+                f"{out} holds a dataset of another family (SHA-256 {have[:12]}, this one "
+                f"{fam.digest()[:12]}): choose another --out"
+            )
         if not resume:
-            raise DatasetError(f"{out} already holds a dataset of this family: pass --resume to continue it, "
-                               "or choose another --out")
+            raise DatasetError(
+                f"{out} already holds a dataset of this family: pass --resume to continue it, "
+                "or choose another --out"
+            )
         info = json.loads(meta.read_text()) if meta.exists() else {}
         made = {k: v for k, v in info.get("options", {}).items() if k in options.files_dict()}
         if made and made != {k: options.files_dict()[k] for k in made}:
-            raise DatasetError(f"{out} was made with {made}, not {options.files_dict()}: resume with the same "
-                               "--truth and --rrd")
+            raise DatasetError(
+                f"{out} was made with {made}, not {options.files_dict()}: resume with the same "
+                "--truth and --rrd"
+            )
         held = read_manifest(out)
         if held and max(held) >= n:
-            raise DatasetError(f"{out} holds flights up to member {max(held)}: resume with --n {max(held) + 1} or more")
+            raise DatasetError(
+                f"{out} holds flights up to member {max(held)}: resume with --n {max(held) + 1} or more"
+            )
 
 
 def _claim_folder(out: Path, fam, options: Options) -> None:
@@ -348,8 +426,12 @@ def _claim_folder(out: Path, fam, options: Options) -> None:
     marker = out / "family.toml"
     if not marker.exists():
         atomic_text(fam.text, marker)
-    atomic_text(json.dumps({"family": fam.name, "family_sha256": fam.digest(), "options": options.as_dict()},
-                           indent=2), out / "dataset.json")
+    atomic_text(
+        json.dumps(
+            {"family": fam.name, "family_sha256": fam.digest(), "options": options.as_dict()}, indent=2
+        ),
+        out / "dataset.json",
+    )
 
 
 # ---------------------------------------------------------------------- the cluster
@@ -362,16 +444,19 @@ def _client(workers: int, scheduler: str | None):
     if scheduler is not None:
         try:
             client = Client(scheduler, timeout="5s")
-        except Exception as e:  # noqa: BLE001  OSError, TimeoutError, ValueError (a malformed address)...
-            raise DatasetError(f"the Dask scheduler at {scheduler} does not answer ({type(e).__name__}): start it "
-                               "with `dask scheduler` (address tcp://HOST:PORT), or drop --scheduler to run on "
-                               "this machine") from None
+        except Exception as e:
+            raise DatasetError(
+                f"the Dask scheduler at {scheduler} does not answer ({type(e).__name__}): start it "
+                "with `dask scheduler` (address tcp://HOST:PORT), or drop --scheduler to run on "
+                "this machine"
+            ) from None
         try:
             client.wait_for_workers(1, timeout=30)
-        except Exception:  # noqa: BLE001
+        except Exception:
             client.close()
-            raise DatasetError(f"the Dask scheduler at {scheduler} has no worker: start some with "
-                               f"`dask worker {scheduler}`") from None
+            raise DatasetError(
+                f"the Dask scheduler at {scheduler} has no worker: start some with `dask worker {scheduler}`"
+            ) from None
         return client, None
     # a failed flight is retried once by make_dataset itself: Dask must not re-run a task whose worker
     # died (its default allows 3); the workers' own tracebacks are silenced (the manifest records them);
@@ -379,15 +464,36 @@ def _client(workers: int, scheduler: str | None):
     # 11.2-11.9 s without; 9.1-10.1 s in a plain process): the workers' statistical profiler (it
     # samples the task thread's stack every 10 ms) and MALLOC_TRIM_THRESHOLD_=65536 (memory handed back
     # to the system at once, so every large array of a flight is fresh pages again)
-    with dask.config.set({"distributed.scheduler.allowed-failures": 0, "distributed.worker.profile.enabled": False,
-                          "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 2**30}):
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                               dashboard_address="127.0.0.1:0", memory_limit=0, silence_logs=logging.CRITICAL)
+    with dask.config.set(
+        {
+            "distributed.scheduler.allowed-failures": 0,
+            "distributed.worker.profile.enabled": False,
+            "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 2**30,
+        }
+    ):
+        cluster = LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address="127.0.0.1:0",
+            memory_limit=0,
+            silence_logs=logging.CRITICAL,
+        )
     return Client(cluster), cluster
 
 
-def check_request(family, n: int, out: str | Path, *, workers: int = 2, resume: bool = False, truth: str = "10hz",
-                  flight_timeout_s: float | None = None, rrd: bool = False):
+def check_request(
+    family,
+    n: int,
+    out: str | Path,
+    *,
+    workers: int = 2,
+    resume: bool = False,
+    truth: str = "10hz",
+    flight_timeout_s: float | None = None,
+    rrd: bool = False,
+):
     """(family, options, out folder) of a valid request; a :class:`DatasetError` (or ScenarioError for the
     family) naming what is wrong otherwise. Writes nothing."""
     from flightmode.scenarios.family import Family
@@ -407,15 +513,33 @@ def check_request(family, n: int, out: str | Path, *, workers: int = 2, resume: 
     return fam, options, out
 
 
-def make_dataset(family, n: int, out: str | Path, *, workers: int = 2, scheduler: str | None = None,
-                 resume: bool = False, truth: str = "10hz", flight_timeout_s: float | None = None, rrd: bool = False,
-                 on_start: Callable[[str | None, int], None] | None = None,
-                 on_flight: Callable[[dict], None] | None = None) -> dict[int, dict]:
+def make_dataset(
+    family,
+    n: int,
+    out: str | Path,
+    *,
+    workers: int = 2,
+    scheduler: str | None = None,
+    resume: bool = False,
+    truth: str = "10hz",
+    flight_timeout_s: float | None = None,
+    rrd: bool = False,
+    on_start: Callable[[str | None, int], None] | None = None,
+    on_flight: Callable[[dict], None] | None = None,
+) -> dict[int, dict]:
     """Make (or, with ``resume``, complete) the dataset of the family's members 0..n-1 in ``out``;
     returns the manifest rows by index. ``on_start(dashboard_url, flights_to_do)`` and
     ``on_flight(row)`` report progress (the CLI's progress bar)."""
-    fam, options, out = check_request(family, n, out, workers=workers, resume=resume, truth=truth,
-                                      flight_timeout_s=flight_timeout_s, rrd=rrd)
+    fam, options, out = check_request(
+        family,
+        n,
+        out,
+        workers=workers,
+        resume=resume,
+        truth=truth,
+        flight_timeout_s=flight_timeout_s,
+        rrd=rrd,
+    )
     client, cluster = _client(workers, scheduler)  # before writing: a dead scheduler leaves nothing behind
     try:
         with _folder_lock(out):
@@ -437,7 +561,9 @@ def _folder_lock(out: Path):
         try:
             fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            raise DatasetError(f"{out} is being written by another `flightmode dataset` run: wait for it") from None
+            raise DatasetError(
+                f"{out} is being written by another `flightmode dataset` run: wait for it"
+            ) from None
         yield
 
 
@@ -451,12 +577,21 @@ def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) 
         on_start(client.dashboard_link, len(todo))
     opts = options.as_dict()
     # task keys unique to this folder and these options: two datasets on one scheduler never share a task
-    token = hashlib.sha256(f"{fam.digest()}|{out.resolve()}|{json.dumps(opts, sort_keys=True)}".encode()).hexdigest()[:12]
+    token = hashlib.sha256(
+        f"{fam.digest()}|{out.resolve()}|{json.dumps(opts, sort_keys=True)}".encode()
+    ).hexdigest()[:12]
     fut_index, attempts, futures = {}, {}, []
 
     def submit(i: int):
-        f = client.submit(fly_member, fam.text, i, str(out.resolve()), opts, key=f"flight-{token}-{i}-a{attempts[i]}",
-                          pure=False)
+        f = client.submit(
+            fly_member,
+            fam.text,
+            i,
+            str(out.resolve()),
+            opts,
+            key=f"flight-{token}-{i}-a{attempts[i]}",
+            pure=False,
+        )
         fut_index[f.key] = i
         return f
 
@@ -470,7 +605,7 @@ def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) 
         detail = None
         try:
             row = f.result()
-        except Exception as e:  # noqa: BLE001  a flight's failure (or its worker's) never stops the dataset
+        except Exception as e:
             detail = f"{type(e).__name__}: {e}"
             if attempts[i] < ATTEMPTS:
                 attempts[i] += 1
@@ -484,8 +619,18 @@ def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) 
         rows[i] = row
         _write_manifest(out, rows)
         with open(timings, "a", encoding="utf-8") as t:
-            t.write(json.dumps({"flight_id": row["flight_id"], "status": row["status"],
-                                "gate_to_gate_s": row.get("gate_to_gate_s"), "error_detail": detail, **timing}) + "\n")
+            t.write(
+                json.dumps(
+                    {
+                        "flight_id": row["flight_id"],
+                        "status": row["status"],
+                        "gate_to_gate_s": row.get("gate_to_gate_s"),
+                        "error_detail": detail,
+                        **timing,
+                    }
+                )
+                + "\n"
+            )
         if on_flight is not None:
             on_flight(row | timing)
     from flightmode.scenarios.dataset_card import write_card
@@ -502,7 +647,9 @@ def open_dataset(path: str | Path, part: str = "samples"):
 
     root = Path(path) / part
     if not (Path(path) / MANIFEST).exists() or not root.is_dir():
-        raise InputDataError(f"{path}: not a flightmode dataset with {part} (make one with `flightmode dataset`)")
+        raise InputDataError(
+            f"{path}: not a flightmode dataset with {part} (make one with `flightmode dataset`)"
+        )
     return ds.dataset(root, format="parquet", partitioning="hive")
 
 
@@ -512,7 +659,12 @@ def windows(path: str | Path, length_s: float, step_s: float | None = None, labe
     of its samples carry it). Windows never straddle two flights; ``step_s`` defaults to ``length_s``.
     Checked at once (not at the first ``next``)."""
     step_s = length_s if step_s is None else step_s
-    if not (isinstance(length_s, (int, float)) and length_s > 0 and isinstance(step_s, (int, float)) and step_s > 0):
+    if not (
+        isinstance(length_s, (int, float))
+        and length_s > 0
+        and isinstance(step_s, (int, float))
+        and step_s > 0
+    ):
         raise InputDataError(f"windows: length_s {length_s!r} and step_s {step_s!r} must be positive seconds")
     rows = read_manifest(Path(path))
     if not rows:
@@ -542,5 +694,13 @@ def _windows(path: Path, rows: dict, length_s: float, step_s: float, label: str)
             yield x[a : a + n], bool(y[a : a + n].mean() > 0.5), r["flight_id"]
 
 
-__all__ = ["make_dataset", "fly_member", "read_manifest", "open_dataset", "windows", "DatasetError", "FlightTimeoutError",
-           "TRUTH_RATES"]
+__all__ = [
+    "make_dataset",
+    "fly_member",
+    "read_manifest",
+    "open_dataset",
+    "windows",
+    "DatasetError",
+    "FlightTimeoutError",
+    "TRUTH_RATES",
+]

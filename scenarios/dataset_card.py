@@ -20,16 +20,16 @@ LABELS = {
 }
 
 LOADERS = {
-    "pyarrow": '''import pyarrow.dataset as pads
+    "pyarrow": """import pyarrow.dataset as pads
 import flightmode.datasets
 ds = flightmode.datasets.open("{dir}")            # a pyarrow.dataset.Dataset (hive: aircraft column)
-table = ds.to_table(filter=pads.field("in_flight_window"))''',
-    "polars": '''import polars as pl
-df = pl.scan_parquet("{dir}/samples/**/*.parquet", hive_partitioning=True).collect()''',
-    "duckdb": '''import duckdb
-rows = duckdb.sql("SELECT aircraft, count(*) FROM read_parquet('{dir}/samples/*/*.parquet', hive_partitioning=true) GROUP BY aircraft").fetchall()''',
-    "datasets": '''from datasets import load_dataset
-hf = load_dataset("parquet", data_files="{dir}/samples/*/*.parquet", split="train")''',
+table = ds.to_table(filter=pads.field("in_flight_window"))""",
+    "polars": """import polars as pl
+df = pl.scan_parquet("{dir}/samples/**/*.parquet", hive_partitioning=True).collect()""",
+    "duckdb": """import duckdb
+rows = duckdb.sql("SELECT aircraft, count(*) FROM read_parquet('{dir}/samples/*/*.parquet', hive_partitioning=true) GROUP BY aircraft").fetchall()""",
+    "datasets": """from datasets import load_dataset
+hf = load_dataset("parquet", data_files="{dir}/samples/*/*.parquet", split="train")""",
 }
 
 
@@ -43,8 +43,13 @@ def _schema_lines(out: Path, rows: dict) -> list[str]:
     schema = pq.read_schema(out / ok[0]["samples_file"])
     for f in schema:
         unit = f.name.rsplit("_", 1)[-1] if "_" in f.name else ""
-        meaning = LABELS.get(f.name, {"g": "acceleration along the sensor axis, g (9.80665 m/s^2)",
-                                      "s": "time since the track's start, s"}.get(unit, "sensor output / identifier"))
+        meaning = LABELS.get(
+            f.name,
+            {
+                "g": "acceleration along the sensor axis, g (9.80665 m/s^2)",
+                "s": "time since the track's start, s",
+            }.get(unit, "sensor output / identifier"),
+        )
         if f.name.startswith("raw_"):
             meaning = "the sensor's raw output, counts (LSB) along that axis"
         if f.name == "flight_id":
@@ -65,20 +70,26 @@ def write_card(out: Path, fam, rows: dict, options) -> Path:
     for r in ok:
         by_type[r["aircraft"]] = by_type.get(r["aircraft"], 0) + 1
     lines = [
-        f"# {fam.name}: a flightmode dataset", "",
-        fam.description, "",
+        f"# {fam.name}: a flightmode dataset",
+        "",
+        fam.description,
+        "",
         f"Simulated, labelled accelerometer streams of a bag or parcel travelling gate to gate in an airliner "
         f"(JSBSim flights, flightmode's sensor models), made by `flightmode dataset`. Family SHA-256 "
         f"`{fam.digest()}` (the file is `family.toml`); member *i* is regenerated alone by "
-        f"`Family.from_toml('family.toml').member(i)`.", "",
-        "## Counts", "",
+        f"`Family.from_toml('family.toml').member(i)`.",
+        "",
+        "## Counts",
+        "",
         f"- flights: {len(ok)} ok, {len(failed)} failed (see `flights.parquet`, columns `status` and `error`)",
         f"- flight-hours (gate to gate): {hours:.2f}",
         f"- by type: {', '.join(f'{k} {v}' for k, v in sorted(by_type.items()))}",
         f"- samples: {sum(r['samples'] for r in ok):,} ({sum(r['samples_in_flight_window'] for r in ok):,} in the "
         "in-flight window)",
-        f"- truth: {options.truth}", "",
-        "## Files", "",
+        f"- truth: {options.truth}",
+        "",
+        "## Files",
+        "",
         "- `flights.parquet`: the manifest, one row per flight: id, seed, the scenario (`scenario_toml`, "
         "`scenario_sha256`), status and error, seconds per phase (`phase_<name>_s`), sample counts per label, "
         "where and how the bag lay in flight (`inflight_placement`, `cabin_row`, `packing`, "
@@ -88,17 +99,32 @@ def write_card(out: Path, fam, rows: dict, options) -> Path:
         "- `samples/aircraft=<type>/part-<flight_id>.parquet`: the accelerometer stream and its labels.",
         "- `truth/aircraft=<type>/part-<flight_id>.parquet`: the aircraft's state (positions, velocities, attitude, "
         "specific force ...; SI units in the column names), every FDM step (`full`) or every 12th (`10hz`: "
-        "instantaneous values, not averages).", "",
-        "## Samples schema", "", *_schema_lines(out, rows), "",
-        "## Labels", "", *[f"- `{k}`: {v}" for k, v in LABELS.items()], "",
-        "## Loading", "",
+        "instantaneous values, not averages).",
+        "",
+        "## Samples schema",
+        "",
+        *_schema_lines(out, rows),
+        "",
+        "## Labels",
+        "",
+        *[f"- `{k}`: {v}" for k, v in LABELS.items()],
+        "",
+        "## Loading",
+        "",
     ]
     for name, code in LOADERS.items():
         lines += [f"{name}:", "", "```python", code.format(dir=out.resolve()), "```", ""]
-    lines += ["## Versions", "", *[f"- {k} {v}" for k, v in sorted(package_versions().items())], "",
-              "## Licence", "",
-              "The data are simulated and free to use under CC-BY-4.0. Airport and runway data: OurAirports "
-              "(public domain).", ""]
+    lines += [
+        "## Versions",
+        "",
+        *[f"- {k} {v}" for k, v in sorted(package_versions().items())],
+        "",
+        "## Licence",
+        "",
+        "The data are simulated and free to use under CC-BY-4.0. Airport and runway data: OurAirports "
+        "(public domain).",
+        "",
+    ]
     path = out / "README.md"
     atomic_text("\n".join(lines), path)
     return path

@@ -13,8 +13,9 @@ from rich.table import Table
 
 from flightmode.detector import evaluation as ev
 from flightmode.detector.flight_mode import DetectorParams
-from flightmode.errors import DetectorError
 from flightmode.detector.statistics import table2
+from flightmode.errors import DetectorError
+
 
 def _e(x) -> str:
     if x is None or (isinstance(x, float) and math.isnan(x)):
@@ -22,16 +23,28 @@ def _e(x) -> str:
     return "0" if x == 0 else f"{x:.1e}"
 
 
-def print_evaluation(console: Console, e: ev.Evaluation, source: str, max_events: int = 15,
-                     title: str | None = None, calibration: list[tuple[str, str]] | None = None) -> None:
+def print_evaluation(
+    console: Console,
+    e: ev.Evaluation,
+    source: str,
+    max_events: int = 15,
+    title: str | None = None,
+    calibration: list[tuple[str, str]] | None = None,
+) -> None:
     """The evaluation as a table, then its false-static events. ``title`` and ``calibration`` (the
     rows saying what the threshold is and where it came from) default to the moving variance's."""
     p = e.params
     if title is None:
-        title = (f"flight-mode detector: {p.method.upper()}" + (f" weight {p.weight:g}" if p.method == "emv" else "")
-                 + f", W_s {p.window_s:g} s, T_sigma {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s")
+        title = (
+            f"flight-mode detector: {p.method.upper()}"
+            + (f" weight {p.weight:g}" if p.method == "emv" else "")
+            + f", W_s {p.window_s:g} s, T_sigma {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s"
+        )
     if calibration is None:
-        calibration = [("sigma^2 per axis", ", ".join(f"{v:.2e}" for v in e.sigma2) + " g^2"), ("sigma^2 from", source)]
+        calibration = [
+            ("sigma^2 per axis", ", ".join(f"{v:.2e}" for v in e.sigma2) + " g^2"),
+            ("sigma^2 from", source),
+        ]
     t = Table(title=title, show_header=False)
     t.add_column("quantity")
     t.add_column("value", justify="right")
@@ -60,23 +73,41 @@ def print_tables(console: Console, t_s, acc_g, labels: dict, p: DetectorParams, 
     rows = table2(window_s=p.window_s, fs_hz=p.fs_hz)
     out["table2"] = rows
     t = Table(title=f"Table 2 form: P_M of one check on white noise, N = {p.window} (seed 000 eq. 13)")
-    for c in ("T_sigma", "P_M Gaussian (eq. 13)", "P_M exact chi-square", "TimeError Gaussian", "TimeError exact"):
+    for c in (
+        "T_sigma",
+        "P_M Gaussian (eq. 13)",
+        "P_M exact chi-square",
+        "TimeError Gaussian",
+        "TimeError exact",
+    ):
         t.add_column(c, justify="right")
     for r in rows:
-        t.add_row(r["T_sigma"], _e(r["P_M_gaussian"]), _e(r["P_M_exact"]),
-                  f"{r['time_error_gaussian_s']:.1e} s", f"{r['time_error_exact_s']:.1e} s")
+        t.add_row(
+            r["T_sigma"],
+            _e(r["P_M_gaussian"]),
+            _e(r["P_M_exact"]),
+            f"{r['time_error_gaussian_s']:.1e} s",
+            f"{r['time_error_exact_s']:.1e} s",
+        )
     console.print(t)
 
     static = labels["sensor_static"]
     rows = ev.mv_vs_window(t_s, acc_g, static, p, sigma2)
     out["table3"] = rows
-    t = Table(title="Table 3 form: NMV average on truly static data (seed 000 Table 3 reads 0.6, 0.5, 0.51, 0.51)")
+    t = Table(
+        title="Table 3 form: NMV average on truly static data (seed 000 Table 3 reads 0.6, 0.5, 0.51, 0.51)"
+    )
     for c in ("W_s", "checks", "MV x, y, z (1e-5 g^2)", "mean (1e-5 g^2)", "mean / sigma^2"):
         t.add_column(c, justify="right")
     s2m = float(np.mean(sigma2))
     for r in rows:
-        t.add_row(f"{r['window_s']:g} s", str(r["checks"]), ", ".join(f"{v / 1e-5:.3f}" for v in r["mv_g2"]),
-                  f"{r['mv_mean_g2'] / 1e-5:.3f}", f"{r['mv_mean_g2'] / s2m:.2f}")
+        t.add_row(
+            f"{r['window_s']:g} s",
+            str(r["checks"]),
+            ", ".join(f"{v / 1e-5:.3f}" for v in r["mv_g2"]),
+            f"{r['mv_mean_g2'] / 1e-5:.3f}",
+            f"{r['mv_mean_g2'] / s2m:.2f}",
+        )
     console.print(t)
 
     rows = ev.pfa_table(t_s, acc_g, labels, p, sigma2)
@@ -85,10 +116,15 @@ def print_tables(console: Console, t_s, acc_g, labels: dict, p: DetectorParams, 
     t.add_column("")
     for r in rows:
         t.add_column(f"{r['T_sigma']:g}s2/{r['T_th_s']:g}s", justify="right")
-    for key, name in (("P_FA_x", "P_FA^x"), ("P_FA_y", "P_FA^y"), ("P_FA_z", "P_FA^z"),
-                      ("P_FA_t", "P_FA^t (product)"), ("P_FA_t_joint", "P_FA^t (joint, observed)"),
-                      ("P_FA", "P_FA = (P_FA^t)^(T_th/W_s)"),
-                      ("observed_final_static_rate", "final statics / checks (observed)")):
+    for key, name in (
+        ("P_FA_x", "P_FA^x"),
+        ("P_FA_y", "P_FA^y"),
+        ("P_FA_z", "P_FA^z"),
+        ("P_FA_t", "P_FA^t (product)"),
+        ("P_FA_t_joint", "P_FA^t (joint, observed)"),
+        ("P_FA", "P_FA = (P_FA^t)^(T_th/W_s)"),
+        ("observed_final_static_rate", "final statics / checks (observed)"),
+    ):
         t.add_row(name, *[_e(r[key]) for r in rows])
     console.print(t)
 
@@ -98,13 +134,17 @@ def print_tables(console: Console, t_s, acc_g, labels: dict, p: DetectorParams, 
     except DetectorError:
         rows = []
     out["turn_on"] = rows
-    t = Table(title=f"Turn-on response on static data (section 7.1, Fig. 18; EMV starts at {p.emv_initial_k:g} sigma^2)")
+    t = Table(
+        title=f"Turn-on response on static data (section 7.1, Fig. 18; EMV starts at {p.emv_initial_k:g} sigma^2)"
+    )
     for c in ("method", "MV below T_sigma", "first temporary static", "final static"):
         t.add_column(c, justify="right")
     fmt = lambda v: "never" if v is None else f"{v:.2f} s"  # noqa: E731
     for r in rows:
         name = "NMV" if r["method"] == "nmv" else f"EMV w={r['weight']:g}"
-        t.add_row(name, fmt(r["mv_below_threshold_s"]), fmt(r["first_temporary_static_s"]), fmt(r["response_s"]))
+        t.add_row(
+            name, fmt(r["mv_below_threshold_s"]), fmt(r["first_temporary_static_s"]), fmt(r["response_s"])
+        )
     console.print(t)
     return out
 
@@ -117,28 +157,45 @@ def print_redundant(console: Console, r, sigma2_source: str) -> None:
     """The redundant rule beside the accelerometer alone (:class:`flightmode.detector.pressure.RedundantEvaluation`)."""
     a, c, s, pp = r.accel, r.combined, r.sources, r.pressure_params
     p = a.params
-    t = Table("", "accelerometer alone", "accelerometer OR pressure (suspend), AND (resume)",
-              title=f"{p.method.upper()} W_s {p.window_s:g} s, {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s "
-                    f"(sigma^2: {sigma2_source}); pressure at {pp.fs_hz:g} Hz: |rate| <= {pp.rate_threshold_pa_s:g} Pa/s over "
-                    f"{pp.window_s:g} s, level within "
-                    + ("no margin" if pp.level_margin_pa is None else f"{pp.level_margin_pa / 100:g} hPa")
-                    + " of the ground reference"
-                    + ("" if pp.arrival_ground_pa is None else f" or of the destination's ({pp.arrival_ground_pa / 100:.0f} hPa)")
-                    + f", for {pp.hold_s:g} s",
-              title_justify="left")
+    t = Table(
+        "",
+        "accelerometer alone",
+        "accelerometer OR pressure (suspend), AND (resume)",
+        title=f"{p.method.upper()} W_s {p.window_s:g} s, {p.k_sigma:g} sigma^2, T_th {p.time_threshold_s:g} s "
+        f"(sigma^2: {sigma2_source}); pressure at {pp.fs_hz:g} Hz: |rate| <= {pp.rate_threshold_pa_s:g} Pa/s over "
+        f"{pp.window_s:g} s, level within "
+        + ("no margin" if pp.level_margin_pa is None else f"{pp.level_margin_pa / 100:g} hPa")
+        + " of the ground reference"
+        + (
+            ""
+            if pp.arrival_ground_pa is None
+            else f" or of the destination's ({pp.arrival_ground_pa / 100:.0f} hPa)"
+        )
+        + f", for {pp.hold_s:g} s",
+        title_justify="left",
+    )
     t.add_row("false statics in the in-flight window", str(a.false_static_count), str(c.false_static_count))
     t.add_row("false static time", f"{a.false_static_s:g} s", f"{c.false_static_s:g} s")
     t.add_row("missed static outside the window", f"{a.missed_static_s:g} s", f"{c.missed_static_s:g} s")
     t.add_row("response at the gate", _s(a.response_s), _s(c.response_s))
     console.print(t)
     fs = s.first_suspend_s
-    console.print(f"after pushback, first to suspend: {s.first_source} (accelerometer {_s(fs['accelerometer'])}, "
-                  f"pressure {_s(fs['pressure'])} after t = 0)", highlight=False)
+    console.print(
+        f"after pushback, first to suspend: {s.first_source} (accelerometer {_s(fs['accelerometer'])}, "
+        f"pressure {_s(fs['pressure'])} after t = 0)",
+        highlight=False,
+    )
     h, hp = s.held_by, s.held_by_pressure
-    console.print(f"cruise, {s.cruise_checks} checks: suspension held by the accelerometer only {h['accelerometer_only']}, "
-                  f"the pressure only {h['pressure_only']} (rate {hp['rate']}, level {hp['level']}, hold {hp['hold']}), "
-                  f"both {h['both']}, neither {h['neither']}", highlight=False)
+    console.print(
+        f"cruise, {s.cruise_checks} checks: suspension held by the accelerometer only {h['accelerometer_only']}, "
+        f"the pressure only {h['pressure_only']} (rate {hp['rate']}, level {hp['level']}, hold {hp['hold']}), "
+        f"both {h['both']}, neither {h['neither']}",
+        highlight=False,
+    )
     if s.resume_s["combined"] is not None:
         rs = s.resume_s
-        console.print(f"at the gate, from the bag at rest: accelerometer static after {_s(rs['accelerometer'])}, "
-                      f"pressure after {_s(rs['pressure'])}, transmission after {_s(rs['combined'])}", highlight=False)
+        console.print(
+            f"at the gate, from the bag at rest: accelerometer static after {_s(rs['accelerometer'])}, "
+            f"pressure after {_s(rs['pressure'])}, transmission after {_s(rs['combined'])}",
+            highlight=False,
+        )

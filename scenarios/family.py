@@ -67,7 +67,15 @@ SECTIONS = {
     "routes": {"pairs", "airports", "countries", "max_km"},
     "turbulence": {"patch_probability", "severity", "patch_s"},
     "landing": {"quality"},
-    "carrier": {"kind", "placement", "handled_in_cruise", "truck_s", "terminal_walk_s", "gate_walk_s", "gate_rest_s"},
+    "carrier": {
+        "kind",
+        "placement",
+        "handled_in_cruise",
+        "truck_s",
+        "terminal_walk_s",
+        "gate_walk_s",
+        "gate_rest_s",
+    },
     "sensor": {"preset", "vibration_level", "baro", "gyro"},
 }
 EN_ROUTE_CLIMB_MPS = 10.0  # the estimate of the top of climb and descent for placing a patch (WRAP: 5-13 m/s)
@@ -87,27 +95,39 @@ class Weighted:
 
 def _weighted(source: str, path: str, table: Any, allowed) -> Weighted:
     if not isinstance(table, Mapping) or not table:
-        raise ScenarioError(f"{source}: {path} must be a table of choice = weight, e.g. {{ A320 = 2, 737 = 1 }}")
+        raise ScenarioError(
+            f"{source}: {path} must be a table of choice = weight, e.g. {{ A320 = 2, 737 = 1 }}"
+        )
     names, w = [], []
     for k, v in table.items():
         k = str(k)
         if allowed is not None and k not in allowed:
-            raise ScenarioError(f"{source}: {path}: unknown choice '{k}'{did_you_mean(k, allowed)}; "
-                                f"allowed: {', '.join(map(str, allowed))}")
+            raise ScenarioError(
+                f"{source}: {path}: unknown choice '{k}'{did_you_mean(k, allowed)}; "
+                f"allowed: {', '.join(map(str, allowed))}"
+            )
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
             raise ScenarioError(f"{source}: {path}.{k} = {v!r}: a weight must be a number >= 0")
         names.append(k)
         w.append(float(v))
     total = sum(w)
     if total <= 0:
-        raise ScenarioError(f"{source}: {path}: the weights sum to {total:g}; give at least one positive weight")
+        raise ScenarioError(
+            f"{source}: {path}: the weights sum to {total:g}; give at least one positive weight"
+        )
     return Weighted(tuple(names), tuple(x / total for x in w))
 
 
 def _range(source: str, path: str, v: Any, lo: float, hi: float) -> tuple[float, float]:
-    if (not isinstance(v, list) or len(v) != 2 or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v)
-            or not lo <= v[0] <= v[1] <= hi):
-        raise ScenarioError(f"{source}: {path} = {v!r}: give [low, high] with {lo:g} <= low <= high <= {hi:g}")
+    if (
+        not isinstance(v, list)
+        or len(v) != 2
+        or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v)
+        or not lo <= v[0] <= v[1] <= hi
+    ):
+        raise ScenarioError(
+            f"{source}: {path} = {v!r}: give [low, high] with {lo:g} <= low <= high <= {hi:g}"
+        )
     return float(v[0]), float(v[1])
 
 
@@ -156,16 +176,22 @@ class Family:
             raise ScenarioError(f"{source}: not valid TOML: {e}") from None
         for sec, table in doc.items():
             if not isinstance(table, dict):
-                raise ScenarioError(f"{source}: [{sec}] must be a table (a [{sec}] header), not {type(table).__name__}")
+                raise ScenarioError(
+                    f"{source}: [{sec}] must be a table (a [{sec}] header), not {type(table).__name__}"
+                )
             if sec not in SECTIONS:
-                raise ScenarioError(f"{source}: unknown section [{sec}]{did_you_mean(sec, SECTIONS)}; "
-                                    f"sections: {', '.join(SECTIONS)}")
+                raise ScenarioError(
+                    f"{source}: unknown section [{sec}]{did_you_mean(sec, SECTIONS)}; "
+                    f"sections: {', '.join(SECTIONS)}"
+                )
             keys = SECTIONS[sec]
             if keys is not None:
                 for k in table:
                     if k not in keys:
-                        raise ScenarioError(f"{source}: unknown key [{sec}].{k}{did_you_mean(k, keys)}; "
-                                            f"keys: {', '.join(sorted(keys))}")
+                        raise ScenarioError(
+                            f"{source}: unknown key [{sec}].{k}{did_you_mean(k, keys)}; "
+                            f"keys: {', '.join(sorted(keys))}"
+                        )
         for sec in ("family", "aircraft", "routes"):
             if sec not in doc:
                 raise ScenarioError(f"{source}: missing section [{sec}]")
@@ -188,29 +214,41 @@ class Family:
 
         for pr in given:
             if not (isinstance(pr, list) and len(pr) == 2 and all(isinstance(c, str) for c in pr)):
-                raise ScenarioError(f"{source}: [routes].pairs: {pr!r} is not a pair of ICAO codes like [\"LSGG\", \"EGLL\"]")
+                raise ScenarioError(
+                    f'{source}: [routes].pairs: {pr!r} is not a pair of ICAO codes like ["LSGG", "EGLL"]'
+                )
             a, b = ap.airport(pr[0]), ap.airport(pr[1])
             if gc_distance_m(a.lat_deg, a.lon_deg, b.lat_deg, b.lon_deg) < MIN_ROUTE_M:
-                raise ScenarioError(f"{source}: [routes].pairs: {a.icao} to {b.icao} is shorter than "
-                                    f"{MIN_ROUTE_M / 1000:.0f} km; drop it")
+                raise ScenarioError(
+                    f"{source}: [routes].pairs: {a.icao} to {b.icao} is shorter than "
+                    f"{MIN_ROUTE_M / 1000:.0f} km; drop it"
+                )
             pairs.append((a.icao, b.icao))
         for c in codes:
             if not isinstance(c, str):
-                raise ScenarioError(f"{source}: [routes].airports: {c!r} is not an ICAO code like \"LSGG\"")
+                raise ScenarioError(f'{source}: [routes].airports: {c!r} is not an ICAO code like "LSGG"')
         airports_ = tuple(ap.airport(c).icao for c in codes)
         countries = routes.get("countries", [])
         if not isinstance(countries, list) or not all(isinstance(c, str) for c in countries):
-            raise ScenarioError(f"{source}: [routes].countries must be a list of ISO 3166 codes like [\"CH\", \"AT\"]")
+            raise ScenarioError(
+                f'{source}: [routes].countries must be a list of ISO 3166 codes like ["CH", "AT"]'
+            )
         known = {a.country for a in ap.airports().values()}
         for c in countries:
             if c.upper() not in known:
-                raise ScenarioError(f"{source}: [routes].countries: unknown country code '{c}'{did_you_mean(c.upper(), known)}")
+                raise ScenarioError(
+                    f"{source}: [routes].countries: unknown country code '{c}'{did_you_mean(c.upper(), known)}"
+                )
         want = {c.upper() for c in countries}
-        region = sorted(a.icao for a in ap.airports().values() if a.country in want and a.kind == "large_airport")
+        region = sorted(
+            a.icao for a in ap.airports().values() if a.country in want and a.kind == "large_airport"
+        )
         airports_ = tuple(dict.fromkeys(airports_ + tuple(region)))  # the list's order, then the region's
         if not pairs and len(airports_) < 2:
-            raise ScenarioError(f"{source}: [routes] needs pairs, or at least two airports (or countries' large "
-                                "airports) to pair at random")
+            raise ScenarioError(
+                f"{source}: [routes] needs pairs, or at least two airports (or countries' large "
+                "airports) to pair at random"
+            )
         max_km = routes.get("max_km", math.inf)
         if isinstance(max_km, bool) or not isinstance(max_km, (int, float)) or max_km <= 0:
             raise ScenarioError(f"{source}: [routes].max_km = {max_km!r}: must be a positive number of km")
@@ -220,34 +258,68 @@ class Family:
             raise ScenarioError(f"{source}: [turbulence].patch_probability = {pp!r}: must be within 0..1")
         carrier_keys = SPEC["carrier"]
         out = cls(
-            name=str(fam["name"]), description=str(fam.get("description", "")), seed=seed,
+            name=str(fam["name"]),
+            description=str(fam.get("description", "")),
+            seed=seed,
             aircraft=_weighted(source, "[aircraft]", doc["aircraft"], sorted(PROFILES)),
-            pairs=tuple(pairs), airports=airports_, max_km=float(max_km), patch_probability=float(pp),
-            severity=_weighted(source, "[turbulence].severity", turb.get("severity", {"light": 1}), SEVERITIES[1:]),
+            pairs=tuple(pairs),
+            airports=airports_,
+            max_km=float(max_km),
+            patch_probability=float(pp),
+            severity=_weighted(
+                source, "[turbulence].severity", turb.get("severity", {"light": 1}), SEVERITIES[1:]
+            ),
             patch_s=_range(source, "[turbulence].patch_s", turb.get("patch_s", [120, 600]), 1, 7200),
-            landing=_weighted(source, "[landing].quality", land.get("quality", {"normal": 1}),
-                              SPEC["landing"]["quality"].choices),
-            kind=_weighted(source, "[carrier].kind", car.get("kind", {"handbag": 1}), carrier_keys["kind"].choices),
-            placement=_weighted(source, "[carrier].placement", car.get("placement", {"under_seat": 1}),
-                                [p for p in carrier_keys["placement"].choices if p != "hold"]),
-            handled=_weighted(source, "[carrier].handled_in_cruise", car.get("handled_in_cruise", {"0": 1}),
-                              [str(n) for n in range(21)]),
+            landing=_weighted(
+                source,
+                "[landing].quality",
+                land.get("quality", {"normal": 1}),
+                SPEC["landing"]["quality"].choices,
+            ),
+            kind=_weighted(
+                source, "[carrier].kind", car.get("kind", {"handbag": 1}), carrier_keys["kind"].choices
+            ),
+            placement=_weighted(
+                source,
+                "[carrier].placement",
+                car.get("placement", {"under_seat": 1}),
+                [p for p in carrier_keys["placement"].choices if p != "hold"],
+            ),
+            handled=_weighted(
+                source,
+                "[carrier].handled_in_cruise",
+                car.get("handled_in_cruise", {"0": 1}),
+                [str(n) for n in range(21)],
+            ),
             truck_s=_range(source, "[carrier].truck_s", car.get("truck_s", [0, 0]), 0, 86400),
-            walks=tuple((k, _range(source, f"[carrier].{k}", car[k], 0, 86400))
-                        for k in ("terminal_walk_s", "gate_walk_s", "gate_rest_s") if k in car),
-            sensor=_weighted(source, "[sensor].preset", sen.get("preset", {"lis302dl-logged16": 1}),
-                             SPEC["sensor"]["preset"].choices),
-            vibration_level=(_range(source, "[sensor].vibration_level", sen["vibration_level"], 0.05, 20)
-                             if "vibration_level" in sen else None),
+            walks=tuple(
+                (k, _range(source, f"[carrier].{k}", car[k], 0, 86400))
+                for k in ("terminal_walk_s", "gate_walk_s", "gate_rest_s")
+                if k in car
+            ),
+            sensor=_weighted(
+                source,
+                "[sensor].preset",
+                sen.get("preset", {"lis302dl-logged16": 1}),
+                SPEC["sensor"]["preset"].choices,
+            ),
+            vibration_level=(
+                _range(source, "[sensor].vibration_level", sen["vibration_level"], 0.05, 20)
+                if "vibration_level" in sen
+                else None
+            ),
             baro=_preset(source, "baro", sen.get("baro"), BARO_PRESETS),
             gyro=_preset(source, "gyro", sen.get("gyro"), GYRO_PRESETS),
-            text=text, source=source,
+            text=text,
+            source=source,
         )
         for t in out.aircraft.choices:  # every type with a positive weight needs a route it can fly
             if out.aircraft.p[out.aircraft.choices.index(t)] > 0 and not out.routes_for(t):
-                raise ScenarioError(f"{source}: no route of [routes] suits the {t} (range "
-                                    f"{PROFILES[t].range_km:,.0f} km, runways of {PROFILES[t].min_runway_m:.0f} m); "
-                                    "add a pair it can fly or drop it from [aircraft]")
+                raise ScenarioError(
+                    f"{source}: no route of [routes] suits the {t} (range "
+                    f"{PROFILES[t].range_km:,.0f} km, runways of {PROFILES[t].min_runway_m:.0f} m); "
+                    "add a pair it can fly or drop it from [aircraft]"
+                )
         return out
 
     @classmethod
@@ -263,9 +335,15 @@ class Family:
     def builtin(cls, name: str) -> Family:
         names = builtin_families()
         if name not in names:
-            raise ScenarioError(f"unknown family '{name}'{did_you_mean(name, names)}; built-in families: "
-                                f"{', '.join(names)} (or give the path of a family .toml file)")
-        text = resources.files("flightmode.scenarios.families").joinpath(f"{name}.toml").read_text(encoding="utf-8")
+            raise ScenarioError(
+                f"unknown family '{name}'{did_you_mean(name, names)}; built-in families: "
+                f"{', '.join(names)} (or give the path of a family .toml file)"
+            )
+        text = (
+            resources.files("flightmode.scenarios.families")
+            .joinpath(f"{name}.toml")
+            .read_text(encoding="utf-8")
+        )
         return cls.from_toml_text(text, f"family '{name}'")
 
     @classmethod
@@ -305,17 +383,26 @@ class Family:
         r = s.rng("carrier")
         kind = self.kind.draw(r)
         if kind == "parcel":
-            carrier = {"kind": "parcel", "placement": "hold", "truck_s": round(float(r.uniform(*self.truck_s)), 1)}
+            carrier = {
+                "kind": "parcel",
+                "placement": "hold",
+                "truck_s": round(float(r.uniform(*self.truck_s)), 1),
+            }
         else:
-            carrier = {"kind": "handbag", "placement": self.placement.draw(r),
-                       "handled_in_cruise": int(self.handled.draw(r))}
+            carrier = {
+                "kind": "handbag",
+                "placement": self.placement.draw(r),
+                "handled_in_cruise": int(self.handled.draw(r)),
+            }
             carrier |= {k: round(float(r.uniform(*lim)), 1) for k, lim in self.walks}
         changes["carrier"] = carrier
         r = s.rng("sensor")
         changes["sensor"] = {"preset": self.sensor.draw(r)}
         if self.vibration_level is not None:  # drawn after the preset: adding it moves no preset
             lo, hi = self.vibration_level
-            changes["sensor"]["vibration_level"] = round(float(math.exp(r.uniform(math.log(lo), math.log(hi)))), 4)
+            changes["sensor"]["vibration_level"] = round(
+                float(math.exp(r.uniform(math.log(lo), math.log(hi)))), 4
+            )
         if self.baro is not None:  # fixed, no draw: fitting one moves no other member's numbers
             changes["sensor"]["baro"] = self.baro
         if self.gyro is not None:
@@ -332,8 +419,10 @@ def _preset(source: str, key: str, name: Any, presets: Mapping[str, Any]) -> str
     if name is None:
         return None
     if not isinstance(name, str) or name not in presets:
-        raise ScenarioError(f"{source}: [sensor].{key} = {name!r}: a preset, one of {', '.join(presets)}"
-                            f"{did_you_mean(str(name), presets)}")
+        raise ScenarioError(
+            f"{source}: [sensor].{key} = {name!r}: a preset, one of {', '.join(presets)}"
+            f"{did_you_mean(str(name), presets)}"
+        )
     return name
 
 
@@ -346,14 +435,22 @@ def _patch(sc, r, patch_s: tuple[float, float], severity: Weighted) -> dict:
     p = sc.plan
     airborne = route_length_m(p) / EN_ROUTE_SPEED_MPS
     toc = (p.cruise_alt_m - p.origin.elevation_m) / EN_ROUTE_CLIMB_MPS
-    tod = airborne - (p.cruise_alt_m - p.destination.elevation_m) / math.tan(math.radians(p.descent_angle_deg)) / EN_ROUTE_SPEED_MPS
+    tod = (
+        airborne
+        - (p.cruise_alt_m - p.destination.elevation_m)
+        / math.tan(math.radians(p.descent_angle_deg))
+        / EN_ROUTE_SPEED_MPS
+    )
     duration = float(r.uniform(*patch_s))
     lo, hi = toc, tod - duration
     if hi <= lo:  # no cruise long enough: the middle third, the patch shortened to fit
         lo, hi = airborne / 3.0, airborne / 3.0
         duration = min(duration, airborne / 3.0)
-    return {"start_s": round(float(r.uniform(lo, hi)) if hi > lo else lo, 1), "duration_s": round(duration, 1),
-            "severity": severity.draw(r)}
+    return {
+        "start_s": round(float(r.uniform(lo, hi)) if hi > lo else lo, 1),
+        "duration_s": round(duration, 1),
+        "severity": severity.draw(r),
+    }
 
 
 @lru_cache(maxsize=64)

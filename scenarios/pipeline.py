@@ -37,8 +37,8 @@ if TYPE_CHECKING:
     from flightmode.sim.flight.track import FlightTrack
     from flightmode.sim.sensor.accelerometer import AccelerometerPreset
     from flightmode.sim.sensor.carrier import CarrierSpec
-    from flightmode.sim.sensor.recording import Recording
     from flightmode.sim.sensor.gyroscope import GyroSpec
+    from flightmode.sim.sensor.recording import Recording
 
 STAGES = ("fly", "sense", "detect", "path", "write")
 
@@ -49,7 +49,9 @@ class PathResult:
 
     estimates: dict  # t_s, truth, acc, mask, tridiagonal, recurrence (world frame, m)
     rows: list[dict]  # one per method: max / RMS / final error (m)
-    random_walk_m: float  # the t^1.5 law's RMS position error for the sensor's noise (its 0 Hz density) over the span
+    random_walk_m: (
+        float  # the t^1.5 law's RMS position error for the sensor's noise (its 0 Hz density) over the span
+    )
     offset_drift_m: float  # 0.5 |b| t^2: what the unit's zero-g offset b alone does over the span
     span_s: float
 
@@ -100,8 +102,14 @@ def sensor_preset(sensor: SensorChoice | str | AccelerometerPreset) -> Accelerom
 
 
 # ---------------------------------------------------------------------- the stages
-def fly(scenario: Scenario, streams: Streams, *, progress: Callable[[float, str], None] | None = None,
-        workdir: Path | None = None, stop_after_s: float | None = None) -> FlightTrack:
+def fly(
+    scenario: Scenario,
+    streams: Streams,
+    *,
+    progress: Callable[[float, str], None] | None = None,
+    workdir: Path | None = None,
+    stop_after_s: float | None = None,
+) -> FlightTrack:
     """Fly the scenario's plan gate to gate in JSBSim (``streams``: the run's flight streams;
     ``stop_after_s``: only the first that many simulated seconds, the exact prefix of the flight)."""
     from flightmode.sim.flight.simulate import fly as _fly
@@ -119,9 +127,15 @@ def baro_preset(sensor: SensorChoice | str | AccelerometerPreset | None):
     return p if sensor.baro_odr_hz is None else with_odr(p, sensor.baro_odr_hz)
 
 
-def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str | AccelerometerPreset,
-          streams: Streams | np.random.Generator | int, *, gyro: GyroSpec | None = None,
-          fitted: SensorChoice | None = None) -> Recording:
+def sense(
+    track: FlightTrack,
+    carrier: CarrierSpec,
+    sensor: SensorChoice | str | AccelerometerPreset,
+    streams: Streams | np.random.Generator | int,
+    *,
+    gyro: GyroSpec | None = None,
+    fitted: SensorChoice | None = None,
+) -> Recording:
     """What the bag's sensors record of ``track`` (``streams``: the run's sensor streams): the
     accelerometer, and the barometer and gyroscope that the ``[sensor]`` choice fits (``fitted``: take
     them from this choice instead, e.g. the scenario's when ``sensor`` names another accelerometer;
@@ -134,11 +148,20 @@ def sense(track: FlightTrack, carrier: CarrierSpec, sensor: SensorChoice | str |
 
         gyro = get_preset(parts.gyro)
     level = getattr(sensor, "vibration_level", None)
-    return _sense(track, carrier, sensor_preset(sensor), streams, gyro=gyro,
-                  vibration_level=1.0 if level is None else float(level), baro=baro_preset(parts))
+    return _sense(
+        track,
+        carrier,
+        sensor_preset(sensor),
+        streams,
+        gyro=gyro,
+        vibration_level=1.0 if level is None else float(level),
+        baro=baro_preset(parts),
+    )
 
 
-def unit_sigma2(preset: str, odr_hz: float, unit: dict | None, window: int, rng: np.random.Generator) -> np.ndarray:
+def unit_sigma2(
+    preset: str, odr_hz: float, unit: dict | None, window: int, rng: np.random.Generator
+) -> np.ndarray:
     """sigma^2 per axis as the tracker's maker calibrates it on the bench (seed 000 section 5.1):
     60 s of the unit (a Recording's ``unit`` dict; None: a perfect one) lying still
     (:func:`~flightmode.sim.sensor.accelerometer.bench_static`), then
@@ -160,12 +183,16 @@ def _bench_sensor(source: str, info: dict | None) -> dict | None:
     from flightmode.errors import DetectorError
 
     if source not in SIGMA2_SOURCES:
-        raise DetectorError(f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}{did_you_mean(source, SIGMA2_SOURCES)}")
+        raise DetectorError(
+            f"--sigma2-from {source!r}: use one of {', '.join(SIGMA2_SOURCES)}{did_you_mean(source, SIGMA2_SOURCES)}"
+        )
     if source == "rest":
         return None
     if info is None or "sensor" not in info:
-        raise DetectorError("--sigma2-from preset needs the run.json beside samples.parquet; "
-                            "use --sigma2-from rest for a bare samples file")
+        raise DetectorError(
+            "--sigma2-from preset needs the run.json beside samples.parquet; "
+            "use --sigma2-from rest for a bare samples file"
+        )
     return info["sensor"]
 
 
@@ -183,15 +210,21 @@ def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarr
     s = _bench_sensor(source, info)
     if s is not None:
         p = dataclasses.replace(get_preset(s["preset"]), odr_hz=float(s["odr_hz"]))
-        m = bench_static(p, UnitDraw.from_dict(s.get("unit")), streams_of(int(info["seed"])).rng("detector/bench"))
+        m = bench_static(
+            p, UnitDraw.from_dict(s.get("unit")), streams_of(int(info["seed"])).rng("detector/bench")
+        )
         return m.acc_g, None, f"bench recording of this {s['preset']} unit (60 s static)"
     static = np.asarray(columns["sensor_static"], bool).copy()
     window = np.asarray(columns["in_flight_window"], bool)
     if window.any():
-        static[int(np.flatnonzero(window)[0]):] = False  # only what a tracker saw before the flight
+        static[int(np.flatnonzero(window)[0]) :] = False  # only what a tracker saw before the flight
     a, b = longest_static_run(static)
     gyr = columns.get("gyro_dps")
-    return columns["acc_g"][a:b], None if gyr is None else gyr[a:b], f"{b - a} truly static samples before the flight"
+    return (
+        columns["acc_g"][a:b],
+        None if gyr is None else gyr[a:b],
+        f"{b - a} truly static samples before the flight",
+    )
 
 
 def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) -> tuple[np.ndarray, str]:
@@ -204,21 +237,31 @@ def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) ->
 
     s = _bench_sensor(source, info)
     if s is not None:
-        s2 = unit_sigma2(s["preset"], float(s["odr_hz"]), s.get("unit"), window,
-                         streams_of(int(info["seed"])).rng("detector/bench"))
+        s2 = unit_sigma2(
+            s["preset"],
+            float(s["odr_hz"]),
+            s.get("unit"),
+            window,
+            streams_of(int(info["seed"])).rng("detector/bench"),
+        )
         return s2, f"bench calibration of this {s['preset']} unit (60 s static, quantisation floor)"
     for name in ("sensor_static", "in_flight_window"):
         if name not in columns:
             raise DetectorError(f"--sigma2-from rest: the samples have no {name} column")
     lsb = get_preset(info["sensor"]["preset"]).lsb_g if info is not None and info.get("sensor") else None
-    s2, n = sigma2_from_rest(columns["acc_g"], columns["sensor_static"], columns["in_flight_window"], window, lsb)
+    s2, n = sigma2_from_rest(
+        columns["acc_g"], columns["sensor_static"], columns["in_flight_window"], window, lsb
+    )
     return s2, f"{n} truly static samples before the flight"
 
 
 def _labels(recording: Recording) -> dict:
     """The labels a detector is scored against (:mod:`flightmode.detector.evaluation`)."""
-    return {"in_flight_window": recording.in_flight_window, "sensor_static": recording.sensor_static,
-            "phase": recording.phase}
+    return {
+        "in_flight_window": recording.in_flight_window,
+        "sensor_static": recording.sensor_static,
+        "phase": recording.phase,
+    }
 
 
 def detect(recording: Recording, rng: np.random.Generator) -> Evaluation:
@@ -245,15 +288,18 @@ def pressure_params(scenario: Scenario, baro_odr_hz: float, **changes) -> Pressu
     return p
 
 
-def detect_redundant(recording: Recording, detection: Evaluation, params: PressureParams) -> RedundantEvaluation:
+def detect_redundant(
+    recording: Recording, detection: Evaluation, params: PressureParams
+) -> RedundantEvaluation:
     """The redundant rule (:func:`flightmode.detector.pressure.evaluate_redundant`) on a recording with
     a barometer: seed 000's recommended detector (``detection``'s parameters and sigma^2) OR the
     pressure detector (``params``, e.g. :func:`pressure_params`) to suspend, both to resume."""
     from flightmode.detector.pressure import evaluate_redundant
 
     tb, pb = recording.baro_stream
-    return evaluate_redundant(recording.t_s, recording.acc_g, tb, pb, _labels(recording), detection.params,
-                              detection.sigma2, params)
+    return evaluate_redundant(
+        recording.t_s, recording.acc_g, tb, pb, _labels(recording), detection.params, detection.sigma2, params
+    )
 
 
 def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
@@ -360,8 +406,11 @@ class _Rrd:
         from flightmode.viz.rrd import RrdWriter
 
         self.w = RrdWriter(stage / "recording.rrd", result.run_id)
-        self.w.send(run_view(result.run_id, result.scenario.plan, result.track, result.recording, result.detection,
-                             None))
+        self.w.send(
+            run_view(
+                result.run_id, result.scenario.plan, result.track, result.recording, result.detection, None
+            )
+        )
 
     def close(self, stage: Path, result: RunResult) -> None:
         from flightmode.scenarios.run_view import path_lines
@@ -398,7 +447,9 @@ def _finish(writer: RunWriter, result: RunResult, rrd: _Rrd | None, track_sha256
 
 
 def _rrd_after_detect(writer: RunWriter, result: RunResult, rrd: bool) -> _Rrd | None:
-    if not (rrd and result.track is not None and result.recording is not None and result.detection is not None):
+    if not (
+        rrd and result.track is not None and result.recording is not None and result.detection is not None
+    ):
         return None
     r = _Rrd(writer)
     writer.submit("rrd", "recording.rrd", r.open, result)
@@ -457,7 +508,9 @@ def run(
     stages = tuple(stages)
     for s in stages:
         if s not in STAGES:
-            raise FlightmodeError(f"unknown pipeline stage '{s}'{did_you_mean(s, STAGES)}; stages: {', '.join(STAGES)}")
+            raise FlightmodeError(
+                f"unknown pipeline stage '{s}'{did_you_mean(s, STAGES)}; stages: {', '.join(STAGES)}"
+            )
     needs = {"sense": ("fly",), "detect": ("fly", "sense"), "path": ("fly", "sense"), "write": ("fly",)}
     for s in stages:
         missing = [n for n in needs.get(s, ()) if n not in stages]
@@ -476,8 +529,10 @@ def run(
         if track is None:
             track = fly(sc, root.child("flight"), progress=progress)
         elif track.aircraft != sc.aircraft or track.fs_hz != sc.plan.fdm_hz:
-            raise FlightmodeError(f"the track given is a {track.aircraft} at {track.fs_hz:g} Hz, not this scenario's "
-                                  f"flight ({sc.aircraft} at {sc.plan.fdm_hz} Hz)")
+            raise FlightmodeError(
+                f"the track given is a {track.aircraft} at {track.fs_hz:g} Hz, not this scenario's "
+                f"flight ({sc.aircraft} at {sc.plan.fdm_hz} Hz)"
+            )
         metrics = flight_metrics(track, sc.plan)
         wall["fly"] = time.perf_counter() - t0
         if writer is not None:
@@ -490,8 +545,14 @@ def run(
             g = gyro if isinstance(gyro, GyroSpec) else (get_preset("bmi270") if gyro else None)
             choice = sc.sensor if sensor is None else sensor
             # another accelerometer given by name or preset: the scenario's barometer and gyroscope stay fitted
-            rec = sense(track, sc.carrier, choice, root.child("sensor"), gyro=g,
-                        fitted=None if isinstance(choice, SensorChoice) else sc.sensor)
+            rec = sense(
+                track,
+                sc.carrier,
+                choice,
+                root.child("sensor"),
+                gyro=g,
+                fitted=None if isinstance(choice, SensorChoice) else sc.sensor,
+            )
             wall["sense"] = time.perf_counter() - t0
             if writer is not None:
                 writer.submit("samples", "samples.parquet", run_io.write_samples, rec)
@@ -499,8 +560,11 @@ def run(
             tell("detect")
             t0 = time.perf_counter()
             det = detect(rec, root.rng("detector/bench"))
-            red = (detect_redundant(rec, det, pressure_params(sc, rec.baro["odr_hz"])) if rec.baro_pa is not None
-                   else None)
+            red = (
+                detect_redundant(rec, det, pressure_params(sc, rec.baro["odr_hz"]))
+                if rec.baro_pa is not None
+                else None
+            )
             wall["detect"] = time.perf_counter() - t0
             if writer is not None:
                 partial = RunResult(sc, sc.seed, track, metrics, rec, det, None, red, {}, wall)
@@ -522,5 +586,23 @@ def run(
     return result
 
 
-__all__ = ["run", "fly", "sense", "detect", "detect_redundant", "pressure_params", "baro_preset", "estimate_path", "write", "RunWriter", "RunResult", "PathResult", "STAGES",
-           "unit_sigma2", "stream_sigma2", "sensor_preset", "scenario_of", "streams_of"]
+__all__ = [
+    "run",
+    "fly",
+    "sense",
+    "detect",
+    "detect_redundant",
+    "pressure_params",
+    "baro_preset",
+    "estimate_path",
+    "write",
+    "RunWriter",
+    "RunResult",
+    "PathResult",
+    "STAGES",
+    "unit_sigma2",
+    "stream_sigma2",
+    "sensor_preset",
+    "scenario_of",
+    "streams_of",
+]

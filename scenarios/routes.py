@@ -35,7 +35,12 @@ GATE_WAIT_S = 300.0  # engines off at the stand before engine start (the default
 def _taxi_range_m(direction: str) -> tuple[float, float]:
     from flightmode.sim.flight.taxi_stats import ADSB_TAXI_ANCHORS
 
-    d = [seg["distance_m"] for segs in ADSB_TAXI_ANCHORS.values() for k, seg in segs.items() if k.startswith(direction)]
+    d = [
+        seg["distance_m"]
+        for segs in ADSB_TAXI_ANCHORS.values()
+        for k, seg in segs.items()
+        if k.startswith(direction)
+    ]
     return min(d), max(d)
 
 
@@ -49,8 +54,15 @@ def flight_level_ft(max_alt_m: float, course_deg: float) -> float:
     return thousands * 1000.0
 
 
-def cruise_altitude_m(route_m: float, course_deg: float, prof, origin_elev_m: float, dest_elev_m: float,
-                      descent_angle_deg: float, glideslope_deg: float = 3.0) -> float:
+def cruise_altitude_m(
+    route_m: float,
+    course_deg: float,
+    prof,
+    origin_elev_m: float,
+    dest_elev_m: float,
+    descent_angle_deg: float,
+    glideslope_deg: float = 3.0,
+) -> float:
     """The cruise altitude (module docstring) for a route of ``route_m``."""
     from flightmode.scenarios.spec import CLIMB_GRADIENT
 
@@ -76,25 +88,35 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
         raise ScenarioError(f"--from and --to are both {o.icao}: give two different airports")
     dist = gc_distance_m(o.lat_deg, o.lon_deg, d.lat_deg, d.lon_deg)
     if dist < MIN_ROUTE_M:
-        raise ScenarioError(f"{o.icao} to {d.icao} is {dist / 1000:.0f} km, shorter than the {MIN_ROUTE_M / 1000:.0f} km "
-                            "an airliner route needs here; choose airports farther apart")
+        raise ScenarioError(
+            f"{o.icao} to {d.icao} is {dist / 1000:.0f} km, shorter than the {MIN_ROUTE_M / 1000:.0f} km "
+            "an airliner route needs here; choose airports farther apart"
+        )
     if dist > prof.range_km * 1000.0:
         from flightmode.sim.flight.aircraft_profiles import PROFILES
 
-        longer = [f"{m}: {p.range_km:,.0f} km" for m, p in sorted(PROFILES.items()) if p.range_km * 1000.0 >= dist]
-        raise ScenarioError(f"{o.icao} to {d.icao} is {dist / 1000:,.0f} km, beyond the {aircraft}'s range of "
-                            f"{prof.range_km:,.0f} km; choose a nearer destination"
-                            + (f" or a type that reaches it ({', '.join(longer)})" if longer else ""))
+        longer = [
+            f"{m}: {p.range_km:,.0f} km" for m, p in sorted(PROFILES.items()) if p.range_km * 1000.0 >= dist
+        ]
+        raise ScenarioError(
+            f"{o.icao} to {d.icao} is {dist / 1000:,.0f} km, beyond the {aircraft}'s range of "
+            f"{prof.range_km:,.0f} km; choose a nearer destination"
+            + (f" or a type that reaches it ({', '.join(longer)})" if longer else "")
+        )
     rng = Streams(seed).child("route")
     wind = rng.rng("wind").uniform(0.0, 360.0, 2)  # from, at the origin and at the destination
     try:
         dep = ap.pick_end(o, prof.min_runway_m, float(wind[0]), aircraft, landing=False)
     except ScenarioError as e:
-        raise ScenarioError(f"{e} (nearest that suit: {', '.join(ap.nearest_usable(o.lat_deg, o.lon_deg, prof.min_runway_m))})") from None
+        raise ScenarioError(
+            f"{e} (nearest that suit: {', '.join(ap.nearest_usable(o.lat_deg, o.lon_deg, prof.min_runway_m))})"
+        ) from None
     try:
         arr = ap.pick_end(d, prof.min_runway_m, float(wind[1]), aircraft, landing=True)
     except ScenarioError as e:
-        raise ScenarioError(f"{e} (nearest that suit: {', '.join(ap.nearest_usable(d.lat_deg, d.lon_deg, prof.min_runway_m))})") from None
+        raise ScenarioError(
+            f"{e} (nearest that suit: {', '.join(ap.nearest_usable(d.lat_deg, d.lon_deg, prof.min_runway_m))})"
+        ) from None
     course = float(initial_course_deg(o.lat_deg, o.lon_deg, d.lat_deg, d.lon_deg)) % 360.0
     descent_deg = prof.descent_angle_deg
     cruise_m = cruise_altitude_m(dist, course, prof, dep.elevation_m, arr.elevation_m, descent_deg)
@@ -106,12 +128,25 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
     hold, lineup = float(t.uniform(*TAXI_HOLD_S)), float(t.uniform(*LINEUP_HOLD_S))
     name = f"{o.icao.lower()}-{d.icao.lower()}-{prof.model.lower()}"
     doc = {
-        "scenario": {"name": name, "aircraft": prof.model, "seed": int(seed), "gate_wait_s": GATE_WAIT_S,
-                     "description": f"{o.name} ({o.icao} {dep.ident}) to {d.name} ({d.icao} {arr.ident}) on the "
-                                    f"{prof.model}, {dist / 1000:,.0f} km, FL{cruise_m / FT_M / 100:.0f}"},
+        "scenario": {
+            "name": name,
+            "aircraft": prof.model,
+            "seed": int(seed),
+            "gate_wait_s": GATE_WAIT_S,
+            "description": f"{o.name} ({o.icao} {dep.ident}) to {d.name} ({d.icao} {arr.ident}) on the "
+            f"{prof.model}, {dist / 1000:,.0f} km, FL{cruise_m / FT_M / 100:.0f}",
+        },
         "origin": {"icao": o.icao, "runway": dep.ident, **ap.runway_keys(o.icao, dep.ident, landing=False)},
-        "destination": {"icao": d.icao, "runway": arr.ident, **ap.runway_keys(d.icao, arr.ident, landing=True)},
-        "taxi_out": {"length_m": round(taxi_out, 1), "holds_s": [round(hold, 1)], "lineup_hold_s": round(lineup, 1)},
+        "destination": {
+            "icao": d.icao,
+            "runway": arr.ident,
+            **ap.runway_keys(d.icao, arr.ident, landing=True),
+        },
+        "taxi_out": {
+            "length_m": round(taxi_out, 1),
+            "holds_s": [round(hold, 1)],
+            "lineup_hold_s": round(lineup, 1),
+        },
         "taxi_in": {"length_m": round(taxi_in, 1)},
         "cruise": {"altitude_m": round(cruise_m, 1), "mach": prof.cruise_mach},
         "descent": {"angle_deg": descent_deg},

@@ -77,8 +77,18 @@ def track_table(track: FlightTrack):
         cols[f"n1_pct_e{e}"] = track.n1_pct[:, e]
         cols[f"n2_pct_e{e}"] = track.n2_pct[:, e]
         cols[f"thrust_n_e{e}"] = track.thrust_n[:, e]
-    for name in ("wow", "flap_norm", "gear_norm", "speedbrake_norm", "ias_mps", "tas_mps", "mach",
-                 "alpha_rad", "ground_speed_mps", "vertical_speed_mps"):
+    for name in (
+        "wow",
+        "flap_norm",
+        "gear_norm",
+        "speedbrake_norm",
+        "ias_mps",
+        "tas_mps",
+        "mach",
+        "alpha_rad",
+        "ground_speed_mps",
+        "vertical_speed_mps",
+    ):
         cols[name] = getattr(track, name)
     cols["phase"] = _dict_column(track.phase_code, PHASES)
     cols["in_flight_window"] = track.in_flight_window
@@ -100,8 +110,21 @@ def track_table(track: FlightTrack):
 # barometer read from the file would then differ from one read from the flight) and the ground speed
 # (the floor vibration places the taxiway joints by integrating it: rounded to float32, a joint's
 # impulse moved by one sample on re-sensing the pattern flight, 48 counts for a second after it)
-FLOAT64_COLUMNS = frozenset({"t_s", "lat_deg", "lon_deg", "alt_m", "pos_n_m", "pos_e_m", "pos_d_m",
-                             "ambient_pressure_pa", "cabin_pressure_pa", "hold_pressure_pa", "ground_speed_mps"})
+FLOAT64_COLUMNS = frozenset(
+    {
+        "t_s",
+        "lat_deg",
+        "lon_deg",
+        "alt_m",
+        "pos_n_m",
+        "pos_e_m",
+        "pos_d_m",
+        "ambient_pressure_pa",
+        "cabin_pressure_pa",
+        "hold_pressure_pa",
+        "ground_speed_mps",
+    }
+)
 PRESSURE_COLUMNS = ("ambient_pressure_pa", "cabin_pressure_pa", "cabin_altitude_m", "hold_pressure_pa")
 
 
@@ -202,7 +225,9 @@ def run_scenario(info: dict, source: str):
     from flightmode.scenarios.scenario import Scenario
 
     if "scenario_toml" not in info:
-        raise InputDataError(f"{source}: run.json has no scenario_toml: written by an older flightmode; fly it again")
+        raise InputDataError(
+            f"{source}: run.json has no scenario_toml: written by an older flightmode; fly it again"
+        )
     return Scenario.from_toml_text(info["scenario_toml"], f"{source} (scenario_toml)")
 
 
@@ -226,15 +251,26 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
     return track_from_table(t, info), info
 
 
-TRACK_INFO_KEY = b"flightmode.track"  # Parquet metadata of a dataset's full-rate truth: what read_track needs of run.json
+TRACK_INFO_KEY = (
+    b"flightmode.track"  # Parquet metadata of a dataset's full-rate truth: what read_track needs of run.json
+)
 
 
 def track_info(track: FlightTrack) -> dict:
     """The part of run.json a FlightTrack needs besides its columns (:func:`track_from_table`)."""
-    return {"aircraft": track.aircraft, "plan": {"origin": {"lat_deg": track.origin_lat_deg, "lon_deg": track.origin_lon_deg,
-                                                           "elevation_m": track.origin_alt_m}},
-            "events": [{"t_s": e.t_s, "name": e.name, "detail": e.detail} for e in track.events],
-            "conditions": track.conditions, "truth": {"fs_hz": track.fs_hz}}
+    return {
+        "aircraft": track.aircraft,
+        "plan": {
+            "origin": {
+                "lat_deg": track.origin_lat_deg,
+                "lon_deg": track.origin_lon_deg,
+                "elevation_m": track.origin_alt_m,
+            }
+        },
+        "events": [{"t_s": e.t_s, "name": e.name, "detail": e.detail} for e in track.events],
+        "conditions": track.conditions,
+        "truth": {"fs_hz": track.fs_hz},
+    }
 
 
 def track_from_table(t, info: dict) -> FlightTrack:
@@ -254,7 +290,10 @@ def track_from_table(t, info: dict) -> FlightTrack:
         origin_lat_deg=info["plan"]["origin"]["lat_deg"],
         origin_lon_deg=info["plan"]["origin"]["lon_deg"],
         origin_alt_m=info["plan"]["origin"]["elevation_m"],
-        t_s=c["t_s"], lat_deg=c["lat_deg"], lon_deg=c["lon_deg"], alt_m=c["alt_m"],
+        t_s=c["t_s"],
+        lat_deg=c["lat_deg"],
+        lon_deg=c["lon_deg"],
+        alt_m=c["alt_m"],
         agl_m=np.asarray(c["agl_m"], float),
         pos_ned_m=f64("pos_n_m", "pos_e_m", "pos_d_m"),
         vel_ned_mps=f64("vel_n_mps", "vel_e_mps", "vel_d_mps"),
@@ -267,9 +306,12 @@ def track_from_table(t, info: dict) -> FlightTrack:
         n2_pct=f64(*[f"n2_pct_e{e}" for e in range(ne)]),
         thrust_n=f64(*[f"thrust_n_e{e}" for e in range(ne)]),
         wow=np.asarray(c["wow"], bool),
-        flap_norm=np.asarray(c["flap_norm"], float), gear_norm=np.asarray(c["gear_norm"], float),
-        speedbrake_norm=np.asarray(c["speedbrake_norm"], float), ias_mps=np.asarray(c["ias_mps"], float),
-        tas_mps=np.asarray(c["tas_mps"], float), mach=np.asarray(c["mach"], float),
+        flap_norm=np.asarray(c["flap_norm"], float),
+        gear_norm=np.asarray(c["gear_norm"], float),
+        speedbrake_norm=np.asarray(c["speedbrake_norm"], float),
+        ias_mps=np.asarray(c["ias_mps"], float),
+        tas_mps=np.asarray(c["tas_mps"], float),
+        mach=np.asarray(c["mach"], float),
         alpha_rad=np.asarray(c["alpha_rad"], float),
         ground_speed_mps=np.asarray(c["ground_speed_mps"], float),
         vertical_speed_mps=np.asarray(c["vertical_speed_mps"], float),
@@ -370,6 +412,9 @@ def run_info(result, *, track_sha256: str | None = None) -> dict:
         info["redundant"] = result.redundant.summary()
     if result.path is not None:
         info["path"] = result.path.rows
-        info["path_laws_m"] = {"random_walk": result.path.random_walk_m, "offset": result.path.offset_drift_m,
-                               "span_s": result.path.span_s}
+        info["path_laws_m"] = {
+            "random_walk": result.path.random_walk_m,
+            "offset": result.path.offset_drift_m,
+            "span_s": result.path.span_s,
+        }
     return info

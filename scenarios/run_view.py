@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.labels import CARRIER_PHASES
+from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.units import G0_MPS2
 
 NED_TO_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
@@ -30,6 +30,7 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
     pt, pl = _changes(rec.t_s, rec.phase)
     # the bag's own phases (the aircraft's are among the track's events already)
     info += [(float(t), f"bag: {p}") for t, p in zip(pt, pl) if p in CARRIER_PHASES]
+
     def every(hz: float) -> slice:  # the track decimated to about ``hz``
         return slice(None, None, max(1, round(track.fs_hz / hz)))
 
@@ -39,14 +40,21 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
     ne = track.n1_pct.shape[1]
     aircraft = {
         "altitude_m": (ta, track.alt_m[k], ["altitude MSL"]),
-        "airspeed_mps": (ta, np.column_stack([track.ias_mps[k], track.ground_speed_mps[k]]), ["IAS", "ground speed"]),
+        "airspeed_mps": (
+            ta,
+            np.column_stack([track.ias_mps[k], track.ground_speed_mps[k]]),
+            ["IAS", "ground speed"],
+        ),
         "vertical_speed_mps": (ta, track.vertical_speed_mps[k], ["vertical speed"]),
         "n1_pct": (ta, track.n1_pct[k], [f"N1 engine {i + 1}" for i in range(ne)]),
         "load_factor_g": (ta, -track.specific_force_body_mps2[k, 2] / G0_MPS2, ["n_z"]),
     }
     if track.cabin_pressure_pa is not None:  # the pressure truth (sim.flight.cabin), and the bag's barometer
-        aircraft["cabin_altitude_m"] = (ta, np.column_stack([track.alt_m[k], track.cabin_altitude_m[k]]),
-                                        ["aircraft altitude MSL", "cabin pressure altitude"])
+        aircraft["cabin_altitude_m"] = (
+            ta,
+            np.column_stack([track.alt_m[k], track.cabin_altitude_m[k]]),
+            ["aircraft altitude MSL", "cabin pressure altitude"],
+        )
         hpa = [track.ambient_pressure_pa[k] / 100.0, track.cabin_pressure_pa[k] / 100.0]
         names = ["ambient", "cabin"]
         if rec.baro_pa is not None:
@@ -63,12 +71,27 @@ def run_view(run_id: str, plan, track, rec, evaluation, paths: dict | None):
     route = np.column_stack([track.lat_deg[every(1.0)], track.lon_deg[every(1.0)]])
     airports = [(a.icao, a.name, a.lat_deg, a.lon_deg) for a in (plan.origin, plan.destination)]
     return RunView(
-        run_id=run_id, t_s=rec.t_s, acc_g=rec.acc_g, acc_norm_g=np.linalg.norm(rec.acc_g, axis=1), counts=rec.counts,
-        check_t_s=c.t_s, mv_g2=c.mv, threshold_g2=evaluation.params.k_sigma * evaluation.sigma2, state_code=state,
+        run_id=run_id,
+        t_s=rec.t_s,
+        acc_g=rec.acc_g,
+        acc_norm_g=np.linalg.norm(rec.acc_g, axis=1),
+        counts=rec.counts,
+        check_t_s=c.t_s,
+        mv_g2=c.mv,
+        threshold_g2=evaluation.params.k_sigma * evaluation.sigma2,
+        state_code=state,
         false_static_events=evaluation.false_static_events,
-        phase_changes=(pt, pl), window_changes=_changes(rec.t_s, window), info_events=sorted(info),
-        aircraft=aircraft, pose_t_s=track.t_s[kp], pose_enu_m=pos, pose_quat_xyzw=r.as_quat(),
-        box_size_m=box, paths_enu_m=p3, route_lat_lon=route, airports=airports,
+        phase_changes=(pt, pl),
+        window_changes=_changes(rec.t_s, window),
+        info_events=sorted(info),
+        aircraft=aircraft,
+        pose_t_s=track.t_s[kp],
+        pose_enu_m=pos,
+        pose_quat_xyzw=r.as_quat(),
+        box_size_m=box,
+        paths_enu_m=p3,
+        route_lat_lon=route,
+        airports=airports,
     )
 
 

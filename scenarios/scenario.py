@@ -67,30 +67,55 @@ class Scenario:
 
         def runway(sec: str) -> Runway:
             r = v[sec]
-            return Runway(r["icao"], r["runway"], r["threshold_lat_deg"], r["threshold_lon_deg"], r["elevation_m"],
-                          r["heading_deg"], r["length_m"], r["width_m"])
+            return Runway(
+                r["icao"],
+                r["runway"],
+                r["threshold_lat_deg"],
+                r["threshold_lon_deg"],
+                r["elevation_m"],
+                r["heading_deg"],
+                r["length_m"],
+                r["width_m"],
+            )
 
         def taxi(sec: str) -> TaxiPlan:
             t = v[sec]
-            return TaxiPlan(t["length_m"], tuple(t["holds_s"]), t["lineup_hold_s"], t["taxiway_offset_m"],
-                            t["apron_depth_m"])
+            return TaxiPlan(
+                t["length_m"],
+                tuple(t["holds_s"]),
+                t["lineup_hold_s"],
+                t["taxiway_offset_m"],
+                t["apron_depth_m"],
+            )
 
         s = v["scenario"]
         plan = FlightPlan(
-            name=s["name"], aircraft=s["aircraft"], origin=runway("origin"), destination=runway("destination"),
-            taxi_out=taxi("taxi_out"), taxi_in=taxi("taxi_in"),
-            cruise_alt_m=v["cruise"]["altitude_m"], cruise_mach=v["cruise"]["mach"], gate_wait_s=s["gate_wait_s"],
-            takeoff_thrust_norm=v["takeoff"]["thrust_norm"], takeoff_flaps_norm=v["takeoff"]["flaps_norm"],
+            name=s["name"],
+            aircraft=s["aircraft"],
+            origin=runway("origin"),
+            destination=runway("destination"),
+            taxi_out=taxi("taxi_out"),
+            taxi_in=taxi("taxi_in"),
+            cruise_alt_m=v["cruise"]["altitude_m"],
+            cruise_mach=v["cruise"]["mach"],
+            gate_wait_s=s["gate_wait_s"],
+            takeoff_thrust_norm=v["takeoff"]["thrust_norm"],
+            takeoff_flaps_norm=v["takeoff"]["flaps_norm"],
             landing_flaps_norm=v["approach"]["landing_flaps_norm"],
             waypoints=tuple((lat, lon) for lat, lon in v["route"]["waypoints"]),
-            turbulence=tuple(TurbulenceSegment(t["start_s"], t["duration_s"], t["severity"], t["edr"])
-                             for t in v["turbulence"]),
+            turbulence=tuple(
+                TurbulenceSegment(t["start_s"], t["duration_s"], t["severity"], t["edr"])
+                for t in v["turbulence"]
+            ),
             descent_angle_deg=_descent_angle_deg(v["descent"]["angle_deg"], s["aircraft"]),
             glideslope_deg=v["approach"]["glideslope_deg"],
-            approach_fix_nm=v["approach"]["fix_nm"], autobrake_decel_mps2=v["landing"]["autobrake_decel_mps2"],
-            post_shutdown_s=v["shutdown"]["post_shutdown_s"], fdm_hz=s["fdm_hz"],
+            approach_fix_nm=v["approach"]["fix_nm"],
+            autobrake_decel_mps2=v["landing"]["autobrake_decel_mps2"],
+            post_shutdown_s=v["shutdown"]["post_shutdown_s"],
+            fdm_hz=s["fdm_hz"],
             landing_quality=v["landing"]["quality"],
-            touchdown_sink_mps=v["landing"]["sink_mps"], go_arounds=v["landing"]["go_arounds"],
+            touchdown_sink_mps=v["landing"]["sink_mps"],
+            go_arounds=v["landing"]["go_arounds"],
             surface_wind_mps=v["atmosphere"]["surface_wind_mps"],
             background_edr=v["atmosphere"]["background_edr"],
             convective_velocity_mps=v["atmosphere"]["convective_velocity_mps"],
@@ -100,8 +125,9 @@ class Scenario:
             hold=v["cabin"]["hold"],
         )
         sen = v["sensor"]
-        sensor = SensorChoice(sen["preset"], sen["odr_hz"], sen["vibration_level"], sen["baro"], sen["baro_odr_hz"],
-                              sen["gyro"])
+        sensor = SensorChoice(
+            sen["preset"], sen["odr_hz"], sen["vibration_level"], sen["baro"], sen["baro_odr_hz"], sen["gyro"]
+        )
         check_scenario(source, plan, sensor.preset, sensor.odr_hz, sensor.baro, sensor.baro_odr_hz)
         return cls(s["description"], s["seed"], plan, CarrierSpec(**v["carrier"]), sensor, source)
 
@@ -151,8 +177,14 @@ class Scenario:
         optional keys that are unset left out."""
         p, c = self.plan, self.carrier
         doc: dict[str, Any] = {
-            "scenario": {"name": p.name, "description": self.description, "aircraft": p.aircraft, "seed": self.seed,
-                         "gate_wait_s": p.gate_wait_s, "fdm_hz": p.fdm_hz},
+            "scenario": {
+                "name": p.name,
+                "description": self.description,
+                "aircraft": p.aircraft,
+                "seed": self.seed,
+                "gate_wait_s": p.gate_wait_s,
+                "fdm_hz": p.fdm_hz,
+            },
             "origin": _runway_doc(p.origin),
             "destination": _runway_doc(p.destination),
             "taxi_out": _taxi_doc(p.taxi_out),
@@ -161,24 +193,52 @@ class Scenario:
             "cruise": {"altitude_m": p.cruise_alt_m, "mach": p.cruise_mach},
             "route": {"waypoints": [[lat, lon] for lat, lon in p.waypoints]},
             "descent": {"angle_deg": p.descent_angle_deg},
-            "approach": _drop_none({"glideslope_deg": p.glideslope_deg, "fix_nm": p.approach_fix_nm,
-                                    "landing_flaps_norm": p.landing_flaps_norm}),
-            "landing": _drop_none({"autobrake_decel_mps2": p.autobrake_decel_mps2, "quality": p.landing_quality,
-                                   "sink_mps": p.touchdown_sink_mps, "go_arounds": p.go_arounds or None}),
-            "atmosphere": _drop_none({"surface_wind_mps": p.surface_wind_mps, "background_edr": p.background_edr,
-                                      "convective_velocity_mps": p.convective_velocity_mps,
-                                      "departure_qnh_hpa": p.departure_qnh_hpa, "arrival_qnh_hpa": p.arrival_qnh_hpa,
-                                      "isa_dev_k": p.isa_dev_k}),
+            "approach": _drop_none(
+                {
+                    "glideslope_deg": p.glideslope_deg,
+                    "fix_nm": p.approach_fix_nm,
+                    "landing_flaps_norm": p.landing_flaps_norm,
+                }
+            ),
+            "landing": _drop_none(
+                {
+                    "autobrake_decel_mps2": p.autobrake_decel_mps2,
+                    "quality": p.landing_quality,
+                    "sink_mps": p.touchdown_sink_mps,
+                    "go_arounds": p.go_arounds or None,
+                }
+            ),
+            "atmosphere": _drop_none(
+                {
+                    "surface_wind_mps": p.surface_wind_mps,
+                    "background_edr": p.background_edr,
+                    "convective_velocity_mps": p.convective_velocity_mps,
+                    "departure_qnh_hpa": p.departure_qnh_hpa,
+                    "arrival_qnh_hpa": p.arrival_qnh_hpa,
+                    "isa_dev_k": p.isa_dev_k,
+                }
+            ),
             "cabin": {"hold": p.hold},
             "shutdown": {"post_shutdown_s": p.post_shutdown_s},
             "carrier": _drop_none(dataclasses.asdict(c)),
-            "sensor": _drop_none({"preset": self.sensor.preset, "odr_hz": self.sensor.odr_hz,
-                                  "vibration_level": self.sensor.vibration_level, "baro": self.sensor.baro,
-                                  "baro_odr_hz": self.sensor.baro_odr_hz, "gyro": self.sensor.gyro}),
+            "sensor": _drop_none(
+                {
+                    "preset": self.sensor.preset,
+                    "odr_hz": self.sensor.odr_hz,
+                    "vibration_level": self.sensor.vibration_level,
+                    "baro": self.sensor.baro,
+                    "baro_odr_hz": self.sensor.baro_odr_hz,
+                    "gyro": self.sensor.gyro,
+                }
+            ),
         }
         if p.turbulence:
-            doc["turbulence"] = [_drop_none({"start_s": t.start_s, "duration_s": t.duration_s, "severity": t.severity,
-                                             "edr": t.edr}) for t in p.turbulence]
+            doc["turbulence"] = [
+                _drop_none(
+                    {"start_s": t.start_s, "duration_s": t.duration_s, "severity": t.severity, "edr": t.edr}
+                )
+                for t in p.turbulence
+            ]
         return doc
 
     def to_toml(self) -> str:
@@ -208,7 +268,9 @@ class Scenario:
             if "." in key:
                 sec, _, k = key.partition(".")
                 if sec not in SPEC or sec == "turbulence":
-                    raise ScenarioError(f"replace({key}=...): unknown section '{sec}'{did_you_mean(sec, SPEC)}")
+                    raise ScenarioError(
+                        f"replace({key}=...): unknown section '{sec}'{did_you_mean(sec, SPEC)}"
+                    )
                 if value is None:
                     doc.setdefault(sec, {}).pop(k, None)
                 else:
@@ -225,8 +287,10 @@ class Scenario:
                     doc[key] = _as_doc(value)
             else:
                 allowed = [*SPEC["scenario"], *SPEC]
-                raise ScenarioError(f"replace({key}=...): not a scenario key or section{did_you_mean(key, allowed)}; "
-                                    f"allowed: {', '.join(allowed)}, or 'section.key'")
+                raise ScenarioError(
+                    f"replace({key}=...): not a scenario key or section{did_you_mean(key, allowed)}; "
+                    f"allowed: {', '.join(allowed)}, or 'section.key'"
+                )
         src = self.source if self.source.endswith(" (replaced)") else f"{self.source} (replaced)"
         return Scenario.from_doc(doc, src)
 
@@ -245,13 +309,26 @@ def _drop_none(d: dict[str, Any]) -> dict[str, Any]:
 
 
 def _runway_doc(r) -> dict[str, Any]:
-    return {"icao": r.icao, "runway": r.name, "threshold_lat_deg": r.lat_deg, "threshold_lon_deg": r.lon_deg,
-            "elevation_m": r.elevation_m, "heading_deg": r.heading_deg, "length_m": r.length_m, "width_m": r.width_m}
+    return {
+        "icao": r.icao,
+        "runway": r.name,
+        "threshold_lat_deg": r.lat_deg,
+        "threshold_lon_deg": r.lon_deg,
+        "elevation_m": r.elevation_m,
+        "heading_deg": r.heading_deg,
+        "length_m": r.length_m,
+        "width_m": r.width_m,
+    }
 
 
 def _taxi_doc(t) -> dict[str, Any]:
-    return {"length_m": t.length_m, "holds_s": list(t.holds_s), "lineup_hold_s": t.lineup_hold_s,
-            "taxiway_offset_m": t.taxiway_offset_m, "apron_depth_m": t.apron_depth_m}
+    return {
+        "length_m": t.length_m,
+        "holds_s": list(t.holds_s),
+        "lineup_hold_s": t.lineup_hold_s,
+        "taxiway_offset_m": t.taxiway_offset_m,
+        "apron_depth_m": t.apron_depth_m,
+    }
 
 
 def _as_doc(value: Any) -> dict[str, Any]:
@@ -265,13 +342,21 @@ def _as_doc(value: Any) -> dict[str, Any]:
     if isinstance(value, TaxiPlan):
         return _taxi_doc(value)
     if isinstance(value, TurbulenceSegment):
-        return _drop_none({"start_s": value.start_s, "duration_s": value.duration_s, "severity": value.severity,
-                           "edr": value.edr})
+        return _drop_none(
+            {
+                "start_s": value.start_s,
+                "duration_s": value.duration_s,
+                "severity": value.severity,
+                "edr": value.edr,
+            }
+        )
     if isinstance(value, SensorChoice):
         return _drop_none(dataclasses.asdict(value))
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return _drop_none(dataclasses.asdict(value))
-    raise ScenarioError(f"replace: cannot use a {type(value).__name__} as a scenario section; give a dict of its keys")
+    raise ScenarioError(
+        f"replace: cannot use a {type(value).__name__} as a scenario section; give a dict of its keys"
+    )
 
 
 # ---------------------------------------------------------------------- the built-in library

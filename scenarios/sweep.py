@@ -43,7 +43,15 @@ import numpy as np
 
 from flightmode.errors import InputDataError
 
-CONDITIONS = ("aircraft", "placement", "carrier_kind", "turbulence", "landing_quality", "sensor_preset", "family")
+CONDITIONS = (
+    "aircraft",
+    "placement",
+    "carrier_kind",
+    "turbulence",
+    "landing_quality",
+    "sensor_preset",
+    "family",
+)
 POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s")
 # log-spaced bins of MV / sigma^2 for truly static checks: 1e-2 to 1e3, 2.3 % wide (underflow and
 # overflow folded into the first and last bins, which a threshold search never reaches)
@@ -89,11 +97,13 @@ def sigma2_of_flight(source: str, row: dict, columns: dict) -> Callable[[int], n
     if source == "preset":
         # the unit sensing drew (stream sensor/unit) and the bench stream of the run's own detector
         unit = draw_unit(preset, pipeline.streams_of(sc.seed).child("sensor").rng("unit")).as_dict()
-        return lambda window: pipeline.unit_sigma2(preset.name, preset.odr_hz, unit, window,
-                                                   pipeline.streams_of(sc.seed).rng("detector/bench"))
+        return lambda window: pipeline.unit_sigma2(
+            preset.name, preset.odr_hz, unit, window, pipeline.streams_of(sc.seed).rng("detector/bench")
+        )
     if source == "rest":
-        return lambda window: sigma2_from_rest(columns["acc_g"], columns["sensor_static"], columns["in_flight_window"],
-                                               window, preset.lsb_g)[0]
+        return lambda window: sigma2_from_rest(
+            columns["acc_g"], columns["sensor_static"], columns["in_flight_window"], window, preset.lsb_g
+        )[0]
     raise InputDataError(f"--sigma2-from {source!r}: use preset or rest")
 
 
@@ -128,8 +138,13 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
     for preset in sensors:
         sc2 = sc.replace(sensor={"preset": preset, "odr_hz": None})
         rec = pipeline.sense(track, sc2.carrier, sc2.sensor, pipeline.streams_of(sc2.seed).child("sensor"))
-        cols = {"t_s": rec.t_s, "acc_g": rec.acc_g, "in_flight_window": rec.in_flight_window,
-                "sensor_static": rec.sensor_static, "phase": rec.phase}
+        cols = {
+            "t_s": rec.t_s,
+            "acc_g": rec.acc_g,
+            "in_flight_window": rec.in_flight_window,
+            "sensor_static": rec.sensor_static,
+            "phase": rec.phase,
+        }
         if rec.baro_pa is not None:
             cols |= {"baro_pa": rec.baro_pa, "baro_new": rec.baro_new}
         if rec.gyro_dps is not None:
@@ -146,19 +161,32 @@ def full_truth_track(dataset: str | Path, row: dict):
 
     t = pq.read_table(Path(dataset) / row["truth_file"])
     if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
-        raise InputDataError(f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "
-                             "dataset, or not --truth full); make the dataset with `flightmode dataset ... --truth full`")
+        raise InputDataError(
+            f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "
+            "dataset, or not --truth full); make the dataset with `flightmode dataset ... --truth full`"
+        )
     return run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
 
 
-def sweep_flight(dataset: str, row: dict, grid, sigma2_from: str = "preset", family: str = "",
-                 sensors: Sequence[str] | None = None) -> dict:
+def sweep_flight(
+    dataset: str,
+    row: dict,
+    grid,
+    sigma2_from: str = "preset",
+    family: str = "",
+    sensors: Sequence[str] | None = None,
+) -> dict:
     """Every grid point on one flight of a dataset (on each of ``sensors``, re-sensed, if given):
     {"points", "phases", "static"} lists of rows (module docstring)."""
     out: dict = {"points": [], "phases": [], "static": []}
     for preset, cols, text in _streams(dataset, row, sensors):
-        part = _sweep_stream(cols, row | {"scenario_toml": text, "sensor_preset": preset}, grid, sigma2_from,
-                             {"dataset": dataset, "family": family, "flight_id": row["flight_id"]})
+        part = _sweep_stream(
+            cols,
+            row | {"scenario_toml": text, "sensor_preset": preset},
+            grid,
+            sigma2_from,
+            {"dataset": dataset, "family": family, "flight_id": row["flight_id"]},
+        )
         for k in out:
             out[k] += part[k]
     return out
@@ -176,14 +204,27 @@ def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
 
     mv = tuple(m for m in grid.methods if m[0] in MV_METHODS)
     if mv:
-        for p, e in evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=mv), fs,
-                                  sigma2_of_flight(sigma2_from, row, cols)):
+        for p, e in evaluate_grid(
+            t,
+            acc,
+            labels,
+            dataclasses.replace(grid, methods=mv),
+            fs,
+            sigma2_of_flight(sigma2_from, row, cols),
+        ):
             yield p.method, p, e
     red = tuple((m.partition("+")[0], w) for m, w in grid.methods if m in REDUNDANT)
     if red:
         gate = _pressure_gate(row, cols)
-        for p, e in evaluate_grid(t, acc, labels, dataclasses.replace(grid, methods=red), fs,
-                                  sigma2_of_flight(sigma2_from, row, cols), gate=gate):
+        for p, e in evaluate_grid(
+            t,
+            acc,
+            labels,
+            dataclasses.replace(grid, methods=red),
+            fs,
+            sigma2_of_flight(sigma2_from, row, cols),
+            gate=gate,
+        ):
             yield f"{p.method}+baro", p, e
     others = [m for m, _ in grid.methods if m not in MV_METHODS and m not in REDUNDANT]
     if others:
@@ -198,8 +239,20 @@ def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
             else:
                 bench = _rest_of(sigma2_from, row, cols, fs) if bench is None else bench
                 bench_acc, bench_gyr = bench, None
-            for p, e in evaluate_activity_grid(t, acc, gyr, labels, name, grid.windows_s, grid.ks,
-                                               grid.time_thresholds_s, fs, bench_acc, signal or "acc", bench_gyr):
+            for p, e in evaluate_activity_grid(
+                t,
+                acc,
+                gyr,
+                labels,
+                name,
+                grid.windows_s,
+                grid.ks,
+                grid.time_thresholds_s,
+                fs,
+                bench_acc,
+                signal or "acc",
+                bench_gyr,
+            ):
                 yield method, p, e
 
 
@@ -210,8 +263,10 @@ def _gyro_rest(row: dict, cols: dict) -> tuple[np.ndarray, np.ndarray]:
     from flightmode.scenarios import pipeline
 
     if cols.get("gyro_dps") is None:
-        raise InputDataError(f"flight {row['flight_id']}: a gyroscope method needs gyro_*_dps in the samples; make the "
-                             "dataset from a family with [sensor].gyro (e.g. gyro = \"bmi270\")")
+        raise InputDataError(
+            f"flight {row['flight_id']}: a gyroscope method needs gyro_*_dps in the samples; make the "
+            'dataset from a family with [sensor].gyro (e.g. gyro = "bmi270")'
+        )
     acc, gyr, _ = pipeline.stream_rest("rest", cols, None)
     return acc, gyr
 
@@ -224,14 +279,18 @@ def _pressure_gate(row: dict, cols: dict):
     from flightmode.scenarios.scenario import Scenario
 
     if "baro_pa" not in cols or "baro_new" not in cols:
-        raise InputDataError(f"flight {row['flight_id']}: --method ...+baro needs a barometer in the samples; make "
-                             "the dataset from a family with [sensor].baro (e.g. isolated-parcel)")
+        raise InputDataError(
+            f"flight {row['flight_id']}: --method ...+baro needs a barometer in the samples; make "
+            "the dataset from a family with [sensor].baro (e.g. isolated-parcel)"
+        )
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
     baro = pipeline.baro_preset(sc.sensor)
     if baro is None:
         raise InputDataError(f"flight {row['flight_id']}: its scenario fits no barometer ([sensor].baro)")
     new = np.asarray(cols["baro_new"], bool)
-    checks = detect_pressure(cols["t_s"][new], cols["baro_pa"][new], pipeline.pressure_params(sc, baro.odr_hz))
+    checks = detect_pressure(
+        cols["t_s"][new], cols["baro_pa"][new], pipeline.pressure_params(sc, baro.odr_hz)
+    )
     return lambda t_checks: static_at(checks, t_checks)
 
 
@@ -258,14 +317,16 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
     window = np.asarray(labels["in_flight_window"], bool)
     static = np.asarray(labels["sensor_static"], bool)
-    phase_names, phase_code = np.unique(np.asarray(labels["phase"], dtype=object).astype(str), return_inverse=True)
+    phase_names, phase_code = np.unique(
+        np.asarray(labels["phase"], dtype=object).astype(str), return_inverse=True
+    )
     static_cs = np.concatenate([[0], np.cumsum(static)])
     dt = 1.0 / fs
     in_window_h = float(window.sum()) * dt / 3600.0
     w_start = float(t[np.flatnonzero(window)[0]]) if window.any() else math.nan
     # truly at rest after the flight: a response that never comes is then infinitely slow (inf), not
     # missing (NaN: nothing to answer), so that percentiles count it
-    rest_after = bool(window.any() and static[int(np.flatnonzero(window)[-1]):].any())
+    rest_after = bool(window.any() and static[int(np.flatnonzero(window)[-1]) :].any())
     key = key | {"sensor_preset": row.get("sensor_preset"), "fs_hz": fs}
     cond = {k: row.get(k) for k in CONDITIONS if k not in ("family", "sensor_preset")}
     points, phases, statics = [], [], []
@@ -288,32 +349,54 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
             under_all = np.bincount(codes[below.all(axis=1)], minlength=len(phase_names))
             for i, name in enumerate(phase_names):
                 if n_ph[i]:
-                    phases.append({**bk, "k": p.k_sigma, "phase": str(name), "checks": int(n_ph[i]),
-                                   "under_x": int(under[0][i]), "under_y": int(under[1][i]),
-                                   "under_z": int(under[2][i]), "under_all": int(under_all[i])})
+                    phases.append(
+                        {
+                            **bk,
+                            "k": p.k_sigma,
+                            "phase": str(name),
+                            "checks": int(n_ph[i]),
+                            "under_x": int(under[0][i]),
+                            "under_y": int(under[1][i]),
+                            "under_z": int(under[2][i]),
+                            "under_all": int(under_all[i]),
+                        }
+                    )
         if mv_method and base not in seen:  # once per moving variance: the static MV in sigma^2 units
             seen.add(base)
             whole = (c.index + 1 >= p.window) & (
-                static_cs[c.index + 1] - static_cs[np.maximum(c.index + 1 - p.window, 0)] == p.window)
+                static_cs[c.index + 1] - static_cs[np.maximum(c.index + 1 - p.window, 0)] == p.window
+            )
             statics.append({**bk, **_static_stats(c.mv, e.sigma2, whole)})
         truth_out = static[c.index] & ~window[c.index]
         static_s = float(truth_out.sum()) * p.window_s
         after = np.flatnonzero((c.t_s >= w_start) & ~c.final_static) if window.any() else np.zeros(0, int)
         events = e.false_static_events
-        points.append({
-            **key, **cond,
-            "method": method, "weight": p.weight, "window_s": p.window_s, "k": p.k_sigma,
-            "time_threshold_s": p.time_threshold_s,
-            "in_window_h": in_window_h, "in_flight_checks": e.in_flight_checks,
-            "false_static_count": e.false_static_count, "false_static_s": e.false_static_s,
-            "longest_false_static_s": max((ev["duration_s"] for ev in events), default=0.0),
-            "false_static_phases": ",".join(ev["phase"] for ev in events),
-            "suspend_s": float(c.t_s[after[0]] - w_start) if after.size else math.nan,
-            "response_s": e.response_s if e.response_s is not None else (math.inf if rest_after else math.nan),
-            "static_s": static_s, "missed_static_s": e.missed_static_s,
-            "checks": int(c.t_s.shape[0]), "accuracy": e.accuracy,
-            "availability": (static_s - e.missed_static_s) / static_s if static_s > 0 else math.nan,
-        })
+        points.append(
+            {
+                **key,
+                **cond,
+                "method": method,
+                "weight": p.weight,
+                "window_s": p.window_s,
+                "k": p.k_sigma,
+                "time_threshold_s": p.time_threshold_s,
+                "in_window_h": in_window_h,
+                "in_flight_checks": e.in_flight_checks,
+                "false_static_count": e.false_static_count,
+                "false_static_s": e.false_static_s,
+                "longest_false_static_s": max((ev["duration_s"] for ev in events), default=0.0),
+                "false_static_phases": ",".join(ev["phase"] for ev in events),
+                "suspend_s": float(c.t_s[after[0]] - w_start) if after.size else math.nan,
+                "response_s": e.response_s
+                if e.response_s is not None
+                else (math.inf if rest_after else math.nan),
+                "static_s": static_s,
+                "missed_static_s": e.missed_static_s,
+                "checks": int(c.t_s.shape[0]),
+                "accuracy": e.accuracy,
+                "availability": (static_s - e.missed_static_s) / static_s if static_s > 0 else math.nan,
+            }
+        )
     return {"points": points, "phases": phases, "static": statics}
 
 
@@ -330,8 +413,12 @@ def _versions() -> dict:
     return out
 
 
-def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from: str = "preset",
-                  sensors: Sequence[str] | None = None) -> list[Path]:
+def check_request(
+    datasets: str | Path | Sequence[str | Path],
+    grid,
+    sigma2_from: str = "preset",
+    sensors: Sequence[str] | None = None,
+) -> list[Path]:
     """The dataset folders, once each, every one a dataset with a successful flight (and its full-rate
     truth if ``sensors`` re-sense it); the grid's axes; the sigma^2 source; the sensor presets. An
     InputDataError, DetectorError or SensorError naming what is wrong; reads only."""
@@ -358,14 +445,24 @@ def check_request(datasets: str | Path | Sequence[str | Path], grid, sigma2_from
         for r in ok:  # the same flight twice would count its hours and events twice
             other = seen.setdefault(r["samples_sha256"], f"{d}/{r['flight_id']}")
             if other != f"{d}/{r['flight_id']}":
-                raise InputDataError(f"{d}: flight {r['flight_id']} has the very samples of {other}: the same flight "
-                                     "in two datasets would count twice; name each dataset once")
+                raise InputDataError(
+                    f"{d}: flight {r['flight_id']} has the very samples of {other}: the same flight "
+                    "in two datasets would count twice; name each dataset once"
+                )
     return paths
 
 
-def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str = "preset", workers: int = 1,
-          sensors: Sequence[str] | None = None, out: str | Path | None = None,
-          on_start: Callable[[int], None] | None = None, on_flight: Callable[[str], None] | None = None) -> SweepResult:
+def sweep(
+    datasets: str | Path | Sequence[str | Path],
+    grid,
+    *,
+    sigma2_from: str = "preset",
+    workers: int = 1,
+    sensors: Sequence[str] | None = None,
+    out: str | Path | None = None,
+    on_start: Callable[[int], None] | None = None,
+    on_flight: Callable[[str], None] | None = None,
+) -> SweepResult:
     """Evaluate ``grid`` on every successful flight of ``datasets`` (module docstring); the failed
     flights are excluded and returned. ``sensors``: re-sense each flight with each of these presets
     (datasets made with ``--truth full``) instead of reading its samples. Writes the sweep folder
@@ -383,31 +480,57 @@ def sweep(datasets: str | Path | Sequence[str | Path], grid, *, sigma2_from: str
         family = meta.get("family", "")
         jobs += [(str(d), r, family) for r in ok]
         failed += bad
-        described.append({"path": str(d), "family": family, "family_sha256": meta.get("family_sha256"),
-                          "options": meta.get("options"), "manifest_sha256": manifest_digest(d),
-                          "flights": len(ok) + len(bad), "flights_ok": len(ok),
-                          "failed": [r["flight_id"] for r in bad]})
+        described.append(
+            {
+                "path": str(d),
+                "family": family,
+                "family_sha256": meta.get("family_sha256"),
+                "options": meta.get("options"),
+                "manifest_sha256": manifest_digest(d),
+                "flights": len(ok) + len(bad),
+                "flights_ok": len(ok),
+                "failed": [r["flight_id"] for r in bad],
+            }
+        )
     d0, r0, _ = jobs[0]
     t0 = pq.read_table(Path(d0) / r0["samples_file"], columns=["t_s"])["t_s"].to_numpy()[:1000]
     grid.validate(round(1.0 / float(np.median(np.diff(t0))), 6))  # a window under 2 samples, before any work
     if on_start:
         on_start(len(jobs))
-    results = map_flights(sweep_flight, [(d, r, grid, sigma2_from, fam, sensors) for d, r, fam in jobs], workers,
-                          (lambda n: on_flight(jobs[n][1]["flight_id"])) if on_flight else None)
-    tables = {part: pa.Table.from_pylist([row for res in results for row in res[part]])
-              for part in ("points", "phases", "static")}
-    meta = {"format": SWEEP_FORMAT, "datasets": described, "sigma2_from": sigma2_from, "sensors": list(sensors) if sensors else None,
-            "grid": {"methods": [list(m) for m in grid.methods], "windows_s": list(grid.windows_s),
-                     "ks": list(grid.ks), "time_thresholds_s": list(grid.time_thresholds_s), "points": len(grid)},
-            "static_edges": "geomspace(1e-2, 1e3, 501)", "versions": _versions()}
+    results = map_flights(
+        sweep_flight,
+        [(d, r, grid, sigma2_from, fam, sensors) for d, r, fam in jobs],
+        workers,
+        (lambda n: on_flight(jobs[n][1]["flight_id"])) if on_flight else None,
+    )
+    tables = {
+        part: pa.Table.from_pylist([row for res in results for row in res[part]])
+        for part in ("points", "phases", "static")
+    }
+    meta = {
+        "format": SWEEP_FORMAT,
+        "datasets": described,
+        "sigma2_from": sigma2_from,
+        "sensors": list(sensors) if sensors else None,
+        "grid": {
+            "methods": [list(m) for m in grid.methods],
+            "windows_s": list(grid.windows_s),
+            "ks": list(grid.ks),
+            "time_thresholds_s": list(grid.time_thresholds_s),
+            "points": len(grid),
+        },
+        "static_edges": "geomspace(1e-2, 1e3, 501)",
+        "versions": _versions(),
+    }
     result = SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
     if out is not None:
         write_sweep(result, out)
     return result
 
 
-def map_flights(fn: Callable, args: Sequence[tuple], workers: int = 1,
-                on_done: Callable[[int], None] | None = None) -> list:
+def map_flights(
+    fn: Callable, args: Sequence[tuple], workers: int = 1, on_done: Callable[[int], None] | None = None
+) -> list:
     """``[fn(*a) for a in args]``, one flight per call: in this process (``workers`` <= 1) or on a Dask
     LocalCluster of ``workers`` processes (127.0.0.1, dashboard on a free local port), results in the
     order of ``args`` whatever the completion order; ``on_done(n)`` as call n finishes."""
@@ -422,8 +545,17 @@ def map_flights(fn: Callable, args: Sequence[tuple], workers: int = 1,
 
     from dask.distributed import Client, LocalCluster, as_completed
 
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address="127.0.0.1:0", silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address="127.0.0.1:0",
+            silence_logs=logging.CRITICAL,
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         futs = {client.submit(fn, *a, pure=False): n for n, a in enumerate(args)}
         done: dict[int, object] = {}
         for f in as_completed(futs):
@@ -444,9 +576,19 @@ def write_sweep(result: SweepResult, out: str | Path) -> None:
     (out / "sweep.json").unlink(missing_ok=True)
     for part in ("points", "phases", "static"):
         atomic_parquet(getattr(result, part), out / f"{part}.parquet")
-    atomic_text(json.dumps(result.meta | {"failed_flights": [
-        {"dataset": r["dataset"], "flight_id": r["flight_id"], "error": r.get("error")} for r in result.failed]},
-        indent=2), out / "sweep.json")
+    atomic_text(
+        json.dumps(
+            result.meta
+            | {
+                "failed_flights": [
+                    {"dataset": r["dataset"], "flight_id": r["flight_id"], "error": r.get("error")}
+                    for r in result.failed
+                ]
+            },
+            indent=2,
+        ),
+        out / "sweep.json",
+    )
 
 
 def read_sweep(path: str | Path) -> SweepResult:
@@ -455,11 +597,15 @@ def read_sweep(path: str | Path) -> SweepResult:
 
     path = Path(path)
     if not (path / "sweep.json").exists():
-        raise InputDataError(f"{path}: no sweep.json: not a finished sweep (run `flightmode sweep DATASET --out {path}`)")
+        raise InputDataError(
+            f"{path}: no sweep.json: not a finished sweep (run `flightmode sweep DATASET --out {path}`)"
+        )
     meta = json.loads((path / "sweep.json").read_text())
     if meta.get("format") != SWEEP_FORMAT:
-        raise InputDataError(f"{path}: a sweep of an older flightmode (format {meta.get('format', 1)}); "
-                             f"sweep again (`flightmode sweep DATASET --out {path}`)")
+        raise InputDataError(
+            f"{path}: a sweep of an older flightmode (format {meta.get('format', 1)}); "
+            f"sweep again (`flightmode sweep DATASET --out {path}`)"
+        )
     tables = {part: pq.read_table(path / f"{part}.parquet") for part in ("points", "phases", "static")}
     failed = [dict(r) for r in meta.pop("failed_flights", [])]
     return SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
@@ -475,7 +621,8 @@ def rate_and_response(events: int, hours: float, responses, confidence: float = 
     resp = np.asarray(responses, float)
     resp = resp[~np.isnan(resp)]
     return {
-        "in_window_h": hours, "false_statics": events,
+        "in_window_h": hours,
+        "false_statics": events,
         "rate_per_h": events / hours if hours > 0 else math.nan,
         "rate_upper_per_h": rate_upper_bound(events, hours, confidence) if hours > 0 else math.nan,
         "response_p50_s": float(np.percentile(resp, 50, method="higher")) if resp.size else math.nan,
@@ -485,8 +632,9 @@ def rate_and_response(events: int, hours: float, responses, confidence: float = 
     }
 
 
-def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None = None,
-              by_sensor: bool = False) -> list[dict]:
+def summarise(
+    table, confidence: float = 0.95, target_rate_per_h: float | None = None, by_sensor: bool = False
+) -> list[dict]:
     """One row per grid point over all flights: events, in-window hours, rate, its exact upper bound,
     response p50/p95/max (a flight that never answered counts as infinitely slow), availability (the
     share of all truly static time reported static), and the hours still needed for
@@ -495,8 +643,18 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
     from flightmode.detector.confidence import hours_needed
 
     keys = list(POINT_KEYS) + (["sensor_preset"] if by_sensor else [])
-    df = table.select(keys + ["in_window_h", "false_static_count", "false_static_s", "response_s", "static_s",
-                              "missed_static_s", "suspend_s"]).to_pydict()
+    df = table.select(
+        keys
+        + [
+            "in_window_h",
+            "false_static_count",
+            "false_static_s",
+            "response_s",
+            "static_s",
+            "missed_static_s",
+            "suspend_s",
+        ]
+    ).to_pydict()
     groups: dict[tuple, list[int]] = {}
     for i in range(len(df["k"])):
         groups.setdefault(tuple(df[k][i] for k in keys), []).append(i)
@@ -510,7 +668,8 @@ def summarise(table, confidence: float = 0.95, target_rate_per_h: float | None =
         static_s = float(sum(df["static_s"][i] for i in idx))
         missed_s = float(sum(df["missed_static_s"][i] for i in idx))
         row = dict(zip(keys, key)) | {
-            "flights": len(idx), "false_static_s": float(sum(df["false_static_s"][i] for i in idx)),
+            "flights": len(idx),
+            "false_static_s": float(sum(df["false_static_s"][i] for i in idx)),
             **rate_and_response(events, hours, resp, confidence),
             "suspend_max_s": float(susp.max()) if susp.size else math.nan,
             "availability": (static_s - missed_s) / static_s if static_s > 0 else math.nan,
@@ -530,15 +689,35 @@ def compare_methods(table, confidence: float = 0.95) -> list[dict]:
     declared static, true-positive rate = the truly static time reported static (availability), the
     curve closed at (0, 0) and (1, 1). Sorted as the points are chosen."""
     rows = summarise(table, confidence)
-    d = table.select(["method", "weight", "window_s", "k", "time_threshold_s", "in_flight_checks",
-                      "false_static_s", "static_s", "missed_static_s", "checks", "accuracy"]).to_pydict()
+    d = table.select(
+        [
+            "method",
+            "weight",
+            "window_s",
+            "k",
+            "time_threshold_s",
+            "in_flight_checks",
+            "false_static_s",
+            "static_s",
+            "missed_static_s",
+            "checks",
+            "accuracy",
+        ]
+    ).to_pydict()
     n = len(d["k"])
     out = []
     for method in dict.fromkeys(r["method"] for r in rows):
         mine = [r for r in rows if r["method"] == method]
         # a point that leaves some flight's bag unanswered at the gate (p95 inf) is no candidate while another answers
-        best = min(mine, key=lambda r: (not math.isfinite(r["response_p95_s"]), r["rate_upper_per_h"],
-                                        r["response_p95_s"], r["k"]))
+        best = min(
+            mine,
+            key=lambda r: (
+                not math.isfinite(r["response_p95_s"]),
+                r["rate_upper_per_h"],
+                r["response_p95_s"],
+                r["k"],
+            ),
+        )
         key = (method, best["weight"], best["window_s"], best["time_threshold_s"])
         fpr: dict[float, list[float]] = {}
         acc_num = acc_den = 0.0
@@ -554,13 +733,20 @@ def compare_methods(table, confidence: float = 0.95) -> list[dict]:
             if k == best["k"] and d["checks"][i] and not math.isnan(d["accuracy"][i]):
                 acc_num += d["accuracy"][i] * d["checks"][i]
                 acc_den += d["checks"][i]
-        pts = sorted((f[0] / f[1] if f[1] else math.nan, f[2] / f[3] if f[3] else math.nan) for f in fpr.values())
+        pts = sorted(
+            (f[0] / f[1] if f[1] else math.nan, f[2] / f[3] if f[3] else math.nan) for f in fpr.values()
+        )
         pts = [(0.0, 0.0)] + [p for p in pts if not any(map(math.isnan, p))] + [(1.0, 1.0)]
         x, y = np.array(pts).T
         auc = float(np.trapezoid(y, x)) if len(pts) > 3 else math.nan  # two or more thresholds swept
-        out.append(best | {"accuracy": acc_num / acc_den if acc_den else math.nan, "auc": auc,
-                           "roc_points": len(pts) - 2})
-    return sorted(out, key=lambda r: (not math.isfinite(r["response_p95_s"]), r["rate_upper_per_h"], r["response_p95_s"]))
+        out.append(
+            best
+            | {"accuracy": acc_num / acc_den if acc_den else math.nan, "auc": auc, "roc_points": len(pts) - 2}
+        )
+    return sorted(
+        out,
+        key=lambda r: (not math.isfinite(r["response_p95_s"]), r["rate_upper_per_h"], r["response_p95_s"]),
+    )
 
 
 def where(table, values: dict):
@@ -593,16 +779,30 @@ def breakdown(table, point: dict, phases=None) -> list[dict]:
             sel = [r for r in rows if str(r.get(cond)) == value]
             resp = np.array([r["response_s"] for r in sel], float)
             resp = resp[~np.isnan(resp)]
-            out.append({"condition": cond, "value": value or "none", "flights": len(sel),
-                        "in_window_h": float(sum(r["in_window_h"] for r in sel)),
-                        "false_statics": int(sum(r["false_static_count"] for r in sel)),
-                        "false_static_s": float(sum(r["false_static_s"] for r in sel)),
-                        "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan})
+            out.append(
+                {
+                    "condition": cond,
+                    "value": value or "none",
+                    "flights": len(sel),
+                    "in_window_h": float(sum(r["in_window_h"] for r in sel)),
+                    "false_statics": int(sum(r["false_static_count"] for r in sel)),
+                    "false_static_s": float(sum(r["false_static_s"] for r in sel)),
+                    "response_p95_s": float(np.percentile(resp, 95, method="higher"))
+                    if resp.size
+                    else math.nan,
+                }
+            )
     if phases is not None:
-        keys = ("method", "weight", "window_s", "k") + (("sensor_preset",) if "sensor_preset" in point else ())
+        keys = ("method", "weight", "window_s", "k") + (
+            ("sensor_preset",) if "sensor_preset" in point else ()
+        )
         hours: dict[str, float] = {}
         flights: dict[str, set] = {}
-        for r in where(phases, {k: point[k] for k in keys}).select(["phase", "checks", "dataset", "flight_id"]).to_pylist():
+        for r in (
+            where(phases, {k: point[k] for k in keys})
+            .select(["phase", "checks", "dataset", "flight_id"])
+            .to_pylist()
+        ):
             hours[r["phase"]] = hours.get(r["phase"], 0.0) + r["checks"] * point["window_s"] / 3600.0
             flights.setdefault(r["phase"], set()).add((r["dataset"], r["flight_id"]))
         events: dict[str, int] = {}
@@ -610,10 +810,33 @@ def breakdown(table, point: dict, phases=None) -> list[dict]:
             for ph in filter(None, (r["false_static_phases"] or "").split(",")):
                 events[ph] = events.get(ph, 0) + 1
         for ph in sorted(hours, key=lambda p: -hours[p]):
-            out.append({"condition": "phase", "value": ph, "flights": len(flights[ph]), "in_window_h": hours[ph],
-                        "false_statics": events.get(ph, 0), "false_static_s": math.nan, "response_p95_s": math.nan})
+            out.append(
+                {
+                    "condition": "phase",
+                    "value": ph,
+                    "flights": len(flights[ph]),
+                    "in_window_h": hours[ph],
+                    "false_statics": events.get(ph, 0),
+                    "false_static_s": math.nan,
+                    "response_p95_s": math.nan,
+                }
+            )
     return out
 
 
-__all__ = ["sweep", "check_request", "where", "sweep_flight", "write_sweep", "read_sweep", "summarise", "breakdown", "at_point",
-           "manifest_digest", "SweepResult", "CONDITIONS", "POINT_KEYS", "STATIC_EDGES"]
+__all__ = [
+    "sweep",
+    "check_request",
+    "where",
+    "sweep_flight",
+    "write_sweep",
+    "read_sweep",
+    "summarise",
+    "breakdown",
+    "at_point",
+    "manifest_digest",
+    "SweepResult",
+    "CONDITIONS",
+    "POINT_KEYS",
+    "STATIC_EDGES",
+]

@@ -130,9 +130,17 @@ def wrap_time_to_altitude_s(w, alt_m: float, first_m: float = 1500 * 0.3048) -> 
     """(fastest, slowest) time from liftoff to ``alt_m`` above the runway by WRAP's climb bands: the
     initial climb to 1,500 ft, the rate below the CAS crossover, at constant CAS, at constant Mach
     (crossover altitudes at WRAP's defaults), each band at its maximum then its minimum rate."""
-    edges = [0.0, first_m, float(w.climb_cross_alt_concas()["default"]) * 1e3,
-             float(w.climb_cross_alt_conmach()["default"]) * 1e3, math.inf]
-    rates = [_wrap_range(w, n) for n in ("initclimb_vs", "climb_vs_pre_concas", "climb_vs_concas", "climb_vs_conmach")]
+    edges = [
+        0.0,
+        first_m,
+        float(w.climb_cross_alt_concas()["default"]) * 1e3,
+        float(w.climb_cross_alt_conmach()["default"]) * 1e3,
+        math.inf,
+    ]
+    rates = [
+        _wrap_range(w, n)
+        for n in ("initclimb_vs", "climb_vs_pre_concas", "climb_vs_concas", "climb_vs_conmach")
+    ]
     fast = slow = 0.0
     for (h0, h1), (vlo, vhi) in zip(zip(edges[:-1], edges[1:]), rates):
         dh = max(0.0, min(h1, alt_m) - h0)
@@ -173,7 +181,9 @@ def _takeoff_note(conditions: dict) -> str:
     thr, target = conditions.get("takeoff_thrust_norm"), conditions.get("takeoff_accel_target_mps2")
     if thr is None:
         return ""
-    return f"throttle {thr:.3f}" + (f", drawn for {target:.2f} m/s^2" if target is not None else " (the scenario's)")
+    return f"throttle {thr:.3f}" + (
+        f", drawn for {target:.2f} m/s^2" if target is not None else " (the scenario's)"
+    )
 
 
 def _initial_climb_note(aircraft: str, conditions: dict) -> str:
@@ -195,11 +205,32 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
     w = _wrap(wrap_type)
     src = WRAP_SOURCE.format(type=wrap_type)
     out = [
-        Check("takeoff", "liftoff ground speed", "m/s", m["liftoff_gs_mps"], *_wrap_range(w, "takeoff_speed"), src),
-        Check("takeoff", "takeoff acceleration", "m/s^2", m["takeoff_accel_mps2"],
-              *_wrap_range(w, "takeoff_acceleration"), src, _takeoff_note(track.conditions)),
-        Check("climb", "initial climb rate (to 1,500 ft)", "m/s", m["initial_climb_vs_mps"],
-              *_wrap_range(w, "initclimb_vs"), src, _initial_climb_note(track.aircraft, track.conditions)),
+        Check(
+            "takeoff",
+            "liftoff ground speed",
+            "m/s",
+            m["liftoff_gs_mps"],
+            *_wrap_range(w, "takeoff_speed"),
+            src,
+        ),
+        Check(
+            "takeoff",
+            "takeoff acceleration",
+            "m/s^2",
+            m["takeoff_accel_mps2"],
+            *_wrap_range(w, "takeoff_acceleration"),
+            src,
+            _takeoff_note(track.conditions),
+        ),
+        Check(
+            "climb",
+            "initial climb rate (to 1,500 ft)",
+            "m/s",
+            m["initial_climb_vs_mps"],
+            *_wrap_range(w, "initclimb_vs"),
+            src,
+            _initial_climb_note(track.aircraft, track.conditions),
+        ),
     ]
     t = track.t_s
     h = track.alt_m - plan.origin.elevation_m
@@ -211,13 +242,24 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
             continue
         t_reach = float(t[np.argmax(h >= target)] - t_lo)
         fast, slow = wrap_time_to_altitude_s(w, target)
-        out.append(Check("climb", f"time to {ft:,} ft after liftoff", "min", t_reach / 60.0, fast / 60.0, slow / 60.0,
-                         src + ", integrated by band"))
+        out.append(
+            Check(
+                "climb",
+                f"time to {ft:,} ft after liftoff",
+                "min",
+                t_reach / 60.0,
+                fast / 60.0,
+                slow / 60.0,
+                src + ", integrated by band",
+            )
+        )
     x_cas = float(w.climb_cross_alt_concas()["default"]) * 1e3
     x_mach = float(w.climb_cross_alt_conmach()["default"]) * 1e3
-    bands = (("below the CAS crossover", 1500 * FT_M, x_cas, "climb_vs_pre_concas"),
-             ("at constant CAS", x_cas, x_mach, "climb_vs_concas"),
-             ("at constant Mach", x_mach, None, "climb_vs_conmach"))
+    bands = (
+        ("below the CAS crossover", 1500 * FT_M, x_cas, "climb_vs_pre_concas"),
+        ("at constant CAS", x_cas, x_mach, "climb_vs_concas"),
+        ("at constant Mach", x_mach, None, "climb_vs_conmach"),
+    )
     climb = np.isin(track.phase, ("initial_climb", "climb"))
     tc, hc = t[climb], h[climb]
     # the climb's top: its first level (a long haul's step climbs come later, in the cruise, and lift
@@ -228,35 +270,92 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
         h1 = min(h1, top_m - 1000 * FT_M) if h1 is not None else top_m - 1000 * FT_M
         if hc.size == 0 or h1 - h0 < 1000 * FT_M:
             continue
-        out.append(Check("climb", f"climb rate {label}", "m/s", _mean_rate_between(tc, hc, h0, h1),
-                         *_wrap_range(w, name), src))
+        out.append(
+            Check(
+                "climb",
+                f"climb rate {label}",
+                "m/s",
+                _mean_rate_between(tc, hc, h0, h1),
+                *_wrap_range(w, name),
+                src,
+            )
+        )
     from flightmode.sim.flight.geodesy import gc_distance_m
 
-    route_m = gc_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg)
+    route_m = gc_distance_m(
+        plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg
+    )
     if route_m >= CRUISE_CHECK_MIN_ROUTE_M:
-        out.append(Check("cruise", "cruise altitude", "km", m["cruise_alt_m"] / 1e3, *_wrap_range(w, "cruise_alt"), src,
-                         f"set by the scenario; route {route_m / 1e3:,.0f} km"))
+        out.append(
+            Check(
+                "cruise",
+                "cruise altitude",
+                "km",
+                m["cruise_alt_m"] / 1e3,
+                *_wrap_range(w, "cruise_alt"),
+                src,
+                f"set by the scenario; route {route_m / 1e3:,.0f} km",
+            )
+        )
     cruise_m = float(m["cruise_alt_m"]) - plan.origin.elevation_m
     hd = track.alt_m - plan.destination.elevation_m
     xd_mach = float(w.descent_cross_alt_conmach()["default"]) * 1e3
     xd_cas = float(w.descent_cross_alt_concas()["default"]) * 1e3
     desc = np.isin(track.phase, ("descent", "approach"))
     td, hdd = t[desc], hd[desc]
-    dbands = (("at constant Mach", min(cruise_m, float(hdd.max()) if hdd.size else 0.0) - 300 * FT_M, xd_mach,
-               "descent_vs_conmach"),
-              ("at constant CAS", min(xd_mach, cruise_m - 300 * FT_M), xd_cas, "descent_vs_concas"),
-              ("below the CAS crossover", min(xd_cas, cruise_m - 300 * FT_M), 3000 * FT_M, "descent_vs_post_concas"))
+    dbands = (
+        (
+            "at constant Mach",
+            min(cruise_m, float(hdd.max()) if hdd.size else 0.0) - 300 * FT_M,
+            xd_mach,
+            "descent_vs_conmach",
+        ),
+        ("at constant CAS", min(xd_mach, cruise_m - 300 * FT_M), xd_cas, "descent_vs_concas"),
+        (
+            "below the CAS crossover",
+            min(xd_cas, cruise_m - 300 * FT_M),
+            3000 * FT_M,
+            "descent_vs_post_concas",
+        ),
+    )
     for label, h0, h1, name in dbands:
         if hdd.size == 0 or h0 - h1 < 1000 * FT_M:
             continue
-        out.append(Check("descent", f"descent rate {label}", "m/s", _mean_rate_between(td, hdd, h0, h1),
-                         *_wrap_range(w, name), src))
+        out.append(
+            Check(
+                "descent",
+                f"descent rate {label}",
+                "m/s",
+                _mean_rate_between(td, hdd, h0, h1),
+                *_wrap_range(w, name),
+                src,
+            )
+        )
     out += [
-        Check("landing", "final approach rate (1,000-100 ft)", "m/s", m["final_approach_vs_mps"],
-              *_wrap_range(w, "finalapp_vs"), src),
-        Check("landing", "touchdown ground speed", "m/s", m["touchdown_gs_mps"], *_wrap_range(w, "landing_speed"), src),
-        Check("landing", "rollout deceleration (touchdown to exit)", "m/s^2", -m["rollout_decel_mps2"],
-              *_wrap_range(w, "landing_acceleration"), src),
+        Check(
+            "landing",
+            "final approach rate (1,000-100 ft)",
+            "m/s",
+            m["final_approach_vs_mps"],
+            *_wrap_range(w, "finalapp_vs"),
+            src,
+        ),
+        Check(
+            "landing",
+            "touchdown ground speed",
+            "m/s",
+            m["touchdown_gs_mps"],
+            *_wrap_range(w, "landing_speed"),
+            src,
+        ),
+        Check(
+            "landing",
+            "rollout deceleration (touchdown to exit)",
+            "m/s^2",
+            -m["rollout_decel_mps2"],
+            *_wrap_range(w, "landing_acceleration"),
+            src,
+        ),
     ]
     return out
 
@@ -273,9 +372,13 @@ TOUCHDOWN_PEAK_G = {
 # is written up (FAA Order 8900.1, vol. 4, ch. 2, sec. 8: an item of a sample 737 autoland discrepancy
 # form, about the runway track, taken here for the touchdown point; not a certification criterion)
 TOUCHDOWN_CENTRELINE_FT = 22.0
-TOUCHDOWN_CENTRELINE_SRC = "an autoland holds the runway track within 22 ft of the centreline (FAA Order 8900.1 4-2-8)"
-TOUCHDOWN_ZONE_SRC = ("FAA AIM 2-1-5: the touchdown zone, 3,000 ft or the runway's midpoint; "
-                      "14 CFR 91.175(c)(1): airline crews land inside it")
+TOUCHDOWN_CENTRELINE_SRC = (
+    "an autoland holds the runway track within 22 ft of the centreline (FAA Order 8900.1 4-2-8)"
+)
+TOUCHDOWN_ZONE_SRC = (
+    "FAA AIM 2-1-5: the touchdown zone, 3,000 ft or the runway's midpoint; "
+    "14 CFR 91.175(c)(1): airline crews land inside it"
+)
 
 
 def touchdown_checks(track, plan, m: dict) -> list[Check]:
@@ -298,20 +401,45 @@ def touchdown_checks(track, plan, m: dict) -> list[Check]:
     peak = float((-track.specific_force_body_mps2[near, 2] / G0_MPS2).max())
     glo, ghi, gsrc = TOUCHDOWN_PEAK_G[q]
     return [
-        Check("touchdown", f"sink speed ({q} landing)", "ft/s", m["touchdown_sink_mps"] / FPS_MPS, lo, hi, src,
-              f"drawn target {track.conditions.get('touchdown_sink_target_mps', math.nan) / FPS_MPS:.2f} ft/s"
-              if "touchdown_sink_target_mps" in track.conditions else ""),
+        Check(
+            "touchdown",
+            f"sink speed ({q} landing)",
+            "ft/s",
+            m["touchdown_sink_mps"] / FPS_MPS,
+            lo,
+            hi,
+            src,
+            f"drawn target {track.conditions.get('touchdown_sink_target_mps', math.nan) / FPS_MPS:.2f} ft/s"
+            if "touchdown_sink_target_mps" in track.conditions
+            else "",
+        ),
         Check("touchdown", f"peak load factor at the CG ({q} landing)", "g", peak, glo, ghi, gsrc),
-        Check("touchdown", "distance from the runway centreline", "m", abs(m["touchdown_centreline_offset_m"]),
-              0.0, TOUCHDOWN_CENTRELINE_FT * FT_M, TOUCHDOWN_CENTRELINE_SRC),
-        Check("touchdown", "distance past the threshold", "m", m["touchdown_past_threshold_m"], 0.0,
-              plan.destination.touchdown_zone_end_m, TOUCHDOWN_ZONE_SRC),
+        Check(
+            "touchdown",
+            "distance from the runway centreline",
+            "m",
+            abs(m["touchdown_centreline_offset_m"]),
+            0.0,
+            TOUCHDOWN_CENTRELINE_FT * FT_M,
+            TOUCHDOWN_CENTRELINE_SRC,
+        ),
+        Check(
+            "touchdown",
+            "distance past the threshold",
+            "m",
+            m["touchdown_past_threshold_m"],
+            0.0,
+            plan.destination.touchdown_zone_end_m,
+            TOUCHDOWN_ZONE_SRC,
+        ),
     ]
 
 
 GO_AROUND_BAND_FPM = 500.0  # the 737 FCOM's band about its middle: "1000 to 2000 fpm"
-GO_AROUND_BOEING_SRC = ("Boeing reduced go-around thrust: 737 FCOM 1,000-2,000 fpm, 747/787 FCOM 2,000 fpm "
-                        "(+-500, the 737's band)")
+GO_AROUND_BOEING_SRC = (
+    "Boeing reduced go-around thrust: 737 FCOM 1,000-2,000 fpm, 747/787 FCOM 2,000 fpm "
+    "(+-500, the 737's band)"
+)
 GO_AROUND_GRADIENT = 0.032  # 14 CFR 25.119: the landing climb's least gradient, at go-around thrust
 GO_AROUND_GRADIENT_SRC = "14 CFR 25.119: a 3.2 % climb gradient at go-around thrust"
 
@@ -332,26 +460,49 @@ def go_around_checks(track, plan) -> list[Check]:
     for k, t_call in enumerate(calls, 1):
         i0 = int(np.searchsorted(track.t_s, t_call))
         other = track.phase_code[i0:] != PHASE_CODE["go_around"]
-        sel = slice(i0, i0 + int(np.argmax(other)) if other.any() else track.n)  # the go-around and its circuit
+        sel = slice(
+            i0, i0 + int(np.argmax(other)) if other.any() else track.n
+        )  # the go-around and its circuit
         t, hs, tas = track.t_s[sel], h[sel], track.tas_mps[sel]
         ij = _crossings(hs, 400.0 * FT_M, prof.tuning.accel_height_m)
         rate_fpm = _rate_over(t, hs, ij) / FPM_MPS  # the climb's crossings, found once
         if prof.go_around_climb_fpm is not None:
-            lo, hi = prof.go_around_climb_fpm - GO_AROUND_BAND_FPM, prof.go_around_climb_fpm + GO_AROUND_BAND_FPM
+            lo, hi = (
+                prof.go_around_climb_fpm - GO_AROUND_BAND_FPM,
+                prof.go_around_climb_fpm + GO_AROUND_BAND_FPM,
+            )
             src = GO_AROUND_BOEING_SRC
         else:  # the gradient at the airspeed of the climb measured, not of the (faster) circuit after it
-            lo = math.nan if ij is None else GO_AROUND_GRADIENT * float(np.median(tas[ij[0] : ij[1] + 1])) / FPM_MPS
+            lo = (
+                math.nan
+                if ij is None
+                else GO_AROUND_GRADIENT * float(np.median(tas[ij[0] : ij[1] + 1])) / FPM_MPS
+            )
             hi, src = None, GO_AROUND_GRADIENT_SRC
-        out.append(Check("go-around", f"rate of climb, 400 ft to {prof.tuning.accel_height_m / FT_M:,.0f} ft "
-                         f"(go-around {k})", "ft/min", rate_fpm, lo, hi, src))
+        out.append(
+            Check(
+                "go-around",
+                f"rate of climb, 400 ft to {prof.tuning.accel_height_m / FT_M:,.0f} ft (go-around {k})",
+                "ft/min",
+                rate_fpm,
+                lo,
+                hi,
+                src,
+            )
+        )
     return out
 
 
 # --------------------------------------------------------------------------------------- taxi
-TAXI_FIGURES = (("speed_p50_mps", "taxi speed p50", "m/s"), ("speed_p90_mps", "taxi speed p90", "m/s"),
-                ("speed_in_turns_p50_mps", "taxi speed in turns p50", "m/s"),
-                ("yaw_rate_p90_dps", "taxi yaw rate p90", "deg/s"), ("yaw_rate_max_dps", "taxi yaw rate max", "deg/s"),
-                ("turns_per_min", "turns per taxi minute", "1/min"), ("brake_max_g", "taxi braking max", "g"))
+TAXI_FIGURES = (
+    ("speed_p50_mps", "taxi speed p50", "m/s"),
+    ("speed_p90_mps", "taxi speed p90", "m/s"),
+    ("speed_in_turns_p50_mps", "taxi speed in turns p50", "m/s"),
+    ("yaw_rate_p90_dps", "taxi yaw rate p90", "deg/s"),
+    ("yaw_rate_max_dps", "taxi yaw rate max", "deg/s"),
+    ("turns_per_min", "turns per taxi minute", "1/min"),
+    ("brake_max_g", "taxi braking max", "g"),
+)
 TAXI_BRAKE_LIMIT_G = 0.1  # no step above about 0.1 g outside a rejected takeoff (what passengers feel)
 
 
@@ -373,18 +524,37 @@ def taxi_checks(track) -> list[Check]:
         for key, label, unit in TAXI_FIGURES:
             if key not in st:
                 continue
-            out.append(Check("taxi", f"{label} ({leg.replace('_', '-')})", unit, float(st[key]), *ranges[key], src))
-        out.append(Check("taxi", f"largest braking step ({leg.replace('_', '-')})", "g", float(st["brake_max_g"]),
-                         None, TAXI_BRAKE_LIMIT_G, "passenger comfort: about 0.1 g (issue 13; no public rule found)"))
+            out.append(
+                Check("taxi", f"{label} ({leg.replace('_', '-')})", unit, float(st[key]), *ranges[key], src)
+            )
+        out.append(
+            Check(
+                "taxi",
+                f"largest braking step ({leg.replace('_', '-')})",
+                "g",
+                float(st["brake_max_g"]),
+                None,
+                TAXI_BRAKE_LIMIT_G,
+                "passenger comfort: about 0.1 g (issue 13; no public rule found)",
+            )
+        )
     # the hand-over from rollout to taxi-in: the largest braking step across it, 10 s either side
     # (the autobrake's own steady deceleration, 0.15 g at LO, is not a step; a brake applied at
     # once, as the hand-over once did at 0.44 g, is)
     t_x = _phase_start(track, "taxi_in")
     if t_x is not None:
-        out.append(Check("taxi", f"braking step at the rollout/taxi-in hand-over (rise within {HANDOVER_STEP_S:g} s)",
-                         "g", _max_braking_rise_g(track, t_x - 10, t_x + 10), None, TAXI_BRAKE_LIMIT_G,
-                         "passenger comfort: about 0.1 g (issue 13)",
-                         f"largest deceleration {_max_braking_g(track, t_x - 10, t_x + 10):.3f} g"))
+        out.append(
+            Check(
+                "taxi",
+                f"braking step at the rollout/taxi-in hand-over (rise within {HANDOVER_STEP_S:g} s)",
+                "g",
+                _max_braking_rise_g(track, t_x - 10, t_x + 10),
+                None,
+                TAXI_BRAKE_LIMIT_G,
+                "passenger comfort: about 0.1 g (issue 13)",
+                f"largest deceleration {_max_braking_g(track, t_x - 10, t_x + 10):.3f} g",
+            )
+        )
     return out
 
 
@@ -474,8 +644,10 @@ def boundary_layer_anchor(track, cruise_alt_m: float) -> tuple[float | None, str
     if not edr > 0.0:
         return 1.0, f"the track records a background EDR of {edr:g} aloft: judged whatever the wind"
     r = low_to_high_sigma_w_ratio(c["surface_wind_mps"], c["convective_velocity_mps"], edr)
-    drawn = (f"drawn field {r:.2f} times as rough low as aloft (W20 {c['surface_wind_mps']:.1f} m/s, "
-             f"w* {c['convective_velocity_mps']:.2f} m/s, cruise EDR {edr:.3f})")
+    drawn = (
+        f"drawn field {r:.2f} times as rough low as aloft (W20 {c['surface_wind_mps']:.1f} m/s, "
+        f"w* {c['convective_velocity_mps']:.2f} m/s, cruise EDR {edr:.3f})"
+    )
     if r >= 1.0:
         return 1.0, drawn
     return None, drawn + ": calmer low than high, so not judged"
@@ -491,29 +663,59 @@ def turbulence_checks(track) -> list[Check]:
     cruise_calm = calm & (track.phase == "cruise")
     std_c, _ = load_factor_windows(track, cruise_calm)
     if std_c.size:
-        out.append(Check("turbulence", "60 s load-factor std, calm cruise (p5 of windows)", "g",
-                         float(np.percentile(std_c, 5)), 1e-3, None,
-                         "calm air is never still: EDR climatology median 0.076 (Sharman and Pearson 2017)",
-                         f"median {np.median(std_c):.4f} g over {std_c.size} windows"))
-        low = track.airborne & (track.agl_m < 2000 * FT_M) & (track.turbulence_code == SEVERITY_CODE["none"]) & \
-            np.isin(track.phase, ("initial_climb", "climb", "descent", "approach"))
+        out.append(
+            Check(
+                "turbulence",
+                "60 s load-factor std, calm cruise (p5 of windows)",
+                "g",
+                float(np.percentile(std_c, 5)),
+                1e-3,
+                None,
+                "calm air is never still: EDR climatology median 0.076 (Sharman and Pearson 2017)",
+                f"median {np.median(std_c):.4f} g over {std_c.size} windows",
+            )
+        )
+        low = (
+            track.airborne
+            & (track.agl_m < 2000 * FT_M)
+            & (track.turbulence_code == SEVERITY_CODE["none"])
+            & np.isin(track.phase, ("initial_climb", "climb", "descent", "approach"))
+        )
         std_l, _ = load_factor_windows(track, low, 30.0)
         std_c30, _ = load_factor_windows(track, cruise_calm, 30.0)
         if std_l.size and std_c30.size:
             lo, note = boundary_layer_anchor(track, float(np.median(track.alt_m[cruise_calm])))
-            out.append(Check("turbulence", "boundary layer / calm cruise, 30 s std (medians)", "ratio",
-                             float(np.median(std_l) / np.median(std_c30)), lo, None,
-                             "MIL-F-8785C 3.7.3.3: low-altitude gusts scale with the surface wind", note))
+            out.append(
+                Check(
+                    "turbulence",
+                    "boundary layer / calm cruise, 30 s std (medians)",
+                    "ratio",
+                    float(np.median(std_l) / np.median(std_c30)),
+                    lo,
+                    None,
+                    "MIL-F-8785C 3.7.3.3: low-altitude gusts scale with the surface wind",
+                    note,
+                )
+            )
     for sev in ("light", "moderate", "severe"):
         s = air & (track.turbulence_code == SEVERITY_CODE[sev])
         std, peak = load_factor_windows(track, s)
         if peak.size == 0:
             continue
         lo, hi = ICAO_PEAK_G[sev]
-        out.append(Check("turbulence", f"60 s peak load-factor change, {sev} (median of windows)", "g",
-                         float(np.median(peak)), lo, hi, ICAO_SOURCE,
-                         f"60 s std median {np.median(std):.3f} g (p5 {np.percentile(std, 5):.3f}, "
-                         f"p95 {np.percentile(std, 95):.3f}), {std.size} windows"))
+        out.append(
+            Check(
+                "turbulence",
+                f"60 s peak load-factor change, {sev} (median of windows)",
+                "g",
+                float(np.median(peak)),
+                lo,
+                hi,
+                ICAO_SOURCE,
+                f"60 s std median {np.median(std):.3f} g (p5 {np.percentile(std, 5):.3f}, "
+                f"p95 {np.percentile(std, 95):.3f}), {std.size} windows",
+            )
+        )
     return out
 
 
@@ -557,13 +759,30 @@ def ground_checks(track) -> list[Check]:
     rms = {k: float(np.sqrt(np.mean(v**2))) if v.size else math.nan for k, v in cg.items()}
     out = []
     for k in ("takeoff_roll", "rollout"):
-        out.append(Check("ground", f"{k.replace('_', ' ')} / taxi, RMS vertical load factor", "ratio",
-                         rms[k] / rms["taxi"], 1.0, None,
-                         "runway rolls are the roughest ground phases (ISO 8608 profile: response grows with speed)",
-                         f"RMS {rms[k]:.4f} g vs taxi {rms['taxi']:.4f} g"))
+        out.append(
+            Check(
+                "ground",
+                f"{k.replace('_', ' ')} / taxi, RMS vertical load factor",
+                "ratio",
+                rms[k] / rms["taxi"],
+                1.0,
+                None,
+                "runway rolls are the roughest ground phases (ISO 8608 profile: response grows with speed)",
+                f"RMS {rms[k]:.4f} g vs taxi {rms['taxi']:.4f} g",
+            )
+        )
     peak = max(float(np.abs(v).max()) for v in cockpit.values() if v.size)
-    out.append(Check("ground", "cockpit peak vertical increment on the ground", "g", peak, None, NASA_COCKPIT_G,
-                     "NASA (Morris and Hall 1965): acceptable runway within +-0.4 g at the cockpit"))
+    out.append(
+        Check(
+            "ground",
+            "cockpit peak vertical increment on the ground",
+            "g",
+            peak,
+            None,
+            NASA_COCKPIT_G,
+            "NASA (Morris and Hall 1965): acceptable runway within +-0.4 g at the cockpit",
+        )
+    )
     return out
 
 
@@ -598,8 +817,16 @@ def fraction_interval(k: int, n: int, confidence: float = PFA_CONFIDENCE) -> tup
     return float(ci.low), float(ci.high)
 
 
-def _order_check(group: str, figure: str, ours: float, interval: tuple[float, float], paper: float,
-                 counted: str, source: str, where: str = "") -> Check:
+def _order_check(
+    group: str,
+    figure: str,
+    ours: float,
+    interval: tuple[float, float],
+    paper: float,
+    counted: str,
+    source: str,
+    where: str = "",
+) -> Check:
     """The paper's cell against the run's fraction: ``value`` is the log10 distance from the paper's
     value to the run's confidence interval (0 inside it), which must be within one order. A flight of
     n checks cannot tell a fraction of 1e-6 from 0 when n is thousands: the interval says what the run
@@ -611,9 +838,16 @@ def _order_check(group: str, figure: str, ours: float, interval: tuple[float, fl
         dist = math.log10(paper / lo)
     else:
         dist = 0.0
-    return Check(group, figure, "log10 from CI", dist, -1.0, 1.0, source,
-                 f"run {ours:.2g}{counted}, {PFA_CONFIDENCE:.0%} CI {lo:.1e}..{hi:.1e}; "
-                 f"paper {paper:.0e}{where}")
+    return Check(
+        group,
+        figure,
+        "log10 from CI",
+        dist,
+        -1.0,
+        1.0,
+        source,
+        f"run {ours:.2g}{counted}, {PFA_CONFIDENCE:.0%} CI {lo:.1e}..{hi:.1e}; paper {paper:.0e}{where}",
+    )
 
 
 # Tables 4 / 5 are judged only for a bag whose sensor x axis lay within this angle of the fuselage
@@ -655,8 +889,14 @@ def placement_text(stowage: dict | None) -> tuple[str, bool]:
     row = f" {f['cabin_row']} row," if f.get("cabin_row") not in (None, "hold") else ""
     xs = "/".join(f"{p['x_from_fuselage_deg']:.0f}" for p in sorted(parts, key=lambda p: -p["share"]))
     share = near / stowed if stowed else 0.0
-    judged = "" if comparable else (f" (not judged: within {limit:.1f} deg for "
-                                    f"{share:.0%} of the time stowed, the paper's quiet x lay along it)")
+    judged = (
+        ""
+        if comparable
+        else (
+            f" (not judged: within {limit:.1f} deg for "
+            f"{share:.0%} of the time stowed, the paper's quiet x lay along it)"
+        )
+    )
     return f"; bag {f['placement']},{row} sensor x {xs} deg from the fuselage{judged}", comparable
 
 
@@ -695,9 +935,14 @@ def vibration_line_db(f_hz: np.ndarray, psd: np.ndarray, noise_psd: np.ndarray |
     return float(10.0 * np.log10(ratio[k])), float(f_hz[cand[k]])
 
 
-def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.ndarray],
-                   paper_flight: int, stowage: dict | None = None,
-                   noise_psd: Callable[[np.ndarray], np.ndarray] | None = None) -> list[Check]:
+def seed000_checks(
+    columns: dict,
+    fs_hz: float,
+    sigma2_of: Callable[[int], np.ndarray],
+    paper_flight: int,
+    stowage: dict | None = None,
+    noise_psd: Callable[[np.ndarray], np.ndarray] | None = None,
+) -> list[Check]:
     """Seed 000 Tables 2, 4/5 and Fig. 6 on a run's samples (module docstring), sampled at ``fs_hz``;
     ``sigma2_of(window)``: the per-axis sigma^2 of the stream's unit for a window of that many samples
     (its bench calibration, as the run's own detector had it). ``stowage``: the recording's record of
@@ -731,9 +976,18 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
         spread = v.std(axis=0) / v.mean(axis=0)
         for ax, s in zip("xyz", spread):
             for k, implied in TABLE2_SPREAD.items():
-                out.append(Check("seed 000", f"Table 2 spread of 1 s NMV at rest, {ax} (vs {k:g} sigma^2 row)", "ratio",
-                                 float(s / implied), 1 - TABLE2_TOLERANCE, 1 + TABLE2_TOLERANCE,
-                                 "seed 000 Table 2 (eq. 13 inverted)", f"spread {s:.3f} vs {implied}, {int(ok.sum())} windows"))
+                out.append(
+                    Check(
+                        "seed 000",
+                        f"Table 2 spread of 1 s NMV at rest, {ax} (vs {k:g} sigma^2 row)",
+                        "ratio",
+                        float(s / implied),
+                        1 - TABLE2_TOLERANCE,
+                        1 + TABLE2_TOLERANCE,
+                        "seed 000 Table 2 (eq. 13 inverted)",
+                        f"spread {s:.3f} vs {implied}, {int(ok.sum())} windows",
+                    )
+                )
     # Fig. 6: a vibration line between 10 and 30 Hz in each engine phase's spectrum (bag stowed, calm)
     phase = np.asarray(labels["phase"]).astype(str)
     bag = np.asarray(columns.get("bag_state", np.full(phase.shape, "stowed"))).astype(str)
@@ -747,10 +1001,18 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
         above = np.flatnonzero(f >= 2.0)
         k_max = above[int(np.argmax(p[above]))]
         level_db, f_line = vibration_line_db(f, p, noise_psd(f) if noise_psd is not None else None)
-        out.append(Check("seed 000", f"Fig. 6 vibration line in 10-30 Hz over the noise floor, {ph}", "dB",
-                         level_db, FIG6_LINE_MIN_DB, None,
-                         "seed 000 Fig. 6: peaks between 10 and 30 Hz in every flight stage",
-                         f"line at {f_line:.1f} Hz; the largest peak above 2 Hz at {f[k_max]:.1f} Hz"))
+        out.append(
+            Check(
+                "seed 000",
+                f"Fig. 6 vibration line in 10-30 Hz over the noise floor, {ph}",
+                "dB",
+                level_db,
+                FIG6_LINE_MIN_DB,
+                None,
+                "seed 000 Fig. 6: peaks between 10 and 30 Hz in every flight stage",
+                f"line at {f_line:.1f} Hz; the largest peak above 2 Hz at {f[k_max]:.1f} Hz",
+            )
+        )
     # Tables 4 / 5: the paper counts "only the part of the series where the sensor is subject to a dynamic
     # movement" (seed 000 sec. 5.1.2, step (i)); the in-flight window's last seconds, the engines' run-down
     # after fuel cut-off at the stand (phase "shutdown", until every N2 is under 5 %), are the vibration's
@@ -759,10 +1021,16 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
     # series run into the run-down could hardly give. The in-flight count under 4 sigma^2 keeps the whole
     # window.
     checks = detect(t, acc, params, sigma2)  # one detector pass for both windows
-    rows = {r["T_sigma"]: r for r in pfa_table(t, acc, dynamic_part(labels), params, sigma2, ks=TABLE_KS,
-                                               time_thresholds_s=(4.0,), checks=checks)}
-    whole = {r["T_sigma"]: r for r in pfa_table(t, acc, labels, params, sigma2, ks=(4.0,),
-                                                time_thresholds_s=(4.0,), checks=checks)}
+    rows = {
+        r["T_sigma"]: r
+        for r in pfa_table(
+            t, acc, dynamic_part(labels), params, sigma2, ks=TABLE_KS, time_thresholds_s=(4.0,), checks=checks
+        )
+    }
+    whole = {
+        r["T_sigma"]: r
+        for r in pfa_table(t, acc, labels, params, sigma2, ks=(4.0,), time_thresholds_s=(4.0,), checks=checks)
+    }
     paper = PAPER_TABLES[paper_flight]
     table = 4 if paper_flight == 1 else 5
     where, comparable = placement_text(stowage)
@@ -778,20 +1046,52 @@ def seed000_checks(columns: dict, fs_hz: float, sigma2_of: Callable[[int], np.nd
             k_ax = int(round(r[f"P_FA_{ax}"] * n_checks))
             lo, hi = fraction_interval(k_ax, n_checks)
             lo_t, hi_t = lo_t * lo, hi_t * hi
-            out.append(judge(_order_check("seed 000", f"Table {table} P_FA^{ax} at {k:g} sigma^2",
-                                          r[f"P_FA_{ax}"], (lo, hi), paper[ax][i],
-                                          f" ({k_ax} of {n_checks} checks)", src, where)))
+            out.append(
+                judge(
+                    _order_check(
+                        "seed 000",
+                        f"Table {table} P_FA^{ax} at {k:g} sigma^2",
+                        r[f"P_FA_{ax}"],
+                        (lo, hi),
+                        paper[ax][i],
+                        f" ({k_ax} of {n_checks} checks)",
+                        src,
+                        where,
+                    )
+                )
+            )
         if k == 4.0:  # how often the recommended threshold is challenged in flight (informational)
             w, n_w = whole[k], int(whole[k]["checks"])
             joint = int(round(w["P_FA_t_joint"] * n_w))
             axes = ", ".join(f"{ax} {int(round(w[f'P_FA_{ax}'] * n_w))}" for ax in "xyz")
-            out.append(Check("seed 000", "in-flight checks under 4 sigma^2 on all axes at once", "checks", float(joint),
-                             0.0, None, "seed 000 eq. 7 (the temporary static decision); informational",
-                             f"the whole in-flight window (run-down included); per axis: {axes} of {n_w}"))
+            out.append(
+                Check(
+                    "seed 000",
+                    "in-flight checks under 4 sigma^2 on all axes at once",
+                    "checks",
+                    float(joint),
+                    0.0,
+                    None,
+                    "seed 000 eq. 7 (the temporary static decision); informational",
+                    f"the whole in-flight window (run-down included); per axis: {axes} of {n_w}",
+                )
+            )
         # the paper's P_FA^t is the product of the axes' fractions (seed 000 eq. 14's independence);
         # its interval here: the product of the axes' bounds (each at 95 %, so wider than 95 %)
-        out.append(judge(_order_check("seed 000", f"Table {table} P_FA^t at {k:g} sigma^2", r["P_FA_t"],
-                                      (lo_t, hi_t), paper["t"][i], " (product of the axes)", src, where)))
+        out.append(
+            judge(
+                _order_check(
+                    "seed 000",
+                    f"Table {table} P_FA^t at {k:g} sigma^2",
+                    r["P_FA_t"],
+                    (lo_t, hi_t),
+                    paper["t"][i],
+                    " (product of the axes)",
+                    src,
+                    where,
+                )
+            )
+        )
     return out
 
 
@@ -851,6 +1151,12 @@ def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
         sensor = sinfo["sensor"]
         odr = float(sensor["odr_hz"])
         sigma2_of = lambda window: stream_sigma2("preset", columns, sinfo, window)[0]  # noqa: E731
-        checks += seed000_checks(columns, odr, sigma2_of, paper_flight, sensor.get("stowage"),
-                                 sensor_noise_psd(sensor["preset"], odr))
+        checks += seed000_checks(
+            columns,
+            odr,
+            sigma2_of,
+            paper_flight,
+            sensor.get("stowage"),
+            sensor_noise_psd(sensor["preset"], odr),
+        )
     return checks

@@ -73,7 +73,9 @@ def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict
     from flightmode.scenarios.validate import PAPER_TABLES
 
     if paper_flight not in PAPER_TABLES:
-        raise InputDataError(f"--paper-flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")
+        raise InputDataError(
+            f"--paper-flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)"
+        )
     ok, failed, _ = ok_flights(dataset, "validate", full_truth_for="validation rebuilds each flight")
     return ok, failed
 
@@ -95,16 +97,22 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
         checks = track_checks(track, sc.plan)
         columns, _ = read_samples(Path(dataset) / row["samples_file"])
         preset = pipeline.sensor_preset(sc.sensor)
-        checks += seed000_checks(columns, preset.odr_hz, sigma2_of_flight("preset", row, columns),
-                                 paper_flight, stowage_of_row(row),
-                                 sensor_noise_psd(preset.name, preset.odr_hz))
-    except Exception as e:  # noqa: BLE001  recorded with its type and reported, never dropped
+        checks += seed000_checks(
+            columns,
+            preset.odr_hz,
+            sigma2_of_flight("preset", row, columns),
+            paper_flight,
+            stowage_of_row(row),
+            sensor_noise_psd(preset.name, preset.odr_hz),
+        )
+    except Exception as e:
         return head | {"error": f"{type(e).__name__}: {e}"}
     return head | {"checks": checks}
 
 
-def validate_dataset(dataset: str | Path, paper_flight: int = 1, workers: int = 1,
-                     on_done: Callable[[int], None] | None = None) -> tuple[list[dict], list[dict]]:
+def validate_dataset(
+    dataset: str | Path, paper_flight: int = 1, workers: int = 1, on_done: Callable[[int], None] | None = None
+) -> tuple[list[dict], list[dict]]:
     """Every successful flight of the dataset validated: (per-flight results of :func:`validate_flight`
     in manifest order, the manifest rows of the flights that failed to fly)."""
     from flightmode.scenarios.sweep import map_flights
@@ -127,14 +135,33 @@ def summarise(results: Sequence[dict]) -> list[FigureSummary]:
     for (aircraft, group, figure), checks in cells.items():
         values = np.array([c.value for c in checks], float)
         finite = values[np.isfinite(values)]
-        q = np.percentile(finite, SUMMARY_QUANTILES) if finite.size else np.full(len(SUMMARY_QUANTILES), math.nan)
+        q = (
+            np.percentile(finite, SUMMARY_QUANTILES)
+            if finite.size
+            else np.full(len(SUMMARY_QUANTILES), math.nan)
+        )
         judged = [c for c in checks if c.judged]
         n_pass = sum(c.passed for c in judged)
         # one anchor per figure: the same source range for every judged flight of the type (the first's text)
         c0 = (judged or checks)[0]
         ci = fraction_interval(n_pass, len(judged)) if judged else (0.0, 1.0)  # nothing judged: no bound
-        out.append(FigureSummary(aircraft, group, figure, c0.unit, c0.anchor_text(), c0.source, len(checks), n_pass,
-                                 float(q[0]), float(q[1]), float(q[2]), ci, len(judged)))
+        out.append(
+            FigureSummary(
+                aircraft,
+                group,
+                figure,
+                c0.unit,
+                c0.anchor_text(),
+                c0.source,
+                len(checks),
+                n_pass,
+                float(q[0]),
+                float(q[1]),
+                float(q[2]),
+                ci,
+                len(judged),
+            )
+        )
     return out
 
 
@@ -149,8 +176,20 @@ def checks_table(results: Sequence[dict]):
             rows.append({"flight_id": r["flight_id"], "aircraft": r["aircraft"], "error": r["error"]})
         for c in r.get("checks", ()):
             rows.append({"flight_id": r["flight_id"], "aircraft": r["aircraft"], "error": None} | c.as_dict())
-    schema = pa.schema([("flight_id", pa.string()), ("aircraft", pa.string()), ("error", pa.string()),
-                        ("group", pa.string()), ("figure", pa.string()), ("unit", pa.string()),
-                        ("value", pa.float64()), ("lo", pa.float64()), ("hi", pa.float64()),
-                        ("source", pa.string()), ("note", pa.string()), ("passed", pa.bool_())])
+    schema = pa.schema(
+        [
+            ("flight_id", pa.string()),
+            ("aircraft", pa.string()),
+            ("error", pa.string()),
+            ("group", pa.string()),
+            ("figure", pa.string()),
+            ("unit", pa.string()),
+            ("value", pa.float64()),
+            ("lo", pa.float64()),
+            ("hi", pa.float64()),
+            ("source", pa.string()),
+            ("note", pa.string()),
+            ("passed", pa.bool_()),
+        ]
+    )
     return pa.Table.from_pylist(rows, schema=schema)

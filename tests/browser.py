@@ -14,6 +14,8 @@ def chromium_or_skip() -> str:
     chromium = shutil.which("chromium")
     if not chromium:
         if os.environ.get("FLIGHTMODE_REQUIRE_BROWSER") == "1":
-            pytest.fail("FLIGHTMODE_REQUIRE_BROWSER=1 but no chromium on PATH (.ci/run installs it: apt-get install chromium)")
+            pytest.fail(
+                "FLIGHTMODE_REQUIRE_BROWSER=1 but no chromium on PATH (.ci/run installs it: apt-get install chromium)"
+            )
         pytest.skip("needs a browser: install Debian's chromium (apt-get install chromium)")
     return chromium

@@ -101,13 +101,19 @@ def _fly_ahead(request, _flight_cache_dir):
     names = {item.callspec.params.get("name") for item in request.session.items if hasattr(item, "callspec")}
     scenarios = sorted((Scenario.builtin(n) for n in names & known), key=lambda sc: -max_duration_s(sc.plan))
     for sc in scenarios:
-        _claim(_flight_cache_dir / f"{_flight_key(sc)}.pkl",
-               lambda: pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight")))
+        _claim(
+            _flight_cache_dir / f"{_flight_key(sc)}.pkl",
+            lambda sc=sc: pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight")),
+        )
     for sc in scenarios:
         flight = _flight_cache_dir / f"{_flight_key(sc)}.pkl"
         if flight.exists():
-            _claim(_flight_cache_dir / f"{_run_key(sc, RUN_STAGES)}.pkl",
-                   lambda: _without_track(pipeline.run(sc, track=_load(flight), stages=RUN_STAGES)))
+            _claim(
+                _flight_cache_dir / f"{_run_key(sc, RUN_STAGES)}.pkl",
+                lambda sc=sc, flight=flight: _without_track(
+                    pipeline.run(sc, track=_load(flight), stages=RUN_STAGES)
+                ),
+            )
 
 
 @pytest.fixture(scope="session")
@@ -129,8 +135,12 @@ def fly_cached(_flight_cache_dir):
             sc = sc.replace(**changes)
         key = _flight_key(sc, stop_after_s)
         if key not in memo:
-            track = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.fly(
-                sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=stop_after_s))
+            track = _shared(
+                _flight_cache_dir / f"{key}.pkl",
+                lambda: pipeline.fly(
+                    sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=stop_after_s
+                ),
+            )
             memo[key] = (sc, track)
         return memo[key]
 
@@ -151,8 +161,12 @@ def run_cached(fly_cached, _flight_cache_dir):
         sc, track = fly_cached(name, seed, **changes)
         key = _run_key(sc, stages)
         if key not in memo:
-            memo[key] = _shared(_flight_cache_dir / f"{key}.pkl", lambda: pipeline.run(sc, track=track, stages=stages),
-                                store=_without_track, restore=lambda r: dataclasses.replace(r, track=track))
+            memo[key] = _shared(
+                _flight_cache_dir / f"{key}.pkl",
+                lambda: pipeline.run(sc, track=track, stages=stages),
+                store=_without_track,
+                restore=lambda r: dataclasses.replace(r, track=track),
+            )
         return memo[key]
 
     return _run

@@ -15,14 +15,26 @@ from flightmode.digest import digest
 from flightmode.scenarios import pipeline
 from flightmode.scenarios.scenario import builtin_names
 
-ARRAYS = ("t_s", "lat_deg", "lon_deg", "alt_m", "vel_ned_mps", "euler_rad", "rates_radps",
-          "specific_force_body_mps2", "phase_code", "turbulence_code")  # recorded at every FDM step
+ARRAYS = (
+    "t_s",
+    "lat_deg",
+    "lon_deg",
+    "alt_m",
+    "vel_ned_mps",
+    "euler_rad",
+    "rates_radps",
+    "specific_force_body_mps2",
+    "phase_code",
+    "turbulence_code",
+)  # recorded at every FDM step
 SLOW = ("n1_pct", "n2_pct", "ias_mps")  # read at the pilot's ticks, interpolated between them
 HELD = 30  # after a stopped flight's last tick (ticks are <= 30 steps apart) the slow ones are held
 
 
 def _prefix_digest(track, n: int) -> str:
-    return digest(tuple(getattr(track, a)[:n] for a in ARRAYS) + tuple(getattr(track, a)[: n - HELD] for a in SLOW))
+    return digest(
+        tuple(getattr(track, a)[:n] for a in ARRAYS) + tuple(getattr(track, a)[: n - HELD] for a in SLOW)
+    )
 
 
 @pytest.mark.slow
@@ -32,11 +44,13 @@ def test_same_seed_bit_identical_track_in_another_process_and_samples_here(name,
     # another interpreter flies the scenario from the gate to two minutes after liftoff (the ground
     # phases, the takeoff and the climb-out: every controller up to there): the exact prefix
     stop = full.event_time("liftoff") + 120.0
-    code = ("import sys, flightmode; from flightmode.scenarios import pipeline; from flightmode.digest import digest;"
-            f"sc = flightmode.Scenario.builtin({name!r});"
-            f"tr = pipeline.fly(sc, pipeline.streams_of(sc.seed).child('flight'), stop_after_s={stop!r});"
-            f"print(tr.n); print(digest(tuple(getattr(tr, a) for a in {ARRAYS!r})"
-            f" + tuple(getattr(tr, a)[: tr.n - {HELD}] for a in {SLOW!r})))")
+    code = (
+        "import sys, flightmode; from flightmode.scenarios import pipeline; from flightmode.digest import digest;"
+        f"sc = flightmode.Scenario.builtin({name!r});"
+        f"tr = pipeline.fly(sc, pipeline.streams_of(sc.seed).child('flight'), stop_after_s={stop!r});"
+        f"print(tr.n); print(digest(tuple(getattr(tr, a) for a in {ARRAYS!r})"
+        f" + tuple(getattr(tr, a)[: tr.n - {HELD}] for a in {SLOW!r})))"
+    )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     n, d = r.stdout.split()[-2:]

@@ -12,9 +12,15 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-ROOMS = {"flightmode": "flightmode", "scenarios": "flightmode/scenarios", "sim": "flightmode/sim",
-         "detector": "flightmode/detector", "nav": "flightmode/nav", "viz": "flightmode/viz",
-         "eobs": "flightmode/eobs"}
+ROOMS = {
+    "flightmode": "flightmode",
+    "scenarios": "flightmode/scenarios",
+    "sim": "flightmode/sim",
+    "detector": "flightmode/detector",
+    "nav": "flightmode/nav",
+    "viz": "flightmode/viz",
+    "eobs": "flightmode/eobs",
+}
 HEAVY = ("numpy", "scipy", "jsbsim", "rerun", "pyarrow", "pandas", "dask", "distributed", "matplotlib")
 
 
@@ -24,10 +30,19 @@ def wheel(tmp_path_factory) -> Path:
     # built from a copy of the sources: setuptools builds in the source tree, and a build/ left in the
     # checkout is both clutter and a stale source (its build/lib can carry a module the tree no longer has)
     src = tmp_path_factory.mktemp("src") / "flightmode"
-    shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(".git", "build", "*.egg-info", "__pycache__",
-                                                             ".pytest_cache", ".hypothesis", "runs", ".venv"))
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(src)],
-                   check=True, capture_output=True, text=True)
+    shutil.copytree(
+        ROOT,
+        src,
+        ignore=shutil.ignore_patterns(
+            ".git", "build", "*.egg-info", "__pycache__", ".pytest_cache", ".hypothesis", "runs", ".venv"
+        ),
+    )
+    subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(src)],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
     (whl,) = out.glob("flightmode-*.whl")
     return whl
 
@@ -49,13 +64,21 @@ def test_installed_wheel_imports_flightmode_sim_and_not_sim(wheel, tmp_path):
     venv = tmp_path / "venv"
     # a fresh environment that sees the dependencies already installed here (no download), with the
     # wheel installed into it
-    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", str(venv)], check=True)
+    subprocess.run(
+        [sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", str(venv)], check=True
+    )
     py = venv / "bin" / "python"
-    subprocess.run([sys.executable, "-m", "pip", "--python", str(py), "install", "--no-deps", "-q", str(wheel)],
-                   check=True, capture_output=True, text=True)
-    code = ("import importlib, flightmode, flightmode.sim.flight.phases, flightmode.scenarios.scenario as s;"
-            "print(flightmode.__file__); print(len(s.builtin_names()))\n"
-            "try:\n import sim\n print('sim imported from', sim.__file__)\nexcept ModuleNotFoundError:\n print('no sim')")
+    subprocess.run(
+        [sys.executable, "-m", "pip", "--python", str(py), "install", "--no-deps", "-q", str(wheel)],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    code = (
+        "import importlib, flightmode, flightmode.sim.flight.phases, flightmode.scenarios.scenario as s;"
+        "print(flightmode.__file__); print(len(s.builtin_names()))\n"
+        "try:\n import sim\n print('sim imported from', sim.__file__)\nexcept ModuleNotFoundError:\n print('no sim')"
+    )
     r = subprocess.run([str(py), "-c", code], capture_output=True, text=True, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     where, n, sim = r.stdout.split("\n")[:3]
@@ -66,20 +89,28 @@ def test_installed_wheel_imports_flightmode_sim_and_not_sim(wheel, tmp_path):
 def test_importing_flightmode_and_its_cli_loads_nothing_heavy():
     """`flightmode --help` must start fast: jsbsim, scipy, rerun, pyarrow (and numpy) are imported
     only inside the commands that need them. Counted in a fresh interpreter, not timed."""
-    code = ("import sys, flightmode, flightmode.scenarios.cli;"
-            f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))")
+    code = (
+        "import sys, flightmode, flightmode.scenarios.cli;"
+        f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))"
+    )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert r.stdout.strip() == "", f"heavy modules imported at start: {r.stdout.strip()}"
     # rendering the help loads none of them either, nor Typer's Rich help (rich.markdown and
     # markdown_it: 0.15-0.2 s of the 0.5 s budget, measured with python -X importtime)
-    code = ("import sys, contextlib, io; from flightmode.scenarios.cli import app\n"
-            "with contextlib.redirect_stdout(io.StringIO()) as out, contextlib.suppress(SystemExit):\n"
-            "    app(['--help'])\n"
-            "assert 'Commands:' in out.getvalue() and 'fly' in out.getvalue(), out.getvalue()\n"
-            f"print(','.join(m for m in {HEAVY + ('typer.rich_utils', 'rich.markdown', 'markdown_it')!r} if m in sys.modules))")
+    code = (
+        "import sys, contextlib, io; from flightmode.scenarios.cli import app\n"
+        "with contextlib.redirect_stdout(io.StringIO()) as out, contextlib.suppress(SystemExit):\n"
+        "    app(['--help'])\n"
+        "assert 'Commands:' in out.getvalue() and 'fly' in out.getvalue(), out.getvalue()\n"
+        f"print(','.join(m for m in {HEAVY + ('typer.rich_utils', 'rich.markdown', 'markdown_it')!r} if m in sys.modules))"
+    )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert r.stdout.strip() == "", f"modules imported by --help: {r.stdout.strip()}"
     # and the API is there, loaded on first use
-    r = subprocess.run([sys.executable, "-c", "import flightmode; print(flightmode.Scenario.builtin('pattern').aircraft)"],
-                       capture_output=True, text=True, check=True)
+    r = subprocess.run(
+        [sys.executable, "-c", "import flightmode; print(flightmode.Scenario.builtin('pattern').aircraft)"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert r.stdout.strip() == "737"

@@ -28,8 +28,15 @@ from pathlib import Path
 
 import numpy as np
 
-FIGURES = ("pareto", "bound_vs_k", "availability_vs_k", "response_cdf", "phase_heatmap", "static_survival",
-           "worst_flight")
+FIGURES = (
+    "pareto",
+    "bound_vs_k",
+    "availability_vs_k",
+    "response_cdf",
+    "phase_heatmap",
+    "static_survival",
+    "worst_flight",
+)
 
 
 def _plt():
@@ -54,22 +61,36 @@ def _methods(summary) -> list[tuple[str, float]]:
     return sorted({(r["method"], r["weight"]) for r in summary})
 
 
-def fig_vs_k(summary, value: str, ylabel: str, path: Path, target: float | None = None, log: bool = False) -> None:
+def fig_vs_k(
+    summary, value: str, ylabel: str, path: Path, target: float | None = None, log: bool = False
+) -> None:
     plt = _plt()
     windows = sorted({r["window_s"] for r in summary})
     tths = sorted({r["time_threshold_s"] for r in summary})
     cmap = plt.get_cmap("viridis")
-    fig, axes = plt.subplots(1, len(windows), figsize=(4.2 * len(windows) + 1, 3.8), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(
+        1, len(windows), figsize=(4.2 * len(windows) + 1, 3.8), sharey=True, squeeze=False
+    )
     for ax, w in zip(axes[0], windows):
         for mi, (m, wt) in enumerate(_methods(summary)):
             for ti, tth in enumerate(tths):
-                rows = sorted((r for r in summary if (r["method"], r["weight"], r["window_s"], r["time_threshold_s"])
-                               == (m, wt, w, tth)), key=lambda r: r["k"])
+                rows = sorted(
+                    (
+                        r
+                        for r in summary
+                        if (r["method"], r["weight"], r["window_s"], r["time_threshold_s"]) == (m, wt, w, tth)
+                    ),
+                    key=lambda r: r["k"],
+                )
                 if rows:
-                    ax.plot([r["k"] for r in rows], [r[value] for r in rows],
-                            ls={"nmv": "-", "emv": "--"}.get(m, ":"),
-                            color=cmap(ti / max(1, len(tths) - 1)), lw=1.2,
-                            label=f"T_th {tth:g} s" if mi == 0 else None)
+                    ax.plot(
+                        [r["k"] for r in rows],
+                        [r[value] for r in rows],
+                        ls={"nmv": "-", "emv": "--"}.get(m, ":"),
+                        color=cmap(ti / max(1, len(tths) - 1)),
+                        lw=1.2,
+                        label=f"T_th {tth:g} s" if mi == 0 else None,
+                    )
         if target is not None:
             ax.axhline(target, color="crimson", lw=1, ls=":", label="target")
         ax.set_title(f"W_s {w:g} s")
@@ -78,7 +99,9 @@ def fig_vs_k(summary, value: str, ylabel: str, path: Path, target: float | None 
             ax.set_yscale("log")
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel(ylabel)
-    axes[0][-1].legend(fontsize=7, loc="best", title="solid NMV, dashed EMV, dotted seed 001's", title_fontsize=7)
+    axes[0][-1].legend(
+        fontsize=7, loc="best", title="solid NMV, dashed EMV, dotted seed 001's", title_fontsize=7
+    )
     fig.tight_layout()
     _save(fig, path)
 
@@ -90,9 +113,12 @@ def fig_response_cdf(points, cert, path: Path) -> None:
     plt = _plt()
     rec = {k: cert.recommendation["point"][k] for k in POINT_KEYS}
     tths = sorted({r["time_threshold_s"] for r in cert.summary})
-    shown = [("recommended", rec), ("seed 000", SEED000_POINT),
-             (f"T_th {tths[0]:g} s", rec | {"time_threshold_s": tths[0]}),
-             (f"T_th {tths[-1]:g} s", rec | {"time_threshold_s": tths[-1]})]
+    shown = [
+        ("recommended", rec),
+        ("seed 000", SEED000_POINT),
+        (f"T_th {tths[0]:g} s", rec | {"time_threshold_s": tths[0]}),
+        (f"T_th {tths[-1]:g} s", rec | {"time_threshold_s": tths[-1]}),
+    ]
     fig, ax = plt.subplots(figsize=(7, 4))
     done = set()
     for label, p in shown:
@@ -122,7 +148,11 @@ def fig_phase_heatmap(phases, cert, path: Path) -> None:
 
     plt = _plt()
     p = cert.recommendation["point"]
-    d = where(phases, {k: p[k] for k in ("method", "weight", "window_s")}).select(["phase", "k", "checks", "under_all"]).to_pydict()
+    d = (
+        where(phases, {k: p[k] for k in ("method", "weight", "window_s")})
+        .select(["phase", "k", "checks", "under_all"])
+        .to_pydict()
+    )
     ks = sorted(set(d["k"]))
     names = [ph for ph in PHASES if ph in set(d["phase"])] + sorted(set(d["phase"]) - set(PHASES))
     checks = np.zeros((len(names), len(ks)))
@@ -139,13 +169,23 @@ def fig_phase_heatmap(phases, cert, path: Path) -> None:
     for i in range(len(names)):
         for j in range(len(ks)):
             if under[i, j] > 0:
-                ax.text(j, i, f"{int(under[i, j])}", ha="center", va="center", fontsize=6,
-                        color="white" if shown[i, j] > -3 else "black")
+                ax.text(
+                    j,
+                    i,
+                    f"{int(under[i, j])}",
+                    ha="center",
+                    va="center",
+                    fontsize=6,
+                    color="white" if shown[i, j] > -3 else "black",
+                )
     ax.set_xticks(range(len(ks)), [f"{k:g}" for k in ks], fontsize=7)
     ax.set_yticks(range(len(names)), names, fontsize=7)
     ax.set_xlabel("k (T_sigma = k sigma^2)")
-    ax.set_title(f"in-window checks under k sigma^2 on all axes ({p['method'].upper()}, W_s {p['window_s']:g} s); "
-                 "numbers: checks", fontsize=8)
+    ax.set_title(
+        f"in-window checks under k sigma^2 on all axes ({p['method'].upper()}, W_s {p['window_s']:g} s); "
+        "numbers: checks",
+        fontsize=8,
+    )
     fig.colorbar(im, ax=ax, label="log10 share of the phase's checks (blank: none)")
     fig.tight_layout()
     _save(fig, path)
@@ -167,14 +207,29 @@ def fig_pareto(cert, path: Path) -> None:
     ax.scatter(x[f], y[f], facecolors="none", edgecolors="black", s=60, lw=1, label="Pareto front")
     rp = cert.recommendation["point"]
     i_rp = cert.summary.index(rp) if rp in cert.summary else None
-    ax.scatter([x[i_rp] if i_rp is not None else rp["response_p95_s"]], [rp["rate_upper_per_h"]], marker="*", s=260,
-               color="crimson",
-               label=f"recommended ({cert.recommendation['status']})", zorder=5)
+    ax.scatter(
+        [x[i_rp] if i_rp is not None else rp["response_p95_s"]],
+        [rp["rate_upper_per_h"]],
+        marker="*",
+        s=260,
+        color="crimson",
+        label=f"recommended ({cert.recommendation['status']})",
+        zorder=5,
+    )
     seed = cert.seed000
     if seed:
         i_s = next(i for i, r in enumerate(s) if _point(r) == _point(seed))
-        ax.scatter([x[i_s]], [seed["rate_upper_per_h"]], marker="D", s=70, facecolors="none",
-                   edgecolors="tab:orange", lw=2, label="seed 000 (NMV 1 s, 4 sigma^2, 4 s)", zorder=5)
+        ax.scatter(
+            [x[i_s]],
+            [seed["rate_upper_per_h"]],
+            marker="D",
+            s=70,
+            facecolors="none",
+            edgecolors="tab:orange",
+            lw=2,
+            label="seed 000 (NMV 1 s, 4 sigma^2, 4 s)",
+            zorder=5,
+        )
     ax.axhline(cert.target.rate_per_h, color="crimson", lw=1, ls=":", label="target")
     if cert.target.max_response_s:
         ax.axvline(cert.target.max_response_s, color="grey", lw=1, ls=":", label="max response")
@@ -199,7 +254,13 @@ def fig_static_survival(cert, path: Path) -> None:
     n = th["samples_per_window"]
     fig, ax = plt.subplots(figsize=(7, 4.2))
     ok = sv > 0
-    ax.step(k[ok], sv[ok], where="post", color="black", label=f"measured, any axis ({th['static_checks']:,} static checks)")
+    ax.step(
+        k[ok],
+        sv[ok],
+        where="post",
+        color="black",
+        label=f"measured, any axis ({th['static_checks']:,} static checks)",
+    )
     kk = np.linspace(0.3, 8, 400)
     white = 1 - (1 - chi2.sf(n * kk, n - 1)) ** 3
     ax.plot(kk, white, color="tab:blue", label=f"white noise, exact chi-square (N = {n})")
@@ -207,15 +268,22 @@ def fig_static_survival(cert, path: Path) -> None:
     g = 1 - np.prod([1 - norm.sf((kk - m) / s) for m, s in zip(mu, sd)], axis=0)
     ax.plot(kk, g, color="tab:green", ls="--", label="eq. 13, measured mean and spread per axis")
     ax.axhline(th["pm"], color="crimson", ls=":", lw=1, label=f"P_M = {th['pm']:g}")
-    for key, col in (("empirical_k", "black"), ("chi2_white_k", "tab:blue"), ("gaussian_measured_k", "tab:green")):
+    for key, col in (
+        ("empirical_k", "black"),
+        ("chi2_white_k", "tab:blue"),
+        ("gaussian_measured_k", "tab:green"),
+    ):
         ax.axvline(th[key], color=col, lw=0.8, ls=":")
     ax.set_yscale("log")
     ax.set_ylim(max(1e-9, 0.3 / max(1, th["static_checks"])), 1.5)
     ax.set_xlim(0, 8)
     ax.set_xlabel("k: threshold T_sigma = k sigma^2")
     ax.set_ylabel("P(MV >= k sigma^2 on any axis): P_M of one check")
-    ax.set_title(f"seed 000 section 5.1.1 ({th['method'].upper()}, W_s {th['window_s']:g} s): "
-                 f"k = {th['empirical_k']:.2f} measured, {th['chi2_white_k']:.2f} white", fontsize=9)
+    ax.set_title(
+        f"seed 000 section 5.1.1 ({th['method'].upper()}, W_s {th['window_s']:g} s): "
+        f"k = {th['empirical_k']:.2f} measured, {th['chi2_white_k']:.2f} white",
+        fontsize=9,
+    )
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     fig.tight_layout()
@@ -228,7 +296,7 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
 
     from flightmode.detector.flight_mode import DetectorParams, detect, final_static
     from flightmode.scenarios.dataset import read_manifest
-    from flightmode.scenarios.sweep import sigma2_of_flight, _streams
+    from flightmode.scenarios.sweep import _streams, sigma2_of_flight
 
     plt = _plt()
     w = cert.worst_flight
@@ -244,7 +312,9 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
     c = detect(t, acc, p, sigma2)
     tm = (c.t_s - t[0]) / 60.0
     window = np.asarray(cols["in_flight_window"], bool)[c.index]
-    fig, axes = plt.subplots(3, 1, figsize=(11, 7.5), sharex=True, gridspec_kw={"height_ratios": [3, 1.4, 1.4]})
+    fig, axes = plt.subplots(
+        3, 1, figsize=(11, 7.5), sharex=True, gridspec_kw={"height_ratios": [3, 1.4, 1.4]}
+    )
     ax = axes[0]
     for j, (a, col) in enumerate(zip("xyz", ("tab:red", "tab:green", "tab:blue"))):
         ax.plot(tm, c.mv[:, j] / sigma2[j], lw=0.5, color=col, label=f"MV {a} / sigma^2")
@@ -257,11 +327,14 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
         if on.size:
             a_.axvspan(tm[on[0]], tm[on[-1]], color="grey", alpha=0.12, lw=0)
     ax.legend(fontsize=7, ncol=7, loc="upper right")
-    ax.set_title(f"flight {w['flight_id']} ({w.get('family') or ''}, {w.get('aircraft')}, {w['sensor_preset']}, {w.get('placement')}, "
-                 f"turbulence {w.get('turbulence')}); grey: pushback to engines off", fontsize=9)
+    ax.set_title(
+        f"flight {w['flight_id']} ({w.get('family') or ''}, {w.get('aircraft')}, {w['sensor_preset']}, {w.get('placement')}, "
+        f"turbulence {w.get('turbulence')}); grey: pushback to engines off",
+        fontsize=9,
+    )
 
     def lanes(ax, items, title):
-        for i, (label, temp, fin) in enumerate(items):
+        for i, (_label, temp, fin) in enumerate(items):
             ti, fi = np.flatnonzero(temp), np.flatnonzero(fin)
             ax.vlines(tm[ti], i - 0.4, i, color="magenta", lw=0.6)
             ax.vlines(tm[fi], i, i + 0.4, color="black", lw=0.8)
@@ -274,11 +347,20 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
         temp = np.all(c.mv < k * sigma2[None, :], axis=1)
         fin = final_static(temp, c.after_reset, dataclasses.replace(p, k_sigma=k).checks_needed)
         fig14.append((f"{k:g} sigma^2", temp, fin))
-    lanes(axes[1], fig14, "seed 000 Fig. 14 form: T_th 4 s; magenta temporary static (eq. 7), black final static (eq. 8)")
+    lanes(
+        axes[1],
+        fig14,
+        "seed 000 Fig. 14 form: T_th 4 s; magenta temporary static (eq. 7), black final static (eq. 8)",
+    )
     temp4 = np.all(c.mv < 4.0 * sigma2[None, :], axis=1)
-    fig15 = [(f"T_th {tth:g} s", temp4,
-              final_static(temp4, c.after_reset, dataclasses.replace(p, time_threshold_s=tth).checks_needed))
-             for tth in (2.0, 3.0, 4.0, 5.0)]
+    fig15 = [
+        (
+            f"T_th {tth:g} s",
+            temp4,
+            final_static(temp4, c.after_reset, dataclasses.replace(p, time_threshold_s=tth).checks_needed),
+        )
+        for tth in (2.0, 3.0, 4.0, 5.0)
+    ]
     lanes(axes[2], fig15, "seed 000 Fig. 15 form: 4 sigma^2")
     axes[2].set_xlabel("time since the tracker started, min")
     fig.tight_layout()
@@ -305,32 +387,50 @@ def _table(rows: list[dict], cols: list[tuple[str, str, str]]) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
 
 
-POINT_COLS = [("name", "point", ""), ("false_statics", "false statics", "d"), ("in_window_h", "in-window h", ",.1f"),
-              ("rate_upper_per_h", "bound /h", ".3g"), ("response_p50_s", "resp. p50 s", ".1f"),
-              ("response_p95_s", "resp. p95 s", ".1f"), ("response_max_s", "resp. max s", ".1f"),
-              ("availability", "availability", ".3f"), ("hours_short", "h short", ",.0f")]
+POINT_COLS = [
+    ("name", "point", ""),
+    ("false_statics", "false statics", "d"),
+    ("in_window_h", "in-window h", ",.1f"),
+    ("rate_upper_per_h", "bound /h", ".3g"),
+    ("response_p50_s", "resp. p50 s", ".1f"),
+    ("response_p95_s", "resp. p95 s", ".1f"),
+    ("response_max_s", "resp. max s", ".1f"),
+    ("availability", "availability", ".3f"),
+    ("hours_short", "h short", ",.0f"),
+]
 
 
 def _section_511(th: dict) -> list[str]:
     parts = ["<h2>Seed 000 section 5.1.1: the threshold from a probability of misdetection</h2>"]
-    parts.append(f"<p>{th['static_checks']:,} truly static checks ({th['static_h']:.1f} h) of {th['flights']} flights, "
-                 f"{th['method'].upper()} W_s {th['window_s']:g} s; P_M = {th['pm']:g} for any axis "
-                 f"({th['pm_per_axis']:.3g} per axis).</p>")
-    rows = [{"name": "measured (empirical survival, any axis)", "k": th["empirical_k"]},
-            {"name": "eq. 13 with the measured mean and spread", "k": th["gaussian_measured_k"]},
-            {"name": f"eq. 13 with white-noise moments (N = {th['samples_per_window']})", "k": th["gaussian_white_k"]},
-            {"name": "exact chi-square, white noise", "k": th["chi2_white_k"]}]
+    parts.append(
+        f"<p>{th['static_checks']:,} truly static checks ({th['static_h']:.1f} h) of {th['flights']} flights, "
+        f"{th['method'].upper()} W_s {th['window_s']:g} s; P_M = {th['pm']:g} for any axis "
+        f"({th['pm_per_axis']:.3g} per axis).</p>"
+    )
+    rows = [
+        {"name": "measured (empirical survival, any axis)", "k": th["empirical_k"]},
+        {"name": "eq. 13 with the measured mean and spread", "k": th["gaussian_measured_k"]},
+        {
+            "name": f"eq. 13 with white-noise moments (N = {th['samples_per_window']})",
+            "k": th["gaussian_white_k"],
+        },
+        {"name": "exact chi-square, white noise", "k": th["chi2_white_k"]},
+    ]
     parts.append(_table(rows, [("name", "model", ""), ("k", "threshold, sigma^2", ".2f")]))
     if not th["empirical_resolved"]:
-        parts.append(f"<p>The measured value is not resolved: P_M = {th['pm']:g} needs at least "
-                     f"{3 / th['pm']:,.0f} static checks, these flights have {th['static_checks']:,}.</p>")
+        parts.append(
+            f"<p>The measured value is not resolved: P_M = {th['pm']:g} needs at least "
+            f"{3 / th['pm']:,.0f} static checks, these flights have {th['static_checks']:,}.</p>"
+        )
     pf = th.get("p_fa")
     if pf:
-        parts.append(f"<p>At the grid's k = {pf['k']:g} (nearest at or below the measured threshold): "
-                     f"{pf['under_all']:,} of {pf['in_window_checks']:,} in-window checks under it on all axes "
-                     f"(P_FA^t {pf['p_fa_t_joint']:.2g}); at T_th {pf['time_threshold_s']:g} s, {pf['false_statics']} "
-                     f"false statics, bound {pf['rate_upper_per_h']:.3g} /h: the target is "
-                     f"{'met' if pf['meets'] else 'not met'}.</p>")
+        parts.append(
+            f"<p>At the grid's k = {pf['k']:g} (nearest at or below the measured threshold): "
+            f"{pf['under_all']:,} of {pf['in_window_checks']:,} in-window checks under it on all axes "
+            f"(P_FA^t {pf['p_fa_t_joint']:.2g}); at T_th {pf['time_threshold_s']:g} s, {pf['false_statics']} "
+            f"false statics, bound {pf['rate_upper_per_h']:.3g} /h: the target is "
+            f"{'met' if pf['meets'] else 'not met'}.</p>"
+        )
     return parts
 
 
@@ -343,48 +443,76 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
     e = html.escape
     t = cert.target
     meta = cert.meta
-    parts = ["<!doctype html><html lang='en'><head><meta charset='utf-8'>",
-             "<title>flightmode certify</title><style>",
-             "body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222}",
-             "table{border-collapse:collapse;font-size:13px;margin:0.6em 0}td,th{border:1px solid #ccc;padding:3px 7px;"
-             "text-align:right}th{background:#f0f0f0}td:first-child{text-align:left}",
-             ".verdict{padding:0.8em 1em;border-left:6px solid;background:#fafafa}.meets{border-color:#2a2}"
-             ".too_small,.too_slow{border-color:#d90}.unreachable{border-color:#c22}img{max-width:100%;border:1px solid #ddd}"
-             "pre{background:#f6f6f6;padding:0.6em;overflow-x:auto;font-size:12px}",
-             "</style></head><body>",
-             "<h1>Flight-mode detector certification</h1>",
-             f"<p>Target: at most <b>{t.rate_per_h:g}</b> false statics per in-window flight-hour (pushback to "
-             f"engines off) at <b>{t.confidence:.0%}</b> confidence"
-             + (f", response p95 within {t.max_response_s:g} s" if t.max_response_s else "")
-             + f"; section 5.1.1 at P_M = {t.pm:g}.</p>",
-             f"<div class='verdict {e(cert.recommendation['status'])}'><b>{e(cert.recommendation['status'])}</b>: "
-             f"{e(cert.recommendation['text'])}</div>",
-             f"<p><small>The bound is the chosen point's own, over the flights it was chosen on: picking the best "
-             f"of {len(cert.summary)} points makes it optimistic. Confirm the choice on flights it was not chosen "
-             "on (a second dataset of the same family, `flightmode certify` with the one point as its grid).</small></p>"]
+    parts = [
+        "<!doctype html><html lang='en'><head><meta charset='utf-8'>",
+        "<title>flightmode certify</title><style>",
+        "body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1150px;color:#222}",
+        "table{border-collapse:collapse;font-size:13px;margin:0.6em 0}td,th{border:1px solid #ccc;padding:3px 7px;"
+        "text-align:right}th{background:#f0f0f0}td:first-child{text-align:left}",
+        ".verdict{padding:0.8em 1em;border-left:6px solid;background:#fafafa}.meets{border-color:#2a2}"
+        ".too_small,.too_slow{border-color:#d90}.unreachable{border-color:#c22}img{max-width:100%;border:1px solid #ddd}"
+        "pre{background:#f6f6f6;padding:0.6em;overflow-x:auto;font-size:12px}",
+        "</style></head><body>",
+        "<h1>Flight-mode detector certification</h1>",
+        f"<p>Target: at most <b>{t.rate_per_h:g}</b> false statics per in-window flight-hour (pushback to "
+        f"engines off) at <b>{t.confidence:.0%}</b> confidence"
+        + (f", response p95 within {t.max_response_s:g} s" if t.max_response_s else "")
+        + f"; section 5.1.1 at P_M = {t.pm:g}.</p>",
+        f"<div class='verdict {e(cert.recommendation['status'])}'><b>{e(cert.recommendation['status'])}</b>: "
+        f"{e(cert.recommendation['text'])}</div>",
+        f"<p><small>The bound is the chosen point's own, over the flights it was chosen on: picking the best "
+        f"of {len(cert.summary)} points makes it optimistic. Confirm the choice on flights it was not chosen "
+        "on (a second dataset of the same family, `flightmode certify` with the one point as its grid).</small></p>",
+    ]
     if cert.seed000:
         s = cert.seed000
-        parts.append(f"<p>Seed 000's recommended point (NMV, W_s 1 s, 4 sigma^2, T_th 4 s) "
-                     f"<b>{'meets' if s['meets'] else 'does not meet'}</b> the target: {s['false_statics']} false "
-                     f"statics in {s['in_window_h']:,.1f} h, bound {s['rate_upper_per_h']:.3g} /h, response p95 "
-                     f"{s['response_p95_s']:.1f} s, availability {s['availability']:.3f}.</p>")
+        parts.append(
+            f"<p>Seed 000's recommended point (NMV, W_s 1 s, 4 sigma^2, T_th 4 s) "
+            f"<b>{'meets' if s['meets'] else 'does not meet'}</b> the target: {s['false_statics']} false "
+            f"statics in {s['in_window_h']:,.1f} h, bound {s['rate_upper_per_h']:.3g} /h, response p95 "
+            f"{s['response_p95_s']:.1f} s, availability {s['availability']:.3f}.</p>"
+        )
     if "pareto" in figures:  # the verdict's picture, above the fold
-        parts.append(f"<img alt='pareto' src='data:image/png;base64,{base64.b64encode(figures['pareto']).decode()}'>")
+        parts.append(
+            f"<img alt='pareto' src='data:image/png;base64,{base64.b64encode(figures['pareto']).decode()}'>"
+        )
     parts.append("<h2>Data</h2>")
-    parts.append(_table(meta["datasets"], [("path", "dataset", ""), ("family", "family", ""),
-                                           ("flights", "flights", "d"), ("flights_ok", "used", "d"),
-                                           ("manifest_sha256", "manifest SHA-256", "")]))
+    parts.append(
+        _table(
+            meta["datasets"],
+            [
+                ("path", "dataset", ""),
+                ("family", "family", ""),
+                ("flights", "flights", "d"),
+                ("flights_ok", "used", "d"),
+                ("manifest_sha256", "manifest SHA-256", ""),
+            ],
+        )
+    )
     ex = meta.get("excluded", [])
-    parts.append(f"<p>Excluded as failed: <b>{len(ex)}</b> flight(s)"
-                 + (": " + "; ".join(e(f"{x['flight_id']} ({Path(x['dataset']).name}): {x['error'][:120]}") for x in ex[:20])
-                    if ex else "") + "</p>")
+    parts.append(
+        f"<p>Excluded as failed: <b>{len(ex)}</b> flight(s)"
+        + (
+            ": "
+            + "; ".join(
+                e(f"{x['flight_id']} ({Path(x['dataset']).name}): {x['error'][:120]}") for x in ex[:20]
+            )
+            if ex
+            else ""
+        )
+        + "</p>"
+    )
     parts.append(f"<p>Grid: {meta['grid']['points']} points; sigma^2 from {e(meta['sigma2_from'])}.</p>")
     rec = cert.recommendation["point"]
-    front = sorted((cert.summary[i] for i in cert.pareto), key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"]))
+    front = sorted(
+        (cert.summary[i] for i in cert.pareto), key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"])
+    )
     parts.append("<h2>Recommendation, seed 000 and the Pareto front</h2>")
     shown = named([rec] + ([cert.seed000] if cert.seed000 else []))
     parts.append(_table(shown, POINT_COLS))
-    parts.append(f"<p>The Pareto front ({len(front)} of {len(cert.summary)} points; the first 25 by bound):</p>")
+    parts.append(
+        f"<p>The Pareto front ({len(front)} of {len(cert.summary)} points; the first 25 by bound):</p>"
+    )
     parts.append(_table(named(front[:25]), POINT_COLS))
     th = cert.threshold
     if th:
@@ -392,17 +520,28 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
     for key, title in (("recommended", "recommended point"), ("seed000", "seed 000's point")):
         if key in cert.breakdowns:
             parts.append(f"<h2>By condition, at the {title}</h2>")
-            parts.append(_table(cert.breakdowns[key], [("condition", "condition", ""), ("value", "value", ""),
-                                                      ("flights", "flights", "d"), ("in_window_h", "in-window h", ",.1f"),
-                                                      ("false_statics", "false statics", "d"),
-                                                      ("false_static_s", "false static s", ",.0f"),
-                                                      ("response_p95_s", "response p95 s", ".1f")]))
+            parts.append(
+                _table(
+                    cert.breakdowns[key],
+                    [
+                        ("condition", "condition", ""),
+                        ("value", "value", ""),
+                        ("flights", "flights", "d"),
+                        ("in_window_h", "in-window h", ",.1f"),
+                        ("false_statics", "false statics", "d"),
+                        ("false_static_s", "false static s", ",.0f"),
+                        ("response_p95_s", "response p95 s", ".1f"),
+                    ],
+                )
+            )
     parts.append("<h2>Figures</h2>")
     for name, png in figures.items():
         if name == "pareto":
             continue
-        parts.append(f"<h3>{e(name)}</h3><img alt='{e(name)}' src='data:image/png;base64,"
-                     f"{base64.b64encode(png).decode()}'>")
+        parts.append(
+            f"<h3>{e(name)}</h3><img alt='{e(name)}' src='data:image/png;base64,"
+            f"{base64.b64encode(png).decode()}'>"
+        )
     parts.append("<h2>Reproduce</h2><pre>" + e("\n".join(meta["commands"])) + "</pre>")
     parts.append("<p>Versions: " + e(", ".join(f"{k} {v}" for k, v in meta["versions"].items())) + "</p>")
     parts.append("</body></html>")
@@ -417,9 +556,17 @@ def write_report(cert, result, out: Path) -> dict[str, Path]:
     fig_dir.mkdir(parents=True, exist_ok=True)
     paths = {n: fig_dir / f"{n}.png" for n in FIGURES}
     fig_pareto(cert, paths["pareto"])
-    fig_vs_k(cert.summary, "rate_upper_per_h", f"false statics per h, {cert.target.confidence:.0%} bound",
-             paths["bound_vs_k"], cert.target.rate_per_h, log=True)
-    fig_vs_k(cert.summary, "availability", "availability (static time reported static)", paths["availability_vs_k"])
+    fig_vs_k(
+        cert.summary,
+        "rate_upper_per_h",
+        f"false statics per h, {cert.target.confidence:.0%} bound",
+        paths["bound_vs_k"],
+        cert.target.rate_per_h,
+        log=True,
+    )
+    fig_vs_k(
+        cert.summary, "availability", "availability (static time reported static)", paths["availability_vs_k"]
+    )
     fig_response_cdf(result.points, cert, paths["response_cdf"])
     fig_phase_heatmap(result.phases, cert, paths["phase_heatmap"])
     if cert.threshold:

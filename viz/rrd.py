@@ -79,25 +79,54 @@ def _layout():
     import rerun.blueprint as rrb
 
     # every time-series and state view shows the whole run on its x-axis, whatever the time cursor
-    whole = [rrb.VisibleTimeRange(t, start=rrb.TimeRangeBoundary.infinite(), end=rrb.TimeRangeBoundary.infinite())
-             for t in ("sim_time", "sample")]
-    axis = rrb.TimeAxis(view_range=rrb.TimeRange(start=rrb.TimeRangeBoundary.infinite(),
-                                                 end=rrb.TimeRangeBoundary.infinite()))
+    whole = [
+        rrb.VisibleTimeRange(t, start=rrb.TimeRangeBoundary.infinite(), end=rrb.TimeRangeBoundary.infinite())
+        for t in ("sim_time", "sample")
+    ]
+    axis = rrb.TimeAxis(
+        view_range=rrb.TimeRange(start=rrb.TimeRangeBoundary.infinite(), end=rrb.TimeRangeBoundary.infinite())
+    )
     series = rrb.Vertical(
         rrb.TimeSeriesView(origin="/sensor/acc_g", name="accelerometer (g)", time_ranges=whole, axis_x=axis),
-        rrb.TimeSeriesView(origin="/detector", name="moving variance and T_sigma (g^2)", time_ranges=whole, axis_x=axis),
-        rrb.StateTimelineView(origin="/", contents=["/detector/state", "/truth/phase", "/truth/in_flight_window"],
-                              name="detector state, phase, in-flight window", time_ranges=whole, time_view=axis),
+        rrb.TimeSeriesView(
+            origin="/detector", name="moving variance and T_sigma (g^2)", time_ranges=whole, axis_x=axis
+        ),
+        rrb.StateTimelineView(
+            origin="/",
+            contents=["/detector/state", "/truth/phase", "/truth/in_flight_window"],
+            name="detector state, phase, in-flight window",
+            time_ranges=whole,
+            time_view=axis,
+        ),
         rrb.Tabs(
-            rrb.TimeSeriesView(origin="/aircraft/altitude_m", name="altitude (m)", time_ranges=whole, axis_x=axis),
-            rrb.TimeSeriesView(origin="/aircraft/airspeed_mps", name="airspeed (m/s)", time_ranges=whole, axis_x=axis),
-            rrb.TimeSeriesView(origin="/aircraft/vertical_speed_mps", name="vertical speed (m/s)", time_ranges=whole, axis_x=axis),
+            rrb.TimeSeriesView(
+                origin="/aircraft/altitude_m", name="altitude (m)", time_ranges=whole, axis_x=axis
+            ),
+            rrb.TimeSeriesView(
+                origin="/aircraft/airspeed_mps", name="airspeed (m/s)", time_ranges=whole, axis_x=axis
+            ),
+            rrb.TimeSeriesView(
+                origin="/aircraft/vertical_speed_mps",
+                name="vertical speed (m/s)",
+                time_ranges=whole,
+                axis_x=axis,
+            ),
             rrb.TimeSeriesView(origin="/aircraft/n1_pct", name="N1 (%)", time_ranges=whole, axis_x=axis),
-            rrb.TimeSeriesView(origin="/aircraft/load_factor_g", name="load factor (g)", time_ranges=whole, axis_x=axis),
-            rrb.TimeSeriesView(origin="/aircraft/cabin_altitude_m", name="cabin and aircraft altitude (m)", time_ranges=whole,
-                               axis_x=axis),
-            rrb.TimeSeriesView(origin="/aircraft/pressure_hpa", name="pressure (hPa)", time_ranges=whole, axis_x=axis),
-            rrb.TimeSeriesView(origin="/sensor/raw_counts", name="raw counts", time_ranges=whole, axis_x=axis),
+            rrb.TimeSeriesView(
+                origin="/aircraft/load_factor_g", name="load factor (g)", time_ranges=whole, axis_x=axis
+            ),
+            rrb.TimeSeriesView(
+                origin="/aircraft/cabin_altitude_m",
+                name="cabin and aircraft altitude (m)",
+                time_ranges=whole,
+                axis_x=axis,
+            ),
+            rrb.TimeSeriesView(
+                origin="/aircraft/pressure_hpa", name="pressure (hPa)", time_ranges=whole, axis_x=axis
+            ),
+            rrb.TimeSeriesView(
+                origin="/sensor/raw_counts", name="raw counts", time_ranges=whole, axis_x=axis
+            ),
             rrb.TimeSeriesView(origin="/sensor/acc_norm_g", name="|a| (g)", time_ranges=whole, axis_x=axis),
             name="aircraft and raw data",
         ),
@@ -117,13 +146,17 @@ def blueprint():
     show the whole flight rather than following its last minute)."""
     import rerun.blueprint as rrb
 
-    return rrb.Blueprint(_layout(),
-                         rrb.TimePanel(timeline="sim_time", play_state="paused", state="collapsed"),
-                         rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"))
+    return rrb.Blueprint(
+        _layout(),
+        rrb.TimePanel(timeline="sim_time", play_state="paused", state="collapsed"),
+        rrb.BlueprintPanel(state="collapsed"),
+        rrb.SelectionPanel(state="collapsed"),
+    )
 
 
 def view_names() -> list[str]:
     """The names of every view in :func:`blueprint`'s layout (walked, not listed twice)."""
+
     def walk(part):
         if hasattr(part, "contents") and not hasattr(part, "origin"):
             return [n for c in part.contents for n in walk(c)]
@@ -190,64 +223,154 @@ def _send(rr, rec, v: RunView) -> None:
     idx = [rr.TimeColumn("sim_time", duration=_ns(v.t_s)), rr.TimeColumn("sample", sequence=np.arange(n))]
     kw = {"recording": rec}
     # sensor
-    rr.log("/sensor/acc_g", rr.SeriesLines(names=["x", "y", "z"], colors=AXIS_COLOURS, widths=1.0), static=True, **kw)
+    rr.log(
+        "/sensor/acc_g",
+        rr.SeriesLines(names=["x", "y", "z"], colors=AXIS_COLOURS, widths=1.0),
+        static=True,
+        **kw,
+    )
     rr.send_columns("/sensor/acc_g", indexes=idx, columns=rr.Scalars.columns(scalars=v.acc_g), **kw)
     rr.log("/sensor/acc_norm_g", rr.SeriesLines(names=["|a|"], colors=[[90, 90, 90]]), static=True, **kw)
     rr.send_columns("/sensor/acc_norm_g", indexes=idx, columns=rr.Scalars.columns(scalars=v.acc_norm_g), **kw)
-    rr.log("/sensor/raw_counts", rr.SeriesLines(names=["raw x", "raw y", "raw z"], colors=AXIS_COLOURS), static=True, **kw)
-    rr.send_columns("/sensor/raw_counts", indexes=idx, columns=rr.Scalars.columns(scalars=v.counts.astype(np.float64)), **kw)
+    rr.log(
+        "/sensor/raw_counts",
+        rr.SeriesLines(names=["raw x", "raw y", "raw z"], colors=AXIS_COLOURS),
+        static=True,
+        **kw,
+    )
+    rr.send_columns(
+        "/sensor/raw_counts",
+        indexes=idx,
+        columns=rr.Scalars.columns(scalars=v.counts.astype(np.float64)),
+        **kw,
+    )
     # detector
     cidx = [rr.TimeColumn("sim_time", duration=_ns(v.check_t_s))]
-    rr.log("/detector/mv_g2", rr.SeriesLines(names=["MV x", "MV y", "MV z"], colors=AXIS_COLOURS), static=True, **kw)
+    rr.log(
+        "/detector/mv_g2",
+        rr.SeriesLines(names=["MV x", "MV y", "MV z"], colors=AXIS_COLOURS),
+        static=True,
+        **kw,
+    )
     rr.send_columns("/detector/mv_g2", indexes=cidx, columns=rr.Scalars.columns(scalars=v.mv_g2), **kw)
-    rr.log("/detector/threshold_g2", rr.SeriesLines(names=["T_sigma x", "T_sigma y", "T_sigma z"],
-                                                    colors=[[c // 2 + 100 for c in col] for col in AXIS_COLOURS],
-                                                    widths=2.0), static=True, **kw)
+    rr.log(
+        "/detector/threshold_g2",
+        rr.SeriesLines(
+            names=["T_sigma x", "T_sigma y", "T_sigma z"],
+            colors=[[c // 2 + 100 for c in col] for col in AXIS_COLOURS],
+            widths=2.0,
+        ),
+        static=True,
+        **kw,
+    )
     k = v.check_t_s.shape[0]
-    rr.send_columns("/detector/threshold_g2", indexes=cidx,
-                    columns=rr.Scalars.columns(scalars=np.broadcast_to(v.threshold_g2, (k, 3)).copy()), **kw)
-    rr.log("/detector/state", rr.StateConfiguration(values=list(STATE_NAMES), colors=STATE_COLOURS), static=True, **kw)
+    rr.send_columns(
+        "/detector/threshold_g2",
+        indexes=cidx,
+        columns=rr.Scalars.columns(scalars=np.broadcast_to(v.threshold_g2, (k, 3)).copy()),
+        **kw,
+    )
+    rr.log(
+        "/detector/state",
+        rr.StateConfiguration(values=list(STATE_NAMES), colors=STATE_COLOURS),
+        static=True,
+        **kw,
+    )
     change = np.flatnonzero(np.r_[True, np.diff(v.state_code) != 0]) if k else np.zeros(0, int)
-    rr.send_columns("/detector/state", indexes=[rr.TimeColumn("sim_time", duration=_ns(v.check_t_s[change]))],
-                    columns=rr.StateChange.columns(state=[STATE_NAMES[i] for i in v.state_code[change]]), **kw)
+    rr.send_columns(
+        "/detector/state",
+        indexes=[rr.TimeColumn("sim_time", duration=_ns(v.check_t_s[change]))],
+        columns=rr.StateChange.columns(state=[STATE_NAMES[i] for i in v.state_code[change]]),
+        **kw,
+    )
     # truth labels
-    for ent, (t, labels) in (("/truth/phase", v.phase_changes), ("/truth/in_flight_window", v.window_changes)):
-        rr.send_columns(ent, indexes=[rr.TimeColumn("sim_time", duration=_ns(t))],
-                        columns=rr.StateChange.columns(state=list(labels)), **kw)
+    for ent, (t, labels) in (
+        ("/truth/phase", v.phase_changes),
+        ("/truth/in_flight_window", v.window_changes),
+    ):
+        rr.send_columns(
+            ent,
+            indexes=[rr.TimeColumn("sim_time", duration=_ns(t))],
+            columns=rr.StateChange.columns(state=list(labels)),
+            **kw,
+        )
     # event log: INFO phase transitions and flight events, WARN false statics
     ev = [(t, "INFO", txt) for t, txt in v.info_events]
-    ev += [(e["t_s"], "WARN", (f"false static: transmission allowed at t = {e['t_s']:.0f} s for "
-                               f"{e['duration_s']:g} s in phase {e['phase']}")) for e in v.false_static_events]
+    ev += [
+        (
+            e["t_s"],
+            "WARN",
+            (
+                f"false static: transmission allowed at t = {e['t_s']:.0f} s for "
+                f"{e['duration_s']:g} s in phase {e['phase']}"
+            ),
+        )
+        for e in v.false_static_events
+    ]
     ev.sort(key=lambda e: e[0])
     if ev:
-        rr.send_columns("/events", indexes=[rr.TimeColumn("sim_time", duration=_ns([e[0] for e in ev]))],
-                        columns=rr.TextLog.columns(text=[e[2] for e in ev], level=[e[1] for e in ev]), **kw)
+        rr.send_columns(
+            "/events",
+            indexes=[rr.TimeColumn("sim_time", duration=_ns([e[0] for e in ev]))],
+            columns=rr.TextLog.columns(text=[e[2] for e in ev], level=[e[1] for e in ev]),
+            **kw,
+        )
     # aircraft channels
     for name, (t, vals, names) in v.aircraft.items():
         vals = np.asarray(vals, float)
         rr.log(f"/aircraft/{name}", rr.SeriesLines(names=list(names)), static=True, **kw)
-        rr.send_columns(f"/aircraft/{name}", indexes=[rr.TimeColumn("sim_time", duration=_ns(t))],
-                        columns=rr.Scalars.columns(scalars=vals), **kw)
+        rr.send_columns(
+            f"/aircraft/{name}",
+            indexes=[rr.TimeColumn("sim_time", duration=_ns(t))],
+            columns=rr.Scalars.columns(scalars=vals),
+            **kw,
+        )
     # 3D scene
     rr.log("/world", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True, **kw)
     sx, sy, sz = v.box_size_m
-    rr.log("/world/aircraft", rr.Boxes3D(sizes=[[sx, sy, sz]], colors=[[220, 220, 240]], fill_mode="solid"),
-           static=True, **kw)
-    rr.send_columns("/world/aircraft", indexes=[rr.TimeColumn("sim_time", duration=_ns(v.pose_t_s))],
-                    columns=rr.Transform3D.columns(translation=v.pose_enu_m, quaternion=v.pose_quat_xyzw), **kw)
+    rr.log(
+        "/world/aircraft",
+        rr.Boxes3D(sizes=[[sx, sy, sz]], colors=[[220, 220, 240]], fill_mode="solid"),
+        static=True,
+        **kw,
+    )
+    rr.send_columns(
+        "/world/aircraft",
+        indexes=[rr.TimeColumn("sim_time", duration=_ns(v.pose_t_s))],
+        columns=rr.Transform3D.columns(translation=v.pose_enu_m, quaternion=v.pose_quat_xyzw),
+        **kw,
+    )
     _send_paths(rr, rec, v.paths_enu_m)
     # map
     if v.route_lat_lon.shape[0]:
-        rr.log("/map/route", rr.GeoLineStrings(lat_lon=[v.route_lat_lon], radii=rr.components.Radius.ui_points(2.0),
-                                               colors=[[40, 120, 255]]), static=True, **kw)
+        rr.log(
+            "/map/route",
+            rr.GeoLineStrings(
+                lat_lon=[v.route_lat_lon], radii=rr.components.Radius.ui_points(2.0), colors=[[40, 120, 255]]
+            ),
+            static=True,
+            **kw,
+        )
     # airports: one class per airport, its label from an annotation context (GeoPoints have no
     # label field in Rerun 0.41); the entity path carries the ICAO code as well
-    rr.log("/map/airports", rr.AnnotationContext([
-        rr.ClassDescription(info=(i + 1, f"{icao} {name}", (255, 80, 40)))
-        for i, (icao, name, _, _) in enumerate(v.airports)]), static=True, **kw)
+    rr.log(
+        "/map/airports",
+        rr.AnnotationContext(
+            [
+                rr.ClassDescription(info=(i + 1, f"{icao} {name}", (255, 80, 40)))
+                for i, (icao, name, _, _) in enumerate(v.airports)
+            ]
+        ),
+        static=True,
+        **kw,
+    )
     for i, (icao, _name, lat, lon) in enumerate(v.airports):
-        rr.log(f"/map/airports/{icao}", rr.GeoPoints(lat_lon=[[lat, lon]], radii=rr.components.Radius.ui_points(8.0),
-                                                    class_ids=[i + 1]), static=True, **kw)
+        rr.log(
+            f"/map/airports/{icao}",
+            rr.GeoPoints(lat_lon=[[lat, lon]], radii=rr.components.Radius.ui_points(8.0), class_ids=[i + 1]),
+            static=True,
+            **kw,
+        )
 
 
 PATH_COLOURS = {"truth": [240, 240, 240], "tridiagonal": [80, 200, 255], "recurrence": [255, 120, 60]}
@@ -255,5 +378,11 @@ PATH_COLOURS = {"truth": [240, 240, 240], "tridiagonal": [80, 200, 255], "recurr
 
 def _send_paths(rr, rec, paths_enu_m: dict) -> None:
     for name, pts in paths_enu_m.items():
-        rr.log(f"/world/path/{name}", rr.LineStrips3D([pts], radii=[40.0], colors=[PATH_COLOURS.get(name, [200, 200, 0])],
-                                                      labels=[name]), static=True, recording=rec)
+        rr.log(
+            f"/world/path/{name}",
+            rr.LineStrips3D(
+                [pts], radii=[40.0], colors=[PATH_COLOURS.get(name, [200, 200, 0])], labels=[name]
+            ),
+            static=True,
+            recording=rec,
+        )

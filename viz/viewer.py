@@ -24,7 +24,9 @@ def resolve_rrd(path: Path) -> Path:
     p = Path(path)
     rrd = p / "recording.rrd" if p.is_dir() else p
     if not rrd.is_file():
-        raise FlightmodeError(f"{path}: no recording.rrd (run `flightmode fly` without --no-rrd, or give an .rrd file)")
+        raise FlightmodeError(
+            f"{path}: no recording.rrd (run `flightmode fly` without --no-rrd, or give an .rrd file)"
+        )
     if rrd.suffix != ".rrd":
         raise FlightmodeError(f"{rrd}: not an .rrd file")
     return rrd
@@ -43,7 +45,9 @@ def rerun_exe() -> str:
 
     import rerun_cli
 
-    exe = os.path.join(os.path.dirname(rerun_cli.__file__), "rerun" + (".exe" if sys.platform.startswith("win") else ""))
+    exe = os.path.join(
+        os.path.dirname(rerun_cli.__file__), "rerun" + (".exe" if sys.platform.startswith("win") else "")
+    )
     if sys.platform == "darwin":
         app = os.path.join(os.path.dirname(rerun_cli.__file__), "Rerun.app", "Contents", "MacOS", "Rerun")
         exe = app if os.path.exists(app) else exe
@@ -57,7 +61,16 @@ def native_command(rrd: Path) -> list[str]:
 
 
 def web_command(rrd: Path, web_port: int, grpc_port: int) -> tuple[list[str], str]:
-    cmd = [rerun_exe(), "--web-viewer", "--bind", LOOPBACK,
-           "--web-viewer-port", str(web_port), "--port", str(grpc_port), str(rrd)]
+    cmd = [
+        rerun_exe(),
+        "--web-viewer",
+        "--bind",
+        LOOPBACK,
+        "--web-viewer-port",
+        str(web_port),
+        "--port",
+        str(grpc_port),
+        str(rrd),
+    ]
     url = f"http://{LOOPBACK}:{web_port}/?url=rerun%2Bhttp%3A%2F%2F{LOOPBACK}%3A{grpc_port}%2Fproxy"
     return cmd, url

@@ -187,7 +187,9 @@ class StreamInput:
                 )
         for name, x in (("t_s", t), ("acc_g", a), ("gyr_dps", g)):
             if x is not None and (i := first_nonfinite(x)) is not None:
-                raise DetectorError(f"{self.who}: NaN or inf in {name} at sample {self.n + i}: clean the stream")
+                raise DetectorError(
+                    f"{self.who}: NaN or inf in {name} at sample {self.n + i}: clean the stream"
+                )
         if t.shape[0]:
             tt = t if self._t_last is None else np.concatenate([[self._t_last], t])
             if tt.shape[0] > 1:

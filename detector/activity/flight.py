@@ -57,13 +57,17 @@ class ActivityParams:
 
         d = registry.get(self.name)  # an unknown name: DetectorError with the nearest
         if not self.window >= 2:
-            raise DetectorError(f"--window-s {self.window_s:g}: {self.window} sample(s) at {self.fs_hz:g} Hz; "
-                                "a window needs at least 2")
+            raise DetectorError(
+                f"--window-s {self.window_s:g}: {self.window} sample(s) at {self.fs_hz:g} Hz; "
+                "a window needs at least 2"
+            )
         if not (self.k > 0 and math.isfinite(self.k)):
             raise DetectorError(f"--k {self.k!r}: the threshold is k times the rest level, k > 0")
         if not self.time_threshold_s > 0:
-            raise DetectorError(f"--time-threshold-s {self.time_threshold_s:g}: must be > 0 (one check suffices "
-                                "below W_s, as for the moving variance)")
+            raise DetectorError(
+                f"--time-threshold-s {self.time_threshold_s:g}: must be > 0 (one check suffices "
+                "below W_s, as for the moving variance)"
+            )
         if d.signals and self.signal not in d.signals:
             raise DetectorError(f"--signal {self.signal!r}: {self.name} takes {', '.join(d.signals)}")
 
@@ -107,16 +111,20 @@ def rest_figures(p: ActivityParams, bench_acc_g: np.ndarray, bench_gyr_dps: np.n
         rest["sigma_gyr_dps"] = float(np.sqrt(np.mean(np.var(np.asarray(bench_gyr_dps, float), axis=0))))
     elif d.needs_gyro or p.signal != "acc":
         what = p.name if d.needs_gyro else f"{p.name} with --signal {p.signal}"
-        raise DetectorError(f"{what} needs a gyroscope: sense the flight with one (flightmode sense RUN --gyro)")
+        raise DetectorError(
+            f"{what} needs a gyroscope: sense the flight with one (flightmode sense RUN --gyro)"
+        )
     x = flexible_signal(p.signal, acc, bench_gyr_dps) if d.signals else None
     if p.name == "mbcd":
-        rest["bandwidth"] = 1.06 * float(np.std(x)) * p.window ** -0.2  # Silverman (1986) eq. 3.28
+        rest["bandwidth"] = 1.06 * float(np.std(x)) * p.window**-0.2  # Silverman (1986) eq. 3.28
     if p.name in DB_DETECTORS:
         rest["noise_spectrum"] = _rest_spectrum(x, p.window, max(1, p.window // 2))
     merit = d.detect(t, acc, bench_gyr_dps, threshold=0.0, **_kwargs(p, rest)).merit
     merit = merit[np.isfinite(merit)]
     if merit.size == 0:
-        raise DetectorError(f"{p.name}: the bench recording ({n} samples) is shorter than one window ({p.window})")
+        raise DetectorError(
+            f"{p.name}: the bench recording ({n} samples) is shorter than one window ({p.window})"
+        )
     rest["merit_median"] = float(np.median(merit))
     rest["threshold"] = threshold_of(p.name, rest["merit_median"], p.k)
     return rest
@@ -134,8 +142,9 @@ def _rest_spectrum(x: np.ndarray, window: int, shift: int) -> np.ndarray:
     return amplitude_spectra(np.lib.stride_tricks.sliding_window_view(x, window)[::shift]).mean(axis=0)
 
 
-def activity_checks(t_s: np.ndarray, acc_g: np.ndarray, gyr_dps: np.ndarray | None, p: ActivityParams,
-                    rest: dict) -> Checks:
+def activity_checks(
+    t_s: np.ndarray, acc_g: np.ndarray, gyr_dps: np.ndarray | None, p: ActivityParams, rest: dict
+) -> Checks:
     """Every check of a whole stream (module docstring); ``rest`` from :func:`rest_figures`."""
     from flightmode.detector.activity import registry
 
@@ -159,12 +168,25 @@ def _checks(t_s, marker, merit, periods, index, after_reset, need: int) -> Check
     k, n = periods
     temp = ~marker[: k * n].reshape(k, n).astype(bool).any(axis=1)  # every sample of the period inactive
     mv = np.repeat(merit[index][:, None], 3, axis=1)
-    return Checks(index, np.asarray(t_s, float)[index], mv, temp, final_static(temp, after_reset, need), after_reset)
+    return Checks(
+        index, np.asarray(t_s, float)[index], mv, temp, final_static(temp, after_reset, need), after_reset
+    )
 
 
-def evaluate_activity_grid(t_s, acc_g, gyr_dps, labels: dict, name: str, windows_s, ks, time_thresholds_s,
-                           fs_hz: float, bench_acc_g: np.ndarray, signal: str = "acc",
-                           bench_gyr_dps: np.ndarray | None = None):
+def evaluate_activity_grid(
+    t_s,
+    acc_g,
+    gyr_dps,
+    labels: dict,
+    name: str,
+    windows_s,
+    ks,
+    time_thresholds_s,
+    fs_hz: float,
+    bench_acc_g: np.ndarray,
+    signal: str = "acc",
+    bench_gyr_dps: np.ndarray | None = None,
+):
     """(parameters, evaluation) for every (window, k, T_th) of one detector over one stream, the
     detector run once per window: its figure of merit does not depend on the threshold, so each k is
     one comparison (seed 001's step IV) and each T_th one run-length pass (seed 000's eq. 8), as the
@@ -179,8 +201,9 @@ def evaluate_activity_grid(t_s, acc_g, gyr_dps, labels: dict, name: str, windows
 
     d = registry.get(name)
     for w in windows_s:
-        base = ActivityParams(name, fs_hz=fs_hz, window_s=w, k=ks[0], time_threshold_s=time_thresholds_s[0],
-                              signal=signal)
+        base = ActivityParams(
+            name, fs_hz=fs_hz, window_s=w, k=ks[0], time_threshold_s=time_thresholds_s[0], signal=signal
+        )
         rest = rest_figures(base, bench_acc_g, bench_gyr_dps)
         merit = d.detect(t_s, acc_g, gyr_dps, threshold=rest["threshold"], **_kwargs(base, rest)).merit
         periods, index, after_reset = _periods(merit.shape[0], base.window)
@@ -204,10 +227,22 @@ def evaluate_activity(t_s, acc_g, gyr_dps, labels: dict, p: ActivityParams, rest
 
     _check_labels(t_s, acc_g, labels)
     c = activity_checks(t_s, acc_g, gyr_dps, p, rest)
-    dp = dataclasses.replace(DetectorParams(fs_hz=p.fs_hz), window_s=p.window_s, k_sigma=p.k,
-                             time_threshold_s=p.time_threshold_s, method=p.name)
+    dp = dataclasses.replace(
+        DetectorParams(fs_hz=p.fs_hz),
+        window_s=p.window_s,
+        k_sigma=p.k,
+        time_threshold_s=p.time_threshold_s,
+        method=p.name,
+    )
     return score(c, t_s, labels, dp, np.full(3, rest["threshold"]))
 
 
-__all__ = ["ActivityParams", "rest_figures", "activity_checks", "evaluate_activity", "evaluate_activity_grid",
-           "threshold_of", "DB_DETECTORS"]
+__all__ = [
+    "ActivityParams",
+    "rest_figures",
+    "activity_checks",
+    "evaluate_activity",
+    "evaluate_activity_grid",
+    "threshold_of",
+    "DB_DETECTORS",
+]

@@ -58,6 +58,7 @@ from flightmode.errors import DetectorError
 SIGMA_ACC_UNIT = "the accelerometer noise standard deviation in g"
 SIGMA_GYR_UNIT = "the gyroscope noise standard deviation in deg/s"
 
+
 # ---------------------------------------------------------------- AMVD, eq. (1)
 def amvd_merits(acc_g: np.ndarray, window: int) -> np.ndarray:
     """V of every full window of an (L, 3) array: the trace of the window's (population) covariance."""
@@ -84,8 +85,9 @@ class AMVDStream(WindowedStream):
         return amvd_merits(f, self.window)
 
 
-def detect_amvd(t_s, acc_g, gyr_dps=None, *, window: int, threshold: float,
-                fs_hz: float | None = None) -> ActivityResult:
+def detect_amvd(
+    t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, fs_hz: float | None = None
+) -> ActivityResult:
     """AMVD over a whole stream. ``window`` in samples, ``threshold`` in g^2 (the seed's Tables 1
     and 7: 0.017-0.019 g^2 at 16-26 samples); ``gyr_dps`` is not used."""
     fs = batch_rate(t_s, fs_hz, AMVDStream.name)
@@ -111,8 +113,9 @@ class AMDStream(WindowedStream):
         return window_sums(f[:, 0], self.window) / (self.sigma_acc_g**2 * self.window)  # seed 001, eq. (2)
 
 
-def detect_amd(t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, sigma_acc_g: float,
-               fs_hz: float | None = None) -> ActivityResult:
+def detect_amd(
+    t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, sigma_acc_g: float, fs_hz: float | None = None
+) -> ActivityResult:
     """AMD over a whole stream. ``sigma_acc_g``: accelerometer noise standard deviation (g);
     ``gyr_dps`` is not used."""
     fs = batch_rate(t_s, fs_hz, AMDStream.name)
@@ -137,8 +140,16 @@ class AREDStream(WindowedStream):
         return window_sums(f[:, 0], self.window) / (self.sigma_gyr_dps**2 * self.window)  # seed 001, eq. (3)
 
 
-def detect_ared(t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, sigma_gyr_dps: float,
-                fs_hz: float | None = None) -> ActivityResult:
+def detect_ared(
+    t_s,
+    acc_g,
+    gyr_dps=None,
+    *,
+    window: int,
+    threshold: float,
+    sigma_gyr_dps: float,
+    fs_hz: float | None = None,
+) -> ActivityResult:
     """ARED over a whole stream. ``sigma_gyr_dps``: gyroscope noise standard deviation (deg/s)."""
     fs = batch_rate(t_s, fs_hz, AREDStream.name)
     det = AREDStream(window=window, threshold=threshold, fs_hz=fs, sigma_gyr_dps=sigma_gyr_dps)
@@ -168,8 +179,9 @@ class SHODStream(WindowedStream):
 
     name, unit = "SHOD", "dimensionless (noise-variance units)"
 
-    def __init__(self, *, window: int, threshold: float, fs_hz: float, sigma_acc_g: float,
-                 sigma_gyr_dps: float):
+    def __init__(
+        self, *, window: int, threshold: float, fs_hz: float, sigma_acc_g: float, sigma_gyr_dps: float
+    ):
         super().__init__(window=window, threshold=threshold, fs_hz=fs_hz, need_gyro=True)
         self.sigma_acc_g = check_positive(sigma_acc_g, "sigma_acc_g", SIGMA_ACC_UNIT)
         self.sigma_gyr_dps = check_positive(sigma_gyr_dps, "sigma_gyr_dps", SIGMA_GYR_UNIT)
@@ -181,12 +193,22 @@ class SHODStream(WindowedStream):
         return shod_merits(f, self.window, self.sigma_acc_g, self.sigma_gyr_dps)
 
 
-def detect_shod(t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, sigma_acc_g: float,
-                sigma_gyr_dps: float, fs_hz: float | None = None) -> ActivityResult:
+def detect_shod(
+    t_s,
+    acc_g,
+    gyr_dps=None,
+    *,
+    window: int,
+    threshold: float,
+    sigma_acc_g: float,
+    sigma_gyr_dps: float,
+    fs_hz: float | None = None,
+) -> ActivityResult:
     """SHOD over a whole stream (noise standard deviations in g and deg/s)."""
     fs = batch_rate(t_s, fs_hz, SHODStream.name)
-    det = SHODStream(window=window, threshold=threshold, fs_hz=fs, sigma_acc_g=sigma_acc_g,
-                     sigma_gyr_dps=sigma_gyr_dps)
+    det = SHODStream(
+        window=window, threshold=threshold, fs_hz=fs, sigma_acc_g=sigma_acc_g, sigma_gyr_dps=sigma_gyr_dps
+    )
     return run_batch(det, t_s, acc_g, gyr_dps, window)
 
 
@@ -203,8 +225,15 @@ class FRDStream:
 
     name = "FRD"
 
-    def __init__(self, *, threshold: float, fs_hz: float, signal: str = "acc", hp_cutoff_hz: float = 0.3,
-                 lp_cutoff_hz: float = 1.0):
+    def __init__(
+        self,
+        *,
+        threshold: float,
+        fs_hz: float,
+        signal: str = "acc",
+        hp_cutoff_hz: float = 0.3,
+        lp_cutoff_hz: float = 1.0,
+    ):
         from scipy.signal import butter
 
         self.signal = check_signal(signal)
@@ -242,11 +271,21 @@ class FRDStream:
         return ActivityResult(decide(v, self.threshold), v)
 
 
-def detect_frd(t_s, acc_g, gyr_dps=None, *, threshold: float, signal: str = "acc", hp_cutoff_hz: float = 0.3,
-               lp_cutoff_hz: float = 1.0, fs_hz: float | None = None) -> ActivityResult:
+def detect_frd(
+    t_s,
+    acc_g,
+    gyr_dps=None,
+    *,
+    threshold: float,
+    signal: str = "acc",
+    hp_cutoff_hz: float = 0.3,
+    lp_cutoff_hz: float = 1.0,
+    fs_hz: float | None = None,
+) -> ActivityResult:
     """FRD over a whole stream (no window: the seed gives FRD none). ``threshold`` in the signal's
     unit (g for "acc")."""
     fs = batch_rate(t_s, fs_hz, FRDStream.name)
-    det = FRDStream(threshold=threshold, fs_hz=fs, signal=signal, hp_cutoff_hz=hp_cutoff_hz,
-                    lp_cutoff_hz=lp_cutoff_hz)
+    det = FRDStream(
+        threshold=threshold, fs_hz=fs, signal=signal, hp_cutoff_hz=hp_cutoff_hz, lp_cutoff_hz=lp_cutoff_hz
+    )
     return run_batch(det, t_s, acc_g, gyr_dps, None)

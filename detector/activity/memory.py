@@ -182,16 +182,33 @@ class MBCDStream(_FlexibleWindowed):
         return mbcd_merits(f[:, 0], self.window, self.bandwidth)
 
 
-def detect_mbgtd(t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, signal: str = "acc",
-                 fs_hz: float | None = None) -> ActivityResult:
+def detect_mbgtd(
+    t_s,
+    acc_g,
+    gyr_dps=None,
+    *,
+    window: int,
+    threshold: float,
+    signal: str = "acc",
+    fs_hz: float | None = None,
+) -> ActivityResult:
     """MBGTD over a whole stream: ``window`` in samples, ``threshold`` in the signal's unit."""
     fs = batch_rate(t_s, fs_hz, MBGTDStream.name)
     det = MBGTDStream(window=window, threshold=threshold, fs_hz=fs, signal=signal)
     return run_batch(det, t_s, acc_g, gyr_dps, window)
 
 
-def detect_mbcd(t_s, acc_g, gyr_dps=None, *, window: int, threshold: float, bandwidth: float,
-                signal: str = "acc", fs_hz: float | None = None) -> ActivityResult:
+def detect_mbcd(
+    t_s,
+    acc_g,
+    gyr_dps=None,
+    *,
+    window: int,
+    threshold: float,
+    bandwidth: float,
+    signal: str = "acc",
+    fs_hz: float | None = None,
+) -> ActivityResult:
     """MBCD over a whole stream: ``window`` in samples, ``threshold`` >= 0 (nats), ``bandwidth`` the
     kernel width in the signal's unit."""
     fs = batch_rate(t_s, fs_hz, MBCDStream.name)

@@ -85,19 +85,28 @@ class Grid:
             registry.get(d)  # an unknown name raises, with the nearest
         for s in self.signals:
             if s not in SIGNALS:
-                raise DetectorError(f"signal {s!r}: use one of {', '.join(SIGNALS)}{did_you_mean(s, SIGNALS)}")
-        for name, ws, least in (("magnitude_windows", self.magnitude_windows, 2),
-                                ("spectrum_windows", self.spectrum_windows, 2),
-                                ("spectrum_shifts", self.spectrum_shifts, 1), ("memory_windows", self.memory_windows, 2)):
+                raise DetectorError(
+                    f"signal {s!r}: use one of {', '.join(SIGNALS)}{did_you_mean(s, SIGNALS)}"
+                )
+        for name, ws, least in (
+            ("magnitude_windows", self.magnitude_windows, 2),
+            ("spectrum_windows", self.spectrum_windows, 2),
+            ("spectrum_shifts", self.spectrum_shifts, 1),
+            ("memory_windows", self.memory_windows, 2),
+        ):
             if not ws or any(isinstance(w, bool) or int(w) != w or w < least for w in ws):
-                raise DetectorError(f"Grid.{name} = {ws!r}: give one or more whole numbers of samples >= {least}")
+                raise DetectorError(
+                    f"Grid.{name} = {ws!r}: give one or more whole numbers of samples >= {least}"
+                )
         if not any(s <= w for w in self.spectrum_windows for s in self.spectrum_shifts):
             raise DetectorError("Grid: no spectrum shift is <= a spectrum window")
         keys = {k for k, _ in self.thresholds}
         valid = {d for d in self.detectors} | {f"{d}/{s}" for d in self.detectors for s in SIGNALS}
         for k in keys - valid:
-            raise DetectorError(f"Grid.thresholds key {k!r}: use a detector or detector/signal of the grid"
-                                f"{did_you_mean(k, sorted(valid))}")
+            raise DetectorError(
+                f"Grid.thresholds key {k!r}: use a detector or detector/signal of the grid"
+                f"{did_you_mean(k, sorted(valid))}"
+            )
 
     def thresholds_for(self, detector: str, signal: str | None) -> np.ndarray | None:
         table = dict(self.thresholds)
@@ -111,7 +120,9 @@ class Grid:
         if detector == "frd":
             return [(None, None)]
         if detector in SPECTRUM:
-            return [(w, s) for w in sorted(self.spectrum_windows) for s in sorted(self.spectrum_shifts) if s <= w]
+            return [
+                (w, s) for w in sorted(self.spectrum_windows) for s in sorted(self.spectrum_shifts) if s <= w
+            ]
         ws = self.memory_windows if detector in MEMORY else self.magnitude_windows
         return [(w, None) for w in sorted(ws)]
 
@@ -146,11 +157,15 @@ class MonteCarloConfig:
         self.grid.check()
         if not (isinstance(self.roc_points, int) and self.roc_points >= 2):
             raise DetectorError(f"roc_points = {self.roc_points!r}: need an integer >= 2")
-        longest = max(max(self.grid.magnitude_windows), max(self.grid.spectrum_windows), max(self.grid.memory_windows))
+        longest = max(
+            max(self.grid.magnitude_windows), max(self.grid.spectrum_windows), max(self.grid.memory_windows)
+        )
         for name, s in (("duration_s", self.duration_s), ("bench_s", self.bench_s)):
             if not s * self.fs_hz > 2 * longest:
-                raise DetectorError(f"{name} = {s:g} s is {s * self.fs_hz:g} samples at {self.fs_hz:g} Hz: "
-                                    f"need more than twice the longest window ({longest})")
+                raise DetectorError(
+                    f"{name} = {s:g} s is {s * self.fs_hz:g} samples at {self.fs_hz:g} Hz: "
+                    f"need more than twice the longest window ({longest})"
+                )
 
 
 # ---------------------------------------------------------------- one merit vector against the truth
@@ -260,7 +275,7 @@ def _bench_figures(bench, d, signal, window, shift) -> dict:
         kw["noise_spectrum"] = amplitude_spectra(frames).mean(axis=0)
     if d.name == "mbcd":
         x = flexible_signal(signal, bench.acc_g, bench.gyr_dps)
-        kw["bandwidth"] = 1.06 * float(np.std(x)) * window ** -0.2  # Silverman (1986) eq. 3.28
+        kw["bandwidth"] = 1.06 * float(np.std(x)) * window**-0.2  # Silverman (1986) eq. 3.28
     return kw
 
 
@@ -281,8 +296,19 @@ class GridBest:
     surface: tuple[tuple[int | None, int | None, float], ...]
 
 
-def grid_search(name: str, signal: str | None, t_s, acc_g, gyr_dps, truth, points, *, fs_hz: float,
-                thresholds=None, figures=None) -> GridBest:
+def grid_search(
+    name: str,
+    signal: str | None,
+    t_s,
+    acc_g,
+    gyr_dps,
+    truth,
+    points,
+    *,
+    fs_hz: float,
+    thresholds=None,
+    figures=None,
+) -> GridBest:
     """Detector ``name`` (input ``signal``, None for a fixed-input detector) at every (window, shift)
     of ``points`` (None where it takes none), run once per point with ``figures(window, shift)`` (its
     noise figures: a dict of keyword arguments) and scored at every threshold (exact when
@@ -317,9 +343,14 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
     from flightmode.streams import as_streams
 
     streams = as_streams(_run_generator(seed, index))
-    sensor = {"fs_hz": config.fs_hz, "gravity_axis": config.gravity_axis, "sigma_acc_g": config.sigma_acc_g,
-              "sigma_gyr_dps": config.sigma_gyr_dps, "acc_range_g": config.acc_range_g,
-              "gyr_range_dps": config.gyr_range_dps}
+    sensor = {
+        "fs_hz": config.fs_hz,
+        "gravity_axis": config.gravity_axis,
+        "sigma_acc_g": config.sigma_acc_g,
+        "sigma_gyr_dps": config.sigma_gyr_dps,
+        "acc_range_g": config.acc_range_g,
+        "gyr_range_dps": config.gyr_range_dps,
+    }
     rec = synthesize(streams.rng("recording"), config.duration_s, ranges=config.ranges, **sensor)
     bench = still_recording(streams.rng("bench"), config.bench_s, **sensor)
     truth = rec.marker.astype(bool)
@@ -328,16 +359,35 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
     for name, signal in config.grid.cases():
         d = registry.get(name)
         thresholds = config.grid.thresholds_for(name, signal)
-        b = grid_search(name, signal, rec.t_s, rec.acc_g, rec.gyr_dps, truth, config.grid.points(name),
-                        fs_hz=config.fs_hz, thresholds=thresholds,
-                        figures=lambda w, s, d=d, sig=signal: _bench_figures(bench, d, sig, w, s))
+        b = grid_search(
+            name,
+            signal,
+            rec.t_s,
+            rec.acc_g,
+            rec.gyr_dps,
+            truth,
+            config.grid.points(name),
+            fs_hz=config.fs_hz,
+            thresholds=thresholds,
+            figures=lambda w, s, d=d, sig=signal: _bench_figures(bench, d, sig, w, s),
+        )
         fpr, tpr = roc_curve(b.merit, truth, thresholds)  # the threshold swept at the best window (and shift)
         roc[(name, signal)] = roc_on_grid(fpr, tpr, fpr_grid)
-        rows.append({"run": int(index), "detector": name, "signal": signal, "accuracy": b.accuracy,
-                     "correlation": b.correlation, "correlation_max": b.correlation_max, "threshold": b.threshold,
-                     "window": math.nan if b.window is None else float(b.window),
-                     "shift": math.nan if b.shift is None else float(b.shift), "auc": auc(fpr, tpr),
-                     "activity_fraction": float(truth.mean())})
+        rows.append(
+            {
+                "run": int(index),
+                "detector": name,
+                "signal": signal,
+                "accuracy": b.accuracy,
+                "correlation": b.correlation,
+                "correlation_max": b.correlation_max,
+                "threshold": b.threshold,
+                "window": math.nan if b.window is None else float(b.window),
+                "shift": math.nan if b.shift is None else float(b.shift),
+                "auc": auc(fpr, tpr),
+                "activity_fraction": float(truth.mean()),
+            }
+        )
     return {"index": int(index), "rows": rows, "roc": roc}
 
 
@@ -354,8 +404,15 @@ class MonteCarloResult:
     roc_tpr: dict
 
 
-def run_montecarlo(n_runs: int, *, seed: int = 0, config: MonteCarloConfig | None = None, client=None,
-                   order=None, on_run=None) -> MonteCarloResult:
+def run_montecarlo(
+    n_runs: int,
+    *,
+    seed: int = 0,
+    config: MonteCarloConfig | None = None,
+    client=None,
+    order=None,
+    on_run=None,
+) -> MonteCarloResult:
     """The study over runs 0 .. n_runs - 1. ``client``: a ``dask.distributed.Client`` (one task per
     run), or None to run in this process. ``order``: the order to run them in (a permutation of
     0 .. n_runs - 1; the result does not depend on it). ``on_run(index)`` after each run."""
@@ -380,7 +437,9 @@ def run_montecarlo(n_runs: int, *, seed: int = 0, config: MonteCarloConfig | Non
         from dask.distributed import as_completed
 
         token = hashlib.sha256(repr((seed, n_runs, cfg)).encode()).hexdigest()[:12]
-        futures = [client.submit(evaluate_run, i, seed, cfg, key=f"activity-mc-{token}-{i}", pure=False) for i in idx]
+        futures = [
+            client.submit(evaluate_run, i, seed, cfg, key=f"activity-mc-{token}-{i}", pure=False) for i in idx
+        ]
         for f in as_completed(futures):
             r = f.result()
             done[r["index"]] = r
@@ -419,40 +478,250 @@ def _p(table, det, sig, acc, corr, win, thr, shift, auc_value, rank):
 # std over N = 500 synthesized runs) and Table 13 (AUC, overall rank), transcribed from the seed text.
 PAPER_TABLES: tuple[PaperRow, ...] = (
     # Table 1: magnitude methods without flexible input
-    _p(1, "amvd", None, (0.8741, 0.0181), (0.7137, 0.0360), (26.065, 1.1011), (0.0188, 0.0049), None, 0.8778, 12),
-    _p(1, "amd", None, (0.9641, 0.0087), (0.9205, 0.0175), (96.9560, 9.8260), (0.0008, 0.0002), None, 0.9576, 2),
-    _p(1, "ared", None, (0.9431, 0.0136), (0.8752, 0.0270), (21.9300, 1.5849), (2.3712, 2.1621), None, 0.9256, 3),
-    _p(1, "shod", None, (0.9817, 0.0124), (0.9592, 0.0269), (10.7556, 1.3007), (1.3426, 0.2898), None, 0.9880, 1),
+    _p(
+        1,
+        "amvd",
+        None,
+        (0.8741, 0.0181),
+        (0.7137, 0.0360),
+        (26.065, 1.1011),
+        (0.0188, 0.0049),
+        None,
+        0.8778,
+        12,
+    ),
+    _p(
+        1,
+        "amd",
+        None,
+        (0.9641, 0.0087),
+        (0.9205, 0.0175),
+        (96.9560, 9.8260),
+        (0.0008, 0.0002),
+        None,
+        0.9576,
+        2,
+    ),
+    _p(
+        1,
+        "ared",
+        None,
+        (0.9431, 0.0136),
+        (0.8752, 0.0270),
+        (21.9300, 1.5849),
+        (2.3712, 2.1621),
+        None,
+        0.9256,
+        3,
+    ),
+    _p(
+        1,
+        "shod",
+        None,
+        (0.9817, 0.0124),
+        (0.9592, 0.0269),
+        (10.7556, 1.3007),
+        (1.3426, 0.2898),
+        None,
+        0.9880,
+        1,
+    ),
     # Table 2: FSD
-    _p(2, "fsd", "acc", (0.9395, 0.0155), (0.8639, 0.0331), (18.0836, 1.8278), (2.6441, 0.6272), (15.1304, 2.2318),
-       0.8897, 11),
-    _p(2, "fsd", "gyr", (0.9344, 0.0153), (0.8534, 0.0311), (17.3496, 1.8112), (13.8640, 3.0741), (16.9824, 0.9055),
-       0.7909, 18),
-    _p(2, "fsd", "sum", (0.9330, 0.0351), (0.8520, 0.058906), (13.0636, 0.9983), (10.4764, 2.6726), (13.1048, 0.4916),
-       0.7722, 21),
-    _p(2, "fsd", "product", (0.9470, 0.0441), (0.8835, 0.0788), (9.5292, 1.7607), (8.3344, 2.8890), (7.2364, 2.9423),
-       0.7422, 24),
+    _p(
+        2,
+        "fsd",
+        "acc",
+        (0.9395, 0.0155),
+        (0.8639, 0.0331),
+        (18.0836, 1.8278),
+        (2.6441, 0.6272),
+        (15.1304, 2.2318),
+        0.8897,
+        11,
+    ),
+    _p(
+        2,
+        "fsd",
+        "gyr",
+        (0.9344, 0.0153),
+        (0.8534, 0.0311),
+        (17.3496, 1.8112),
+        (13.8640, 3.0741),
+        (16.9824, 0.9055),
+        0.7909,
+        18,
+    ),
+    _p(
+        2,
+        "fsd",
+        "sum",
+        (0.9330, 0.0351),
+        (0.8520, 0.058906),
+        (13.0636, 0.9983),
+        (10.4764, 2.6726),
+        (13.1048, 0.4916),
+        0.7722,
+        21,
+    ),
+    _p(
+        2,
+        "fsd",
+        "product",
+        (0.9470, 0.0441),
+        (0.8835, 0.0788),
+        (9.5292, 1.7607),
+        (8.3344, 2.8890),
+        (7.2364, 2.9423),
+        0.7422,
+        24,
+    ),
     # Table 3: LTSD
-    _p(3, "ltsd", "acc", (0.9252, 0.0179), (0.8328, 0.0388), (14.6012, 0.7580), (4.9140, 1.7976), (1.6348, 0.7648),
-       0.9127, 7),
-    _p(3, "ltsd", "gyr", (0.9150, 0.0926), (0.8209, 0.15256), (5.2376, 0.8156), (17.3252, 3.0170), (1.3936, 0.5699),
-       0.7468, 23),
-    _p(3, "ltsd", "sum", (0.9355, 0.0138), (0.8556, 0.0282), (3.3848, 0.2816), (16.1172, 3.6251), (1.2744, 0.5312),
-       0.8940, 10),
-    _p(3, "ltsd", "product", (0.9318, 0.0884), (0.8585, 0.1266), (11.3200, 0.3639), (8.7112, 1.7633), (1.7776, 0.7616),
-       0.8959, 9),
+    _p(
+        3,
+        "ltsd",
+        "acc",
+        (0.9252, 0.0179),
+        (0.8328, 0.0388),
+        (14.6012, 0.7580),
+        (4.9140, 1.7976),
+        (1.6348, 0.7648),
+        0.9127,
+        7,
+    ),
+    _p(
+        3,
+        "ltsd",
+        "gyr",
+        (0.9150, 0.0926),
+        (0.8209, 0.15256),
+        (5.2376, 0.8156),
+        (17.3252, 3.0170),
+        (1.3936, 0.5699),
+        0.7468,
+        23,
+    ),
+    _p(
+        3,
+        "ltsd",
+        "sum",
+        (0.9355, 0.0138),
+        (0.8556, 0.0282),
+        (3.3848, 0.2816),
+        (16.1172, 3.6251),
+        (1.2744, 0.5312),
+        0.8940,
+        10,
+    ),
+    _p(
+        3,
+        "ltsd",
+        "product",
+        (0.9318, 0.0884),
+        (0.8585, 0.1266),
+        (11.3200, 0.3639),
+        (8.7112, 1.7633),
+        (1.7776, 0.7616),
+        0.8959,
+        9,
+    ),
     # Table 4: MBGTD
-    _p(4, "mbgtd", "acc", (0.9243, 0.0139), (0.8295, 0.02813), (12.8088, 3.4643), (1.1286, 0.7215), None, 0.9090, 8),
-    _p(4, "mbgtd", "gyr", (0.9114, 0.0179), (0.8040, 0.0345), (5.9932, 3.4687), (84.9760, 79.7386), None, 0.7478, 22),
-    _p(4, "mbgtd", "sum", (0.9115, 0.0179), (0.8041, 0.0345), (5.9900, 3.4701), (84.8680, 79.275), None, 0.8648, 15),
-    _p(4, "mbgtd", "product", (0.9349, 0.0159), (0.85312, 0.03532), (9.7260, 3.7743), (151.8720, 81.4212), None,
-       0.9250, 4),
+    _p(
+        4,
+        "mbgtd",
+        "acc",
+        (0.9243, 0.0139),
+        (0.8295, 0.02813),
+        (12.8088, 3.4643),
+        (1.1286, 0.7215),
+        None,
+        0.9090,
+        8,
+    ),
+    _p(
+        4,
+        "mbgtd",
+        "gyr",
+        (0.9114, 0.0179),
+        (0.8040, 0.0345),
+        (5.9932, 3.4687),
+        (84.9760, 79.7386),
+        None,
+        0.7478,
+        22,
+    ),
+    _p(
+        4,
+        "mbgtd",
+        "sum",
+        (0.9115, 0.0179),
+        (0.8041, 0.0345),
+        (5.9900, 3.4701),
+        (84.8680, 79.275),
+        None,
+        0.8648,
+        15,
+    ),
+    _p(
+        4,
+        "mbgtd",
+        "product",
+        (0.9349, 0.0159),
+        (0.85312, 0.03532),
+        (9.7260, 3.7743),
+        (151.8720, 81.4212),
+        None,
+        0.9250,
+        4,
+    ),
     # Table 5: MBCD
-    _p(5, "mbcd", "acc", (0.9257, 0.0145), (0.8339, 0.0289), (8.4584, 3.1602), (1.749e-6, 5.389e-7), None, 0.9133, 6),
-    _p(5, "mbcd", "gyr", (0.9098, 0.0180), (0.80002, 0.034774), (7.6108, 2.4729), (0.1117, 0.0179), None, 0.8655, 13),
-    _p(5, "mbcd", "sum", (0.9100, 0.0180), (0.80066, 0.034845), (6.0644, 2.1265), (0.0925, 0.0182), None, 0.8650, 14),
-    _p(5, "mbcd", "product", (0.9373, 0.0168), (0.85877, 0.037214), (11.1192, 3.2323), (0.1068, 0.0267), None,
-       0.9172, 5),
+    _p(
+        5,
+        "mbcd",
+        "acc",
+        (0.9257, 0.0145),
+        (0.8339, 0.0289),
+        (8.4584, 3.1602),
+        (1.749e-6, 5.389e-7),
+        None,
+        0.9133,
+        6,
+    ),
+    _p(
+        5,
+        "mbcd",
+        "gyr",
+        (0.9098, 0.0180),
+        (0.80002, 0.034774),
+        (7.6108, 2.4729),
+        (0.1117, 0.0179),
+        None,
+        0.8655,
+        13,
+    ),
+    _p(
+        5,
+        "mbcd",
+        "sum",
+        (0.9100, 0.0180),
+        (0.80066, 0.034845),
+        (6.0644, 2.1265),
+        (0.0925, 0.0182),
+        None,
+        0.8650,
+        14,
+    ),
+    _p(
+        5,
+        "mbcd",
+        "product",
+        (0.9373, 0.0168),
+        (0.85877, 0.037214),
+        (11.1192, 3.2323),
+        (0.1068, 0.0267),
+        None,
+        0.9172,
+        5,
+    ),
     # Table 6: FRD (no window length row: the seed gives FRD a threshold only)
     _p(6, "frd", "acc", (0.7921, 0.0178), (0.5228, 0.0389), None, (0.0100, 0.0070), None, 0.8451, 16),
     _p(6, "frd", "gyr", (0.7608, 0.0207), (0.4823, 0.0464), None, (0.1720, 0.2862), None, 0.7787, 19),
@@ -465,12 +734,18 @@ PAPER_NOTES = (
     "Table 2, FSD-Sum correlation std is printed 0.058906 (six decimals where the others have four).",
     "Tables 4-5 print some values with 5-6 decimals (0.02813, 0.85312, 0.80002 +- 0.034774, ...); kept as printed.",
     "Table 3 sets LTSD-Sum's correlation (0.8556) in bold although LTSD-Prod's (0.8585) is higher.",
-    ("Section 3.1.2 speaks of 'the eight methods' and Table 13 of 24 cases: nine detectors, four of them "
-     "with fixed input (4 + 5 x 4 = 24 cases)."),
-    ("Table 6 (FRD) has no window-length row; the thresholds' units are not stated anywhere (AMD's 0.0008 "
-     "and MBCD-Acc's 1.7e-6 suggest unscaled merits; see the detectors' module docstrings)."),
-    ("Tables 1-6 and 13 read cleanly otherwise: every value has a mean and a std, and Table 13's ranks "
-     "order its AUCs without a tie or a gap."),
+    (
+        "Section 3.1.2 speaks of 'the eight methods' and Table 13 of 24 cases: nine detectors, four of them "
+        "with fixed input (4 + 5 x 4 = 24 cases)."
+    ),
+    (
+        "Table 6 (FRD) has no window-length row; the thresholds' units are not stated anywhere (AMD's 0.0008 "
+        "and MBCD-Acc's 1.7e-6 suggest unscaled merits; see the detectors' module docstrings)."
+    ),
+    (
+        "Tables 1-6 and 13 read cleanly otherwise: every value has a mean and a std, and Table 13's ranks "
+        "order its AUCs without a tie or a gap."
+    ),
 )
 
 
@@ -502,15 +777,22 @@ def summary(result: MonteCarloResult) -> list[dict]:
     rows = []
     for name, signal in result.config.grid.cases():
         mine = [r for r in result.rows if r["detector"] == name and r["signal"] == signal]
-        row = {"table": TABLE_OF[name], "detector": name, "signal": signal, "label": label(name, signal),
-               "n_runs": len(mine)}
+        row = {
+            "table": TABLE_OF[name],
+            "detector": name,
+            "signal": signal,
+            "label": label(name, signal),
+            "n_runs": len(mine),
+        }
         for stat in ("accuracy", "correlation", "correlation_max", "window", "shift", "threshold", "auc"):
             row[f"{stat}_mean"], row[f"{stat}_std"] = _ms([r[stat] for r in mine])
         # the best threshold is often flat over decades (any value in a wide gap between the merits of
         # still and active samples is best): the median is the steadier summary beside the mean
         row["threshold_median"] = float(np.median([r["threshold"] for r in mine]))
         rows.append(row)
-    order = sorted(range(len(rows)), key=lambda i: -rows[i]["auc_mean"] if np.isfinite(rows[i]["auc_mean"]) else np.inf)
+    order = sorted(
+        range(len(rows)), key=lambda i: -rows[i]["auc_mean"] if np.isfinite(rows[i]["auc_mean"]) else np.inf
+    )
     for rank, i in enumerate(order, 1):
         rows[i]["auc_rank"] = rank
     for row in rows:
@@ -533,8 +815,10 @@ def format_tables(result_or_rows) -> str:
     """Tables 1-6 and 13, ours beside the paper's, as text (one line per case)."""
     rows = summary(result_or_rows) if isinstance(result_or_rows, MonteCarloResult) else list(result_or_rows)
     out = []
-    head = (f"{'case':<11} {'accuracy':>17} {'paper':>17} {'d acc':>6}  {'correlation':>17} {'paper':>17}  "
-            f"{'window':>13} {'paper':>15}  {'shift':>11} {'paper':>13}  {'threshold':>19} {'paper':>19}")
+    head = (
+        f"{'case':<11} {'accuracy':>17} {'paper':>17} {'d acc':>6}  {'correlation':>17} {'paper':>17}  "
+        f"{'window':>13} {'paper':>15}  {'shift':>11} {'paper':>13}  {'threshold':>19} {'paper':>19}"
+    )
     for table in sorted({r["table"] for r in rows}):
         out += [f"Table {table}", head]
         for r in (r for r in rows if r["table"] == table):
@@ -550,13 +834,19 @@ def format_tables(result_or_rows) -> str:
                 f"{_pm(r['shift_mean'], r['shift_std'], '.1f'):>11} "
                 f"{_pm(r['paper_shift_mean'], r['paper_shift_std'], '.1f'):>13}  "
                 f"{_pm(r['threshold_mean'], r['threshold_std'], '.4g'):>19} "
-                f"{_pm(r['paper_threshold_mean'], r['paper_threshold_std'], '.4g'):>19}")
+                f"{_pm(r['paper_threshold_mean'], r['paper_threshold_std'], '.4g'):>19}"
+            )
         out.append("")
     out += ["Table 13 (AUC; rank)", f"{'case':<11} {'AUC':>17} {'rank':>5} {'paper AUC':>10} {'rank':>5}"]
     for r in sorted(rows, key=lambda r: r["auc_rank"]):
-        paper = (f"{r['paper_auc']:>10.4f} {r['paper_auc_rank']:>5d}" if np.isfinite(r["paper_auc"])
-                 else f"{'-':>10} {'-':>5}")
-        out.append(f"{r['label']:<11} {_pm(r['auc_mean'], r['auc_std'], '.4f'):>17} {r['auc_rank']:>5d} {paper}")
+        paper = (
+            f"{r['paper_auc']:>10.4f} {r['paper_auc_rank']:>5d}"
+            if np.isfinite(r["paper_auc"])
+            else f"{'-':>10} {'-':>5}"
+        )
+        out.append(
+            f"{r['label']:<11} {_pm(r['auc_mean'], r['auc_std'], '.4f'):>17} {r['auc_rank']:>5d} {paper}"
+        )
     return "\n".join(out)
 
 
@@ -598,12 +888,24 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
     tables = {
         "runs": pa.Table.from_pylist(list(results.rows)),
         "tables": pa.Table.from_pylist(rows),
-        "roc": pa.Table.from_pylist([
-            {"detector": k[0], "signal": k[1], "label": label(*k), "fpr": float(f), "tpr_mean": float(m),
-             "tpr_std": float(s) if np.isfinite(s) else None}
-            for k, v in results.roc_tpr.items()
-            for f, m, s in zip(results.roc_fpr, v.mean(axis=0),
-                               v.std(axis=0, ddof=1) if v.shape[0] > 1 else np.full(v.shape[1], np.nan))]),
+        "roc": pa.Table.from_pylist(
+            [
+                {
+                    "detector": k[0],
+                    "signal": k[1],
+                    "label": label(*k),
+                    "fpr": float(f),
+                    "tpr_mean": float(m),
+                    "tpr_std": float(s) if np.isfinite(s) else None,
+                }
+                for k, v in results.roc_tpr.items()
+                for f, m, s in zip(
+                    results.roc_fpr,
+                    v.mean(axis=0),
+                    v.std(axis=0, ddof=1) if v.shape[0] > 1 else np.full(v.shape[1], np.nan),
+                )
+            ]
+        ),
     }
     for name, table in tables.items():
         p = os.path.join(out, f"{name}.parquet")
@@ -612,13 +914,20 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
     best8 = [(r["detector"], r["signal"]) for r in sorted(rows, key=lambda r: r["auc_rank"])[:8]]
     figures = {"roc_best8": (best8, "The eight best by mean AUC (cf. seed 001, Figure 9)")}
     for t in sorted({r["table"] for r in rows}):
-        figures[f"roc_table{t}"] = ([(r["detector"], r["signal"]) for r in rows if r["table"] == t], f"Table {t} cases")
+        figures[f"roc_table{t}"] = (
+            [(r["detector"], r["signal"]) for r in rows if r["table"] == t],
+            f"Table {t} cases",
+        )
     for name, (cases, title) in figures.items():
         p = os.path.join(out, f"{name}.png")
         _atomic(p, lambda tmp, c=cases, ti=title: _roc_figure(results, c, ti, tmp))
         paths[name] = p
-    meta = {"seed": results.seed, "n_runs": results.n_runs, "config": _config_dict(results.config),
-            "source": "seed 001 section 3.1 (flightmode.detector.activity.montecarlo)"}
+    meta = {
+        "seed": results.seed,
+        "n_runs": results.n_runs,
+        "config": _config_dict(results.config),
+        "source": "seed 001 section 3.1 (flightmode.detector.activity.montecarlo)",
+    }
     _atomic(meta_path, lambda tmp: _write_text(tmp, json.dumps(meta, indent=2, default=list)))
     paths["results"] = meta_path
     return paths

@@ -81,8 +81,18 @@ class SpectralStream:
 
     name = "LTSD"
 
-    def __init__(self, *, window: int, shift: int, threshold: float, fs_hz: float, signal: str = "acc",
-                 order: int = 6, noise_frames: int = 20, noise_spectrum: np.ndarray | None = None):
+    def __init__(
+        self,
+        *,
+        window: int,
+        shift: int,
+        threshold: float,
+        fs_hz: float,
+        signal: str = "acc",
+        order: int = 6,
+        noise_frames: int = 20,
+        noise_spectrum: np.ndarray | None = None,
+    ):
         self.window = check_window(window)
         if self.window > N_FFT:
             raise DetectorError(
@@ -183,9 +193,12 @@ def _check_noise(noise: np.ndarray, who: str, estimated: bool = False) -> np.nda
         )
     bad = ~(np.isfinite(noise) & (noise > 0))
     if bad.any():
-        how = ("the first noise_frames frames are noiseless in it (an exactly constant input?): "
-               "give noise_spectrum"
-               if estimated else "every band must be finite and > 0")
+        how = (
+            "the first noise_frames frames are noiseless in it (an exactly constant input?): "
+            "give noise_spectrum"
+            if estimated
+            else "every band must be finite and > 0"
+        )
         band = int(np.flatnonzero(bad)[0])
         raise DetectorError(f"{who}: the noise spectrum N(l) is zero or not finite in band {band}: {how}")
     return noise
@@ -202,28 +215,81 @@ class FSDStream(SpectralStream):
 
     name = "FSD"
 
-    def __init__(self, *, window: int, shift: int, threshold: float, fs_hz: float, signal: str = "acc",
-                 noise_frames: int = 20, noise_spectrum: np.ndarray | None = None):
-        super().__init__(window=window, shift=shift, threshold=threshold, fs_hz=fs_hz, signal=signal, order=0,
-                         noise_frames=noise_frames, noise_spectrum=noise_spectrum)
+    def __init__(
+        self,
+        *,
+        window: int,
+        shift: int,
+        threshold: float,
+        fs_hz: float,
+        signal: str = "acc",
+        noise_frames: int = 20,
+        noise_spectrum: np.ndarray | None = None,
+    ):
+        super().__init__(
+            window=window,
+            shift=shift,
+            threshold=threshold,
+            fs_hz=fs_hz,
+            signal=signal,
+            order=0,
+            noise_frames=noise_frames,
+            noise_spectrum=noise_spectrum,
+        )
 
 
-def detect_ltsd(t_s, acc_g, gyr_dps=None, *, window: int, shift: int, threshold: float, signal: str = "acc",
-                order: int = 6, noise_frames: int = 20, noise_spectrum: np.ndarray | None = None,
-                fs_hz: float | None = None) -> ActivityResult:
+def detect_ltsd(
+    t_s,
+    acc_g,
+    gyr_dps=None,
+    *,
+    window: int,
+    shift: int,
+    threshold: float,
+    signal: str = "acc",
+    order: int = 6,
+    noise_frames: int = 20,
+    noise_spectrum: np.ndarray | None = None,
+    fs_hz: float | None = None,
+) -> ActivityResult:
     """LTSD over a whole stream. ``window`` (frame length) and ``shift`` in samples, ``threshold`` in
     dB (the seed's Tables 3 and 9: a few dB to ~17 dB), ``order`` frames each side of the envelope."""
     fs = batch_rate(t_s, fs_hz, LTSDStream.name)
-    det = LTSDStream(window=window, shift=shift, threshold=threshold, fs_hz=fs, signal=signal, order=order,
-                     noise_frames=noise_frames, noise_spectrum=noise_spectrum)
+    det = LTSDStream(
+        window=window,
+        shift=shift,
+        threshold=threshold,
+        fs_hz=fs,
+        signal=signal,
+        order=order,
+        noise_frames=noise_frames,
+        noise_spectrum=noise_spectrum,
+    )
     return run_batch(det, t_s, acc_g, gyr_dps, window)
 
 
-def detect_fsd(t_s, acc_g, gyr_dps=None, *, window: int, shift: int, threshold: float, signal: str = "acc",
-               noise_frames: int = 20, noise_spectrum: np.ndarray | None = None,
-               fs_hz: float | None = None) -> ActivityResult:
+def detect_fsd(
+    t_s,
+    acc_g,
+    gyr_dps=None,
+    *,
+    window: int,
+    shift: int,
+    threshold: float,
+    signal: str = "acc",
+    noise_frames: int = 20,
+    noise_spectrum: np.ndarray | None = None,
+    fs_hz: float | None = None,
+) -> ActivityResult:
     """FSD over a whole stream: ``window`` (frame length) and ``shift`` in samples, ``threshold`` in dB."""
     fs = batch_rate(t_s, fs_hz, FSDStream.name)
-    det = FSDStream(window=window, shift=shift, threshold=threshold, fs_hz=fs, signal=signal,
-                    noise_frames=noise_frames, noise_spectrum=noise_spectrum)
+    det = FSDStream(
+        window=window,
+        shift=shift,
+        threshold=threshold,
+        fs_hz=fs,
+        signal=signal,
+        noise_frames=noise_frames,
+        noise_spectrum=noise_spectrum,
+    )
     return run_batch(det, t_s, acc_g, gyr_dps, window)

@@ -58,8 +58,19 @@ from flightmode.errors import SensorError, did_you_mean
 
 ACTIVITIES = ("walking", "sit_stand", "lie_stand", "running", "jumping", "constant_rate", "constant_acc")
 # the kinds of period in a Synth (an activity of ACTIVITIES is one period, or three for sit/lie)
-PERIOD_KINDS = ("still", "walking", "sit_down", "seated", "lie_down", "lying", "stand_up", "running", "jumping",
-                "constant_rate", "constant_acc")
+PERIOD_KINDS = (
+    "still",
+    "walking",
+    "sit_down",
+    "seated",
+    "lie_down",
+    "lying",
+    "stand_up",
+    "running",
+    "jumping",
+    "constant_rate",
+    "constant_acc",
+)
 GRAVITY_AXES = ("x", "y", "z", "+x", "+y", "+z", "-x", "-y", "-z")
 
 
@@ -153,8 +164,10 @@ def body_to_sensor(gravity_axis: str) -> np.ndarray:
 
 def _check_axis(gravity_axis) -> str:
     if gravity_axis not in GRAVITY_AXES:
-        raise SensorError(f"gravity_axis = {gravity_axis!r}: use one of {', '.join(GRAVITY_AXES)}"
-                          f"{did_you_mean(gravity_axis, GRAVITY_AXES)}")
+        raise SensorError(
+            f"gravity_axis = {gravity_axis!r}: use one of {', '.join(GRAVITY_AXES)}"
+            f"{did_you_mean(gravity_axis, GRAVITY_AXES)}"
+        )
     return gravity_axis
 
 
@@ -186,17 +199,27 @@ def _gait(rng, n: int, fs: float, step_hz, acc_g, gyr_dps, ratio):
     stride = 0.5 * step  # a stride is two steps
     amp = a0 * (1.0 + (r - 1.0) * ramp)
     rate = w0 * (1.0 + (r - 1.0) * ramp)
-    f = np.column_stack([
-        r_ap * amp * np.sin(step + ph[1]),
-        r_ml * amp * np.sin(stride + ph[2]),
-        1.0 + amp * (np.sin(step) + h2 * np.sin(2.0 * step + ph[3])),  # mean 1 g: zero-mean swings
-    ])
-    w = np.column_stack([
-        0.5 * rate * np.sin(stride + ph[4]),  # roll
-        0.3 * rate * np.sin(step + ph[5]),  # pitch
-        rate * np.sin(stride + ph[6]),  # yaw: pelvis rotation
-    ])
-    params = (("step_hz_start", f0), ("step_hz_end", f1), ("acc_g", a0), ("gyr_dps", w0), ("intensity_ratio", r))
+    f = np.column_stack(
+        [
+            r_ap * amp * np.sin(step + ph[1]),
+            r_ml * amp * np.sin(stride + ph[2]),
+            1.0 + amp * (np.sin(step) + h2 * np.sin(2.0 * step + ph[3])),  # mean 1 g: zero-mean swings
+        ]
+    )
+    w = np.column_stack(
+        [
+            0.5 * rate * np.sin(stride + ph[4]),  # roll
+            0.3 * rate * np.sin(step + ph[5]),  # pitch
+            rate * np.sin(stride + ph[6]),  # yaw: pelvis rotation
+        ]
+    )
+    params = (
+        ("step_hz_start", f0),
+        ("step_hz_end", f1),
+        ("acc_g", a0),
+        ("gyr_dps", w0),
+        ("intensity_ratio", r),
+    )
     return f, w, params
 
 
@@ -247,9 +270,17 @@ def _n(rng, lo_hi, fs: float) -> int:
 def _activity(rng, kind: str, fs: float, r: Ranges):
     """[(period kind, active, f (m, 3), w (m, 3), params)] for one activity (one or three periods)."""
     if kind in ("walking", "running"):
-        f, w, p = _gait(rng, _n(rng, r.activity_s, fs), fs, *(
-            (r.walk_step_hz, r.walk_acc_g, r.walk_gyr_dps) if kind == "walking"
-            else (r.run_step_hz, r.run_acc_g, r.run_gyr_dps)), r.intensity_ratio)
+        f, w, p = _gait(
+            rng,
+            _n(rng, r.activity_s, fs),
+            fs,
+            *(
+                (r.walk_step_hz, r.walk_acc_g, r.walk_gyr_dps)
+                if kind == "walking"
+                else (r.run_step_hz, r.run_acc_g, r.run_gyr_dps)
+            ),
+            r.intensity_ratio,
+        )
         return [(kind, True, f, w, p)]
     if kind == "jumping":
         f, w, p = _jumps(rng, fs, _n(rng, r.activity_s, fs), r)
@@ -272,15 +303,23 @@ def _activity(rng, kind: str, fs: float, r: Ranges):
         sit = kind == "sit_stand"
         tilt = math.radians(_u(rng, r.sit_tilt_deg if sit else r.lie_tilt_deg))
         drop = _u(rng, r.sit_drop_m if sit else r.lie_drop_m)
-        n_down, n_rest, n_up = _n(rng, r.transition_s, fs), _n(rng, r.posture_rest_s, fs), _n(rng, r.transition_s, fs)
+        n_down, n_rest, n_up = (
+            _n(rng, r.transition_s, fs),
+            _n(rng, r.posture_rest_s, fs),
+            _n(rng, r.transition_s, fs),
+        )
         p = (("tilt_deg", math.degrees(tilt)), ("drop_m", drop))
         f_d, w_d = _transition(n_down, fs, 0.0, tilt, -drop)
         f_r, w_r, _ = _still(n_rest, tilt)
         f_u, w_u = _transition(n_up, fs, tilt, 0.0, drop)
-        return [("sit_down" if sit else "lie_down", True, f_d, w_d, p),
-                ("seated" if sit else "lying", False, f_r, w_r, p),
-                ("stand_up", True, f_u, w_u, p)]
-    raise SensorError(f"activity {kind!r}: use one of {', '.join(ACTIVITIES)}{did_you_mean(kind, ACTIVITIES)}")
+        return [
+            ("sit_down" if sit else "lie_down", True, f_d, w_d, p),
+            ("seated" if sit else "lying", False, f_r, w_r, p),
+            ("stand_up", True, f_u, w_u, p),
+        ]
+    raise SensorError(
+        f"activity {kind!r}: use one of {', '.join(ACTIVITIES)}{did_you_mean(kind, ACTIVITIES)}"
+    )
 
 
 def _schedule(rng, n_total: int, fs: float, r: Ranges, activities: tuple[str, ...]):
@@ -300,10 +339,19 @@ def _schedule(rng, n_total: int, fs: float, r: Ranges, activities: tuple[str, ..
 
 
 # ---------------------------------------------------------------- the synthesizer
-def synthesize(rng, duration_s: float, *, fs_hz: float = 50.0, gravity_axis: str = "z",
-               sigma_acc_g: float = 2.23e-3, sigma_gyr_dps: float = 0.05, acc_range_g: float = 3.0,
-               gyr_range_dps: float = 500.0, ranges: Ranges = DEFAULT_RANGES,
-               activities: tuple[str, ...] = ACTIVITIES) -> Synth:
+def synthesize(
+    rng,
+    duration_s: float,
+    *,
+    fs_hz: float = 50.0,
+    gravity_axis: str = "z",
+    sigma_acc_g: float = 2.23e-3,
+    sigma_gyr_dps: float = 0.05,
+    acc_range_g: float = 3.0,
+    gyr_range_dps: float = 500.0,
+    ranges: Ranges = DEFAULT_RANGES,
+    activities: tuple[str, ...] = ACTIVITIES,
+) -> Synth:
     """A recording of ``duration_s`` seconds at ``fs_hz`` (module docstring). ``rng``: a numpy
     Generator (or Streams, or an int seed); the same state gives bit-identical arrays.
     ``activities``: the activities to draw from (default all seven of the seed)."""
@@ -312,7 +360,9 @@ def synthesize(rng, duration_s: float, *, fs_hz: float = 50.0, gravity_axis: str
     fs = _positive(fs_hz, "fs_hz", "Hz")
     n_total = round(_positive(duration_s, "duration_s", "s") * fs)
     if n_total < 2:
-        raise SensorError(f"duration_s = {duration_s}: gives {n_total} sample(s) at {fs:g} Hz; need at least 2")
+        raise SensorError(
+            f"duration_s = {duration_s}: gives {n_total} sample(s) at {fs:g} Hz; need at least 2"
+        )
     for name, v, unit in (("sigma_acc_g", sigma_acc_g, "g"), ("sigma_gyr_dps", sigma_gyr_dps, "deg/s")):
         if not (math.isfinite(v) and v >= 0):
             raise SensorError(f"{name} = {v!r}: a noise standard deviation must be finite and >= 0 ({unit})")
@@ -325,7 +375,9 @@ def synthesize(rng, duration_s: float, *, fs_hz: float = 50.0, gravity_axis: str
         raise SensorError("activities is empty: give at least one of " + ", ".join(ACTIVITIES))
     for a in acts:
         if a not in ACTIVITIES:
-            raise SensorError(f"activity {a!r}: use one of {', '.join(ACTIVITIES)}{did_you_mean(a, ACTIVITIES)}")
+            raise SensorError(
+                f"activity {a!r}: use one of {', '.join(ACTIVITIES)}{did_you_mean(a, ACTIVITIES)}"
+            )
     m = body_to_sensor(gravity_axis)
 
     streams = as_streams(rng)
@@ -349,13 +401,33 @@ def synthesize(rng, duration_s: float, *, fs_hz: float = 50.0, gravity_axis: str
     t = np.arange(n_total) / fs
     for a in (t, acc, gyr, marker):
         a.flags.writeable = False
-    return Synth(t, acc, gyr, marker, tuple(periods), fs, gravity_axis, float(sigma_acc_g), float(sigma_gyr_dps),
-                 acc_range, gyr_range, ranges)
+    return Synth(
+        t,
+        acc,
+        gyr,
+        marker,
+        tuple(periods),
+        fs,
+        gravity_axis,
+        float(sigma_acc_g),
+        float(sigma_gyr_dps),
+        acc_range,
+        gyr_range,
+        ranges,
+    )
 
 
-def still_recording(rng, duration_s: float, *, fs_hz: float = 50.0, gravity_axis: str = "z",
-                    sigma_acc_g: float = 2.23e-3, sigma_gyr_dps: float = 0.05, acc_range_g: float = 3.0,
-                    gyr_range_dps: float = 500.0) -> Synth:
+def still_recording(
+    rng,
+    duration_s: float,
+    *,
+    fs_hz: float = 50.0,
+    gravity_axis: str = "z",
+    sigma_acc_g: float = 2.23e-3,
+    sigma_gyr_dps: float = 0.05,
+    acc_range_g: float = 3.0,
+    gyr_range_dps: float = 500.0,
+) -> Synth:
     """The same sensor lying still for ``duration_s`` (a bench recording: the detectors' noise
     figures come from one, as on a real unit). Marker all 0."""
     from flightmode.streams import as_streams
@@ -372,8 +444,19 @@ def still_recording(rng, duration_s: float, *, fs_hz: float = 50.0, gravity_axis
     gyr = streams.rng("noise/gyr").normal(0.0, sigma_gyr_dps, (n, 3))
     np.clip(acc, -acc_range, acc_range, out=acc)
     np.clip(gyr, -gyr_range, gyr_range, out=gyr)
-    return Synth(np.arange(n) / fs, acc, gyr, np.zeros(n, np.int8), (Period("still", 0, n, False),), fs,
-                 gravity_axis, float(sigma_acc_g), float(sigma_gyr_dps), acc_range, gyr_range)
+    return Synth(
+        np.arange(n) / fs,
+        acc,
+        gyr,
+        np.zeros(n, np.int8),
+        (Period("still", 0, n, False),),
+        fs,
+        gravity_axis,
+        float(sigma_acc_g),
+        float(sigma_gyr_dps),
+        acc_range,
+        gyr_range,
+    )
 
 
 def _positive(v, name: str, unit: str) -> float:

@@ -62,7 +62,9 @@ class PilotTuning:
     rollout_ease_mps3: float = 0.3  # the autobrake's deceleration eases to the taxi deceleration at this rate
     rollout_settle_mps: float = 2.0  # and has settled there this much above the exit speed (3-5 s before it)
     pushback_mps: float = 1.2  # a tug's pushing speed
-    pushback_decel_mps2: float = 0.2  # the tug starts the push and stops it at the end of its turn this gently
+    pushback_decel_mps2: float = (
+        0.2  # the tug starts the push and stops it at the end of its turn this gently
+    )
     accel_height_m: float = 1500.0 * FT_M  # thrust reduction and acceleration height after takeoff
     climb_out_m: float = 3000.0 * FT_M  # above the runway: initial climb ends, the climb begins
     speed_limit_alt_m: float = 10_000.0 * FT_M  # 250 kt below FL100 (ICAO Annex 11, Appendix 4)
@@ -77,7 +79,13 @@ class PilotTuning:
     # (2.3-3.0 g at the CG), which now land; one 787-8 at 13.6 ft/s still fails
     max_touchdown_sink_mps: float = 12.0 * FT_M
     # loop gains
-    climb_speed_pid: tuple = (0.008, 0.001, 0.04, -0.1, 0.35)  # IAS error (m/s) -> pitch (rad); kd damps the phugoid
+    climb_speed_pid: tuple = (
+        0.008,
+        0.001,
+        0.04,
+        -0.1,
+        0.35,
+    )  # IAS error (m/s) -> pitch (rad); kd damps the phugoid
     path_pid: tuple = (1.0, 0.15, 0.0, -0.2, 0.35)  # flight-path angle error (rad) -> pitch (rad)
     ground_speed_pid: tuple = (0.08, 0.02, 0.0)  # ground speed error (m/s) -> throttle (to taxi_throttle_max)
     tug_pid: tuple = (20000.0, 4000.0, 0.0, -60000.0, 60000.0)  # speed error (m/s) -> tug force (lbf)
@@ -149,7 +157,9 @@ class TakeoffThrust:
     rho_kgm3: float  # the curve's field air density
     mass_exp: float  # mean acceleration ~ mass ** -mass_exp near the curve's mass
 
-    def throttle_for(self, accel_mps2: float, mass_kg: float | None = None, rho_kgm3: float | None = None) -> float:
+    def throttle_for(
+        self, accel_mps2: float, mass_kg: float | None = None, rho_kgm3: float | None = None
+    ) -> float:
         """The throttle that gives a mean acceleration ``accel_mps2`` brake release to liftoff at this
         mass and field density (the curve's when None)."""
         import numpy as np
@@ -207,7 +217,9 @@ class AircraftProfile:
     taxi_throttle_max: float
     reverse_throttle: float
     flare_height_ft: float
-    flare_pitch_kp: float  # elevator (normalised) per rad of attitude error in the flare, on top of the pitch loop
+    flare_pitch_kp: (
+        float  # elevator (normalised) per rad of attitude error in the flare, on top of the pitch loop
+    )
     climb: ClimbSchedule
     takeoff: TakeoffThrust
     # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
@@ -294,27 +306,44 @@ class AircraftProfile:
 
     def __post_init__(self) -> None:
         if self.flare_law not in FLARE_LAWS:
-            raise AircraftError(f"aircraft profile '{self.model}': unknown flare_law {self.flare_law!r}; "
-                                f"use one of {', '.join(FLARE_LAWS)}")
+            raise AircraftError(
+                f"aircraft profile '{self.model}': unknown flare_law {self.flare_law!r}; "
+                f"use one of {', '.join(FLARE_LAWS)}"
+            )
         if not self.flare_lift_attitude_rad >= 0.0:
-            raise AircraftError(f"aircraft profile '{self.model}': flare_lift_attitude_rad "
-                                f"{self.flare_lift_attitude_rad:g} must not be negative (0: no attitude "
-                                "for the lift lost as the speed bleeds)")
+            raise AircraftError(
+                f"aircraft profile '{self.model}': flare_lift_attitude_rad "
+                f"{self.flare_lift_attitude_rad:g} must not be negative (0: no attitude "
+                "for the lift lost as the speed bleeds)"
+            )
         if self.flare_aim_m < 0.0 or self.flare_predict_s < 0.0:
-            raise AircraftError(f"aircraft profile '{self.model}': flare_aim_m {self.flare_aim_m:g} and "
-                                f"flare_predict_s {self.flare_predict_s:g} must not be negative")
+            raise AircraftError(
+                f"aircraft profile '{self.model}': flare_aim_m {self.flare_aim_m:g} and "
+                f"flare_predict_s {self.flare_predict_s:g} must not be negative"
+            )
         if not self.flare_height_ft > 0.0:
-            raise AircraftError(f"aircraft profile '{self.model}': flare_height_ft {self.flare_height_ft:g} "
-                                "is not a height; give the main gear's height (ft) at which the flare begins")
+            raise AircraftError(
+                f"aircraft profile '{self.model}': flare_height_ft {self.flare_height_ft:g} "
+                "is not a height; give the main gear's height (ft) at which the flare begins"
+            )
         if self.retard_height_ft < 0.0:
-            raise AircraftError(f"aircraft profile '{self.model}': retard_height_ft {self.retard_height_ft:g} is "
-                                "negative; give the main gear's height (ft) at which the flare pulls the thrust to idle")
+            raise AircraftError(
+                f"aircraft profile '{self.model}': retard_height_ft {self.retard_height_ft:g} is "
+                "negative; give the main gear's height (ft) at which the flare pulls the thrust to idle"
+            )
         if self.go_around_climb_fpm is not None and not self.go_around_climb_fpm > 0.0:
-            raise AircraftError(f"aircraft profile '{self.model}': go_around_climb_fpm {self.go_around_climb_fpm:g} "
-                                "is not a climb; give a positive rate (ft/min), or None for climb thrust")
-        if not (0.0 <= self.vapp_wind_fraction <= 1.0 and 0.0 <= self.vapp_wind_included_kt <= self.vapp_wind_max_kt):
-            raise AircraftError(f"aircraft profile '{self.model}': the approach wind additive needs 0 <= "
-                                "vapp_wind_fraction <= 1 and 0 <= vapp_wind_included_kt <= vapp_wind_max_kt")
+            raise AircraftError(
+                f"aircraft profile '{self.model}': go_around_climb_fpm {self.go_around_climb_fpm:g} "
+                "is not a climb; give a positive rate (ft/min), or None for climb thrust"
+            )
+        if not (
+            0.0 <= self.vapp_wind_fraction <= 1.0
+            and 0.0 <= self.vapp_wind_included_kt <= self.vapp_wind_max_kt
+        ):
+            raise AircraftError(
+                f"aircraft profile '{self.model}': the approach wind additive needs 0 <= "
+                "vapp_wind_fraction <= 1 and 0 <= vapp_wind_included_kt <= vapp_wind_max_kt"
+            )
 
     @property
     def locations_m(self) -> dict[str, tuple[float, float, float]]:
@@ -330,14 +359,19 @@ class AircraftProfile:
             "forward_hold": (0.22 * length, 0.0, 1.8),
             "aft_hold": (-0.20 * length, 0.0, 1.8),
         }
+
     taxi_turn_kt: float = 10.0  # about 10 kt in turns (Airbus A319 FCOM)
     rotate_elevator: float = 0.3  # nose-up elevator bias during rotation (fraction of full travel)
     elevator_nose_up_deg: float | None = None  # extends the model's elevator travel (sim.flight.model_edits)
-    spread_spoiler_lift: bool = False  # the ground spoilers' lift loss over their whole travel (sim.flight.model_edits)
+    spread_spoiler_lift: bool = (
+        False  # the ground spoilers' lift loss over their whole travel (sim.flight.model_edits)
+    )
     add_ground_spoilers: bool = False  # ground spoilers for a model without them (sim.flight.model_edits)
     nose_side_friction: float | None = None  # sets the nose tyre's side-force peak (sim.flight.model_edits)
     vr_ref_mass_kg: float | None = None  # the mass vr_kt holds at (None: vr_kt at any mass)
-    nose_static_deflection_m: float | None = None  # a softer nose strut at the same stance (sim.flight.gear.set_nose_strut)
+    nose_static_deflection_m: float | None = (
+        None  # a softer nose strut at the same stance (sim.flight.gear.set_nose_strut)
+    )
     tuning: PilotTuning = field(default_factory=PilotTuning)
 
 
@@ -411,14 +445,31 @@ PROFILES: dict[str, AircraftProfile] = {
         # down 0.8-1.9 s after the mains, 8 pattern landings); kept: 2.0-4.0 s, at most 0.9-2.6 deg/s
         touchdown_elevator_keep=1.0,
         # WRAP B737
-        climb=ClimbSchedule(Spread(11.41, 2.07, 8.01, 14.82), Spread(11.71, 1.96, 8.49, 14.93),
-                            Spread(6.74, 1.42, 4.4, 9.08), 3400.0, 8900.0, 151.95,
-                            vs_initial=Spread(11.94, 2.37, 8.05, 15.83)),
+        climb=ClimbSchedule(
+            Spread(11.41, 2.07, 8.01, 14.82),
+            Spread(11.71, 1.96, 8.49, 14.93),
+            Spread(6.74, 1.42, 4.4, 9.08),
+            3400.0,
+            8900.0,
+            151.95,
+            vs_initial=Spread(11.94, 2.37, 8.05, 15.83),
+        ),
         # WRAP B737 takeoff_acceleration; the curve measured on the pattern (LSGG, 46.5 t at brake release)
-        takeoff=TakeoffThrust(Spread(1.77, 0.28, 1.31, 2.23),
-                              ((0.70, 1.264), (0.75, 1.465), (0.80, 1.674), (0.85, 1.890), (0.90, 2.112),
-                               (0.95, 2.337), (1.00, 2.568)),
-                              mass_kg=46_520.0, rho_kgm3=1.1767, mass_exp=1.07),
+        takeoff=TakeoffThrust(
+            Spread(1.77, 0.28, 1.31, 2.23),
+            (
+                (0.70, 1.264),
+                (0.75, 1.465),
+                (0.80, 1.674),
+                (0.85, 1.890),
+                (0.90, 2.112),
+                (0.95, 2.337),
+                (1.00, 2.568),
+            ),
+            mass_kg=46_520.0,
+            rho_kgm3=1.1767,
+            mass_exp=1.07,
+        ),
     ),
     "A320": AircraftProfile(
         model="A320",
@@ -526,17 +577,26 @@ PROFILES: dict[str, AircraftProfile] = {
         # accelerometer feels (T - D) / m, which the climb and speed kinematics set
         initial_climb_thrust_for_rate=True,
         # WRAP A320
-        climb=ClimbSchedule(Spread(10.25, 1.59, 7.63, 12.87), Spread(8.44, 1.31, 6.28, 10.6),
-                            Spread(5.29, 1.03, 3.6, 6.97), 3700.0, 8800.0, 151.04,
-                            vs_initial=Spread(12.59, 2.09, 9.15, 16.04)),
+        climb=ClimbSchedule(
+            Spread(10.25, 1.59, 7.63, 12.87),
+            Spread(8.44, 1.31, 6.28, 10.6),
+            Spread(5.29, 1.03, 3.6, 6.97),
+            3700.0,
+            8800.0,
+            151.04,
+            vs_initial=Spread(12.59, 2.09, 9.15, 16.04),
+        ),
         # WRAP A320 takeoff_acceleration; the curve measured on the pattern (LSGG, 55.7 t at brake release,
         # mean of seeds 1 and 4, Vr 143 kt; at 0.70 it does not lift off before the runway's end). The mass
         # exponent 1.2 fits 16 european-trio A320 takeoffs (60-65 t): flown minus drawn acceleration
         # +0.007 m/s^2 on average, sd 0.065 (1.0: -0.049; 1.4: +0.060)
-        takeoff=TakeoffThrust(Spread(1.93, 0.27, 1.5, 2.37),
-                              ((0.75, 1.542), (0.80, 1.772), (0.85, 1.999), (0.90, 2.234), (0.95, 2.468),
-                               (1.00, 2.708)),
-                              mass_kg=55_690.0, rho_kgm3=1.1766, mass_exp=1.2),
+        takeoff=TakeoffThrust(
+            Spread(1.93, 0.27, 1.5, 2.37),
+            ((0.75, 1.542), (0.80, 1.772), (0.85, 1.999), (0.90, 2.234), (0.95, 2.468), (1.00, 2.708)),
+            mass_kg=55_690.0,
+            rho_kgm3=1.1766,
+            mass_exp=1.2,
+        ),
     ),
     "fokker100": AircraftProfile(
         model="fokker100",
@@ -583,7 +643,8 @@ PROFILES: dict[str, AircraftProfile] = {
         reverse_throttle=0.4,
         flare_height_ft=40.0,
         flare_pitch_kp=1.0,  # the fokker100 answers its elevator faster: 4 diverges in its flare
-        flare_accel_gain=1.0 / 3.0,  # and so does its flare loop at the full gain (JSBSim blew up, 2 of 8 seeds)
+        flare_accel_gain=1.0
+        / 3.0,  # and so does its flare loop at the full gain (JSBSim blew up, 2 of 8 seeds)
         # its flare loop, at a third of the gain, lags: aiming at 2 m and steering on the present sink,
         # it kept pulling past the target and its landings came out near 3-5 ft/s whatever was drawn
         # (pattern landings, flown minus drawn touchdown sink: normal +2.25 ft/s mean on seeds 0-39,
@@ -604,15 +665,32 @@ PROFILES: dict[str, AircraftProfile] = {
         vapp_wind_included_kt=5.0,
         vapp_wind_max_kt=20.0,
         # WRAP E190 (the nearest type WRAP models)
-        climb=ClimbSchedule(Spread(10.44, 1.98, 7.18, 13.71), Spread(8.93, 1.62, 6.27, 11.6),
-                            Spread(4.82, 1.14, 2.95, 6.7), 3000.0, 9200.0, 140.0,
-                            vs_initial=Spread(11.2, 3.3, 5.78, 16.62)),
+        climb=ClimbSchedule(
+            Spread(10.44, 1.98, 7.18, 13.71),
+            Spread(8.93, 1.62, 6.27, 11.6),
+            Spread(4.82, 1.14, 2.95, 6.7),
+            3000.0,
+            9200.0,
+            140.0,
+            vs_initial=Spread(11.2, 3.3, 5.78, 16.62),
+        ),
         # WRAP E190 takeoff_acceleration (the stand-in, as above); the curve measured on the pattern
         # (LSGG, 33.9 t at brake release)
-        takeoff=TakeoffThrust(Spread(1.83, 0.27, 1.38, 2.28),
-                              ((0.70, 1.340), (0.75, 1.541), (0.80, 1.752), (0.85, 1.972), (0.90, 2.199),
-                               (0.95, 2.434), (1.00, 2.676)),
-                              mass_kg=33_884.0, rho_kgm3=1.1766, mass_exp=0.99),
+        takeoff=TakeoffThrust(
+            Spread(1.83, 0.27, 1.38, 2.28),
+            (
+                (0.70, 1.340),
+                (0.75, 1.541),
+                (0.80, 1.752),
+                (0.85, 1.972),
+                (0.90, 2.199),
+                (0.95, 2.434),
+                (1.00, 2.676),
+            ),
+            mass_kg=33_884.0,
+            rho_kgm3=1.1766,
+            mass_exp=0.99,
+        ),
     ),
     "787-8": AircraftProfile(
         model="787-8",
@@ -723,15 +801,24 @@ PROFILES: dict[str, AircraftProfile] = {
         flare_law="exponential",
         flare_lift_attitude_rad=0.2,
         # WRAP B788
-        climb=ClimbSchedule(Spread(9.58, 1.38, 7.32, 11.85), Spread(9.02, 1.77, 6.12, 11.93),
-                            Spread(6.03, 1.48, 3.59, 8.47), 3800.0, 9500.0, 158.68,
-                            # WRAP gives a beta law (6.24, 5.05, loc 0.78, scale 17.49): its mean and sd
-                            vs_initial=Spread(10.45, 2.48, 6.27, 14.45)),
+        climb=ClimbSchedule(
+            Spread(9.58, 1.38, 7.32, 11.85),
+            Spread(9.02, 1.77, 6.12, 11.93),
+            Spread(6.03, 1.48, 3.59, 8.47),
+            3800.0,
+            9500.0,
+            158.68,
+            # WRAP gives a beta law (6.24, 5.05, loc 0.78, scale 17.49): its mean and sd
+            vs_initial=Spread(10.45, 2.48, 6.27, 14.45),
+        ),
         # WRAP B788 takeoff_acceleration; the curve measured on lhr-jfk-787 (EGLL, 180 t at brake release)
-        takeoff=TakeoffThrust(Spread(1.61, 0.28, 1.16, 2.07),
-                              ((0.75, 1.234), (0.80, 1.411), (0.85, 1.591), (0.90, 1.773), (0.95, 1.955),
-                               (1.00, 2.139)),
-                              mass_kg=180_040.0, rho_kgm3=1.2218, mass_exp=1.02),
+        takeoff=TakeoffThrust(
+            Spread(1.61, 0.28, 1.16, 2.07),
+            ((0.75, 1.234), (0.80, 1.411), (0.85, 1.591), (0.90, 1.773), (0.95, 1.955), (1.00, 2.139)),
+            mass_kg=180_040.0,
+            rho_kgm3=1.2218,
+            mass_exp=1.02,
+        ),
     ),
 }
 

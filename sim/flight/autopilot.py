@@ -44,7 +44,9 @@ LOC_LOOK_MIN_M = 600.0
 class Autopilot:
     """The loops and actuators of one flight, and the navigation state the phases share."""
 
-    def __init__(self, ac, plan: FlightPlan, profile: AircraftProfile, draws, event: Callable[[str, str], None]):
+    def __init__(
+        self, ac, plan: FlightPlan, profile: AircraftProfile, draws, event: Callable[[str, str], None]
+    ):
         self.ac = ac
         self.plan = plan
         self.prof = profile
@@ -156,7 +158,11 @@ class Autopilot:
 
     def gear_up_when_climbing(self, x) -> None:
         """Gear up once climbing (positive rate, 15 m above the ground), as after every liftoff."""
-        if self.ac.get("gear/gear-cmd-norm") > 0.5 and x[self.ix["agl_m"]] > 15.0 and -x[self.ix["v_down_mps"]] > 1.0:
+        if (
+            self.ac.get("gear/gear-cmd-norm") > 0.5
+            and x[self.ix["agl_m"]] > 15.0
+            and -x[self.ix["v_down_mps"]] > 1.0
+        ):
             self.ac.set("gear/gear-cmd-norm", 0.0)
             self.event("gear_up", "")
 
@@ -176,8 +182,16 @@ class Autopilot:
         self.theta_cmd = rate_limit(self.theta_cmd, theta, math.radians(rate_dps) * self.dt)
         self.pitch_to(x, self.theta_cmd)
 
-    def path_to(self, x, vs_cmd: float, lo_deg: float, hi_deg: float, rate_dps: float = 3.0,
-                boost: float = 0.0, vs_now: float | None = None) -> None:
+    def path_to(
+        self,
+        x,
+        vs_cmd: float,
+        lo_deg: float,
+        hi_deg: float,
+        rate_dps: float = 3.0,
+        boost: float = 0.0,
+        vs_now: float | None = None,
+    ) -> None:
         """Vertical speed -> flight-path angle error -> pitch (PI; the integrator is trim pitch).
         ``vs_now``: the vertical speed to close the loop on (default: the measured one)."""
         ix = self.ix
@@ -196,7 +210,9 @@ class Autopilot:
     # ------------------------------------------------------------------ navigation
     def approach_fix(self) -> tuple[float, float]:
         d = self.plan.destination
-        return geodesy.destination_point(d.lat_deg, d.lon_deg, (d.heading_deg + 180.0) % 360.0, self.fix_nm * NM_M)
+        return geodesy.destination_point(
+            d.lat_deg, d.lon_deg, (d.heading_deg + 180.0) % 360.0, self.fix_nm * NM_M
+        )
 
     def set_route(self, waypoints: list[tuple[float, float]], fix_nm: float | None = None) -> None:
         """Fly ``waypoints`` (lat, lon), then the approach fix ``fix_nm`` before the destination's
@@ -305,8 +321,11 @@ class Autopilot:
         headwind), less ``vapp_wind_included_kt``, within 0 and ``vapp_wind_max_kt`` in all (a type
         without the rule has all three at 0)."""
         p = self.prof
-        return clamp(p.vapp_wind_fraction * self.draws.atmosphere.w20_mps - p.vapp_wind_included_kt * KT_MPS,
-                     0.0, (p.vapp_wind_max_kt - p.vapp_wind_included_kt) * KT_MPS)
+        return clamp(
+            p.vapp_wind_fraction * self.draws.atmosphere.w20_mps - p.vapp_wind_included_kt * KT_MPS,
+            0.0,
+            (p.vapp_wind_max_kt - p.vapp_wind_included_kt) * KT_MPS,
+        )
 
     def _takeoff_speed_mps(self, kt: float) -> float:
         """A takeoff speed of the profile for the current mass: scaled with sqrt(mass), as the stall
@@ -367,8 +386,14 @@ class Autopilot:
         # four models), the opposite of the nose wheel's positive-right steering angle
         self.ac.set("fcs/rudder-cmd-norm", clamp(-(4.0 * psi_err - 3.0 * r), -1.0, 1.0))
 
-    def follow(self, x, frame: RunwayFrame, lookahead_m: float, max_steer_deg: float,
-               max_yaw_rate_radps: float = math.inf) -> tuple[float, float]:
+    def follow(
+        self,
+        x,
+        frame: RunwayFrame,
+        lookahead_m: float,
+        max_steer_deg: float,
+        max_yaw_rate_radps: float = math.inf,
+    ) -> tuple[float, float]:
         """Pure pursuit along ``self.path``; returns (s, cross-track error). The path curvature it
         steers for is capped so that the yaw rate it asks for stays within ``max_yaw_rate_radps``
         (a nose wheel that lags would otherwise be asked for ever more as it falls behind). The
@@ -421,8 +446,11 @@ class Autopilot:
             target, thr = tu.taxi_hold_brake, 0.0
         elif self.taxi_braking:
             self.taxi_brake_int = clamp(self.taxi_brake_int - err * dt, -5.0, 5.0)
-            target = clamp(-a_ref / tu.taxi_brake_mps2 - kp * err + ki * self.taxi_brake_int, 0.0,
-                           tu.taxi_brake_max_mps2 / tu.taxi_brake_mps2)
+            target = clamp(
+                -a_ref / tu.taxi_brake_mps2 - kp * err + ki * self.taxi_brake_int,
+                0.0,
+                tu.taxi_brake_max_mps2 / tu.taxi_brake_mps2,
+            )
             thr = 0.0
         else:
             target, thr = 0.0, self.ground_spd_pid(err, dt)

@@ -75,10 +75,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from flightmode.sim.flight import atmosphere as isa
 
 from flightmode.errors import AircraftError, InputDataError, ScenarioError, did_you_mean, first_nonfinite
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
+from flightmode.sim.flight import atmosphere as isa
 from flightmode.units import FPM_MPS, FT_M, HPA_PA, PSI_PA
 
 # ---------------------------------------------------------------------------------------------
@@ -159,13 +159,15 @@ class Weather:
         return {"qnh_hpa": self.qnh_hpa, "isa_dev_k": self.isa_dev_k}
 
 
-def draw_weather(rng: np.random.Generator, qnh_sigma_hpa: float = QNH_SIGMA_HPA,
-                 isa_dev_sigma_k: float = ISA_DEV_SIGMA_K) -> Weather:
+def draw_weather(
+    rng: np.random.Generator, qnh_sigma_hpa: float = QNH_SIGMA_HPA, isa_dev_sigma_k: float = ISA_DEV_SIGMA_K
+) -> Weather:
     """One airport's weather: QNH ~ N(1013.25 hPa, sigma) and ISA deviation ~ N(0, sigma), each
     truncated to its range by redrawing (two normals per attempt, in that order)."""
     if qnh_sigma_hpa < 0 or isa_dev_sigma_k < 0:
-        raise ScenarioError(f"weather spreads must be >= 0 (QNH sigma {qnh_sigma_hpa} hPa, "
-                            f"ISA sigma {isa_dev_sigma_k} K)")
+        raise ScenarioError(
+            f"weather spreads must be >= 0 (QNH sigma {qnh_sigma_hpa} hPa, ISA sigma {isa_dev_sigma_k} K)"
+        )
     while True:
         q = QNH_MEAN_HPA + qnh_sigma_hpa * rng.standard_normal()
         d = isa_dev_sigma_k * rng.standard_normal()
@@ -237,8 +239,9 @@ def _phase_codes(phase, n: int) -> np.ndarray:
         raise InputDataError(f"cabin pressure: phase has shape {ph.shape}, need ({n},) like t_s")
     if ph.dtype.kind in "iu":
         if ph.size and (ph.min() < 0 or ph.max() >= len(PHASES)):
-            raise InputDataError(f"cabin pressure: phase codes must be in 0..{len(PHASES) - 1} "
-                                 "(flightmode.labels.PHASES)")
+            raise InputDataError(
+                f"cabin pressure: phase codes must be in 0..{len(PHASES) - 1} (flightmode.labels.PHASES)"
+            )
         return ph.astype(np.intp)
     names, inv = np.unique(ph.astype(str), return_inverse=True)
     for name in names:
@@ -251,8 +254,10 @@ def _check_series(t_s, alt_m) -> tuple[np.ndarray, np.ndarray, float]:
     t = np.asarray(t_s, float)
     h = np.asarray(alt_m, float)
     if t.ndim != 1 or h.shape != t.shape or t.size < 2:
-        raise InputDataError(f"cabin pressure: need t_s and alt_m as 1-D arrays of one length >= 2, "
-                             f"got {t.shape} and {h.shape}")
+        raise InputDataError(
+            f"cabin pressure: need t_s and alt_m as 1-D arrays of one length >= 2, "
+            f"got {t.shape} and {h.shape}"
+        )
     for name, x in (("t_s", t), ("alt_m", h)):
         if (i := first_nonfinite(x)) is not None:
             raise InputDataError(f"cabin pressure: {name} is NaN or inf at sample {i}")
@@ -295,9 +300,13 @@ def cabin_pressure(
     n = t.shape[0]
     code = _phase_codes(phase, n)
     if hold not in HOLD_OPTIONS:
-        raise ScenarioError(f"hold '{hold}'{did_you_mean(hold, HOLD_OPTIONS)}: allowed {', '.join(HOLD_OPTIONS)}")
+        raise ScenarioError(
+            f"hold '{hold}'{did_you_mean(hold, HOLD_OPTIONS)}: allowed {', '.join(HOLD_OPTIONS)}"
+        )
     if not (np.isfinite(cruise_alt_m) and cruise_alt_m > 0):
-        raise InputDataError(f"cabin pressure: cruise_alt_m {cruise_alt_m!r} must be a positive pressure altitude")
+        raise InputDataError(
+            f"cabin pressure: cruise_alt_m {cruise_alt_m!r} must be a positive pressure altitude"
+        )
     arr_w = weather if arrival_weather is None else arrival_weather
     e_dep = float(z[0]) if departure_elev_m is None else float(departure_elev_m)
     e_arr = float(z[-1]) if arrival_elev_m is None else float(arrival_elev_m)
@@ -330,6 +339,7 @@ def cabin_pressure(
     # the schedule s: ground -> ambient; takeoff roll -> ramp to the pre-pressurised field;
     # airborne -> proportional to the aircraft's progress between field and cruise level
     descent_side = np.maximum.accumulate(in_set(_DESCENT_SIDE))
+
     def frac(h0: float) -> np.ndarray:  # progress from the field to the cruise level
         return np.clip((h_amb - h0) / (cruise_alt_m - h0), 0.0, 1.0) if cruise_alt_m > h0 else np.ones(n)
 
@@ -341,7 +351,9 @@ def cabin_pressure(
     roll = code == PHASE_CODE["takeoff_roll"]
     if roll.any():
         t_roll = t[np.flatnonzero(roll)[0]]
-        ramp = np.maximum(isa.pressure_altitude_m(p_amb + pre), h_amb - prof.prepress_rate_fpm * FPM_MPS * (t - t_roll))
+        ramp = np.maximum(
+            isa.pressure_altitude_m(p_amb + pre), h_amb - prof.prepress_rate_fpm * FPM_MPS * (t - t_roll)
+        )
         s[roll] = ramp[roll]
 
     # rate limits per interval (k-1 -> k), by the phase of sample k (the first entry is unused)
@@ -355,7 +367,7 @@ def cabin_pressure(
         ca, ta = c1[seg], t[seg]
         k = ca.size - 1 - int(np.argmax(ca[::-1]))
         if k < ca.size - 1:
-            need_mps = float(np.max((ca[k] - ca[k + 1:]) / (ta[k + 1:] - ta[k])))
+            need_mps = float(np.max((ca[k] - ca[k + 1 :]) / (ta[k + 1 :] - ta[k])))
             rate_dn = min(max(rate_dn, need_mps / FPM_MPS), prof.descent_rate_max_fpm)
     dn = np.where(airborne, rate_dn, prof.prepress_rate_fpm) * FPM_MPS
     r_dn = np.concatenate([[0.0], np.cumsum(dn[1:] * dt)])
@@ -386,12 +398,21 @@ def cabin_pressure(
 def hold_pressure_pa(cabin_pressure_pa, ambient_pressure_pa, hold: str) -> np.ndarray:
     """The cargo hold's pressure: the cabin's when pressurised (one pressure vessel), ambient when not."""
     if hold not in HOLD_OPTIONS:
-        raise ScenarioError(f"hold '{hold}'{did_you_mean(hold, HOLD_OPTIONS)}: allowed {', '.join(HOLD_OPTIONS)}")
+        raise ScenarioError(
+            f"hold '{hold}'{did_you_mean(hold, HOLD_OPTIONS)}: allowed {', '.join(HOLD_OPTIONS)}"
+        )
     return np.asarray(cabin_pressure_pa if hold == "pressurised" else ambient_pressure_pa, float).copy()
 
 
-def cabin_figures(t_s, alt_m, cabin_altitude_m, cabin_pressure_pa, ambient_pressure_pa, phase_code,
-                  rate_window_s: float = 10.0) -> dict:
+def cabin_figures(
+    t_s,
+    alt_m,
+    cabin_altitude_m,
+    cabin_pressure_pa,
+    ambient_pressure_pa,
+    phase_code,
+    rate_window_s: float = 10.0,
+) -> dict:
     """A flight's cabin in the figures a pressurisation schedule is specified by: the cruise cabin
     altitude and pressure (medians over the cruise phase), the largest cabin climb and descent rates
     (ft/min, differences over ``rate_window_s``: the controller's rate limits are per minute, and the
@@ -404,14 +425,17 @@ def cabin_figures(t_s, alt_m, cabin_altitude_m, cabin_pressure_pa, ambient_press
     step = max(1, int(round(rate_window_s / float(np.median(np.diff(t))))))
     rate_fpm = (h[step:] - h[:-step]) / (t[step:] - t[:-step]) / FPM_MPS
     air = np.isin(code, [PHASE_CODE[p] for p in AIRBORNE_PHASES])
-    air_rate = rate_fpm[air[step:] & air[:-step]]  # both ends airborne (the runway's pre-pressurisation excluded)
+    air_rate = rate_fpm[
+        air[step:] & air[:-step]
+    ]  # both ends airborne (the runway's pre-pressurisation excluded)
     cruise = code == PHASE_CODE["cruise"]
     diff = np.asarray(cabin_pressure_pa, float) - np.asarray(ambient_pressure_pa, float)
     return {
         "max_altitude_ft": float(np.max(alt_m)) / FT_M,
         "cruise_cabin_altitude_ft": float(np.median(h[cruise])) / FT_M if cruise.any() else math.nan,
         "cruise_cabin_pressure_hpa": float(np.median(np.asarray(cabin_pressure_pa)[cruise])) / HPA_PA
-        if cruise.any() else math.nan,
+        if cruise.any()
+        else math.nan,
         "max_cabin_altitude_ft": float(np.max(h)) / FT_M,
         "max_cabin_climb_fpm": float(max(rate_fpm.max(), 0.0)) if rate_fpm.size else math.nan,
         "max_cabin_descent_fpm": float(max(-rate_fpm.min(), 0.0)) if rate_fpm.size else math.nan,

@@ -146,8 +146,13 @@ class Taxi(Controller):
         ap, p, tau = self.ap, self.p, self.ap.tune.taxi_ref_tau_s
         style = self.route.style
         gs = ap.gs(x)
-        s, cross = ap.follow(x, frame, max(12.0, ap.tune.taxi_lookahead_s * gs), ap.tune.taxi_max_steer_deg,
-                             1.2 * style.yaw_rate_max_radps)
+        s, cross = ap.follow(
+            x,
+            frame,
+            max(12.0, ap.tune.taxi_lookahead_s * gs),
+            ap.tune.taxi_max_steer_deg,
+            1.2 * style.yaw_rate_max_radps,
+        )
         if abs(cross) > 30.0:
             p.fail(f"left the taxiway: {cross:.0f} m from the taxi route")
         stops = ap.path.stops
@@ -223,8 +228,9 @@ class TakeoffRoll(Controller):
         if target is None:
             thr = self.p.plan.takeoff_thrust_norm
         else:  # the drawn acceleration at this weight and field (TakeoffThrust)
-            thr = self.p.prof.takeoff.throttle_for(target, ap.mass_kg(),
-                                                   ap.ac.get("atmosphere/rho-slugs_ft3") * SLUG_FT3_KGM3)
+            thr = self.p.prof.takeoff.throttle_for(
+                target, ap.mass_kg(), ap.ac.get("atmosphere/rho-slugs_ft3") * SLUG_FT3_KGM3
+            )
         self.p.takeoff_thrust_norm = thr
         ap.throttle(thr)
         ap.theta_cmd = x[self.p.ix["theta_rad"]]
@@ -242,8 +248,9 @@ class TakeoffRoll(Controller):
             if self.t_rotate is None:
                 self.t_rotate = p.t
                 p.event("rotate", f"{ias / KT_MPS:.0f} kt")
-            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(prof.rotate_pitch_deg),
-                                      math.radians(ROTATE_RATE_DPS) * ap.dt)
+            ap.theta_cmd = rate_limit(
+                ap.theta_cmd, math.radians(prof.rotate_pitch_deg), math.radians(ROTATE_RATE_DPS) * ap.dt
+            )
             # nose-up elevator bias while the mains still carry the aircraft (rotation), applied
             # smoothly (ROTATE_RAMP_S)
             self.bias = prof.rotate_elevator * min(1.0, (p.t - self.t_rotate) / ROTATE_RAMP_S)
@@ -316,8 +323,11 @@ class InitialClimb(Controller):
         self.v2_mps = self.ap.v2_mps()  # at liftoff's mass
         self.v_climb_mps = self.v2_mps + self.p.prof.initial_climb_v2_add_kt * KT_MPS
         thr = self.p.takeoff_thrust_norm
-        self.autothrottle = (EnergyRateThrottle(x, self.p.ix, thr, max(1.0, thr), thr)
-                             if self.p.prof.initial_climb_thrust_for_rate and thr is not None else None)
+        self.autothrottle = (
+            EnergyRateThrottle(x, self.p.ix, thr, max(1.0, thr), thr)
+            if self.p.prof.initial_climb_thrust_for_rate and thr is not None
+            else None
+        )
         # the drawn rate is WRAP's mean from liftoff to 1,500 ft (the acceleration height), the slow
         # first seconds of the climb included: the autothrottle aims at the height still to gain over
         # the time left, never less than the drawn rate nor more than INITIAL_CLIMB_RATE_MAX times it
@@ -342,8 +352,9 @@ class InitialClimb(Controller):
                 p.event("acceleration_height")
             target = min(tu.speed_limit_mps, self.v_climb_mps + 1.5 * KT_MPS * (p.t - self.t_accel))
         if self.rotate_to is not None:
-            ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(self.rotate_to),
-                                      math.radians(ROTATE_RATE_DPS) * ap.dt)
+            ap.theta_cmd = rate_limit(
+                ap.theta_cmd, math.radians(self.rotate_to), math.radians(ROTATE_RATE_DPS) * ap.dt
+            )
             ap.pitch_to(x, ap.theta_cmd)
             if ap.theta_cmd >= math.radians(self.rotate_to) - 1e-9 or x[ix["ias_mps"]] < self.v2_mps:
                 self.rotate_to = None
@@ -392,8 +403,10 @@ class EnRoute(Controller):
         if phase == "cruise":
             self._step_climb(x, d)
         h_tgt = min(ap.cruise_alt_m, ap.path_alt_m(d))
-        v_new = min(ap.speed_target_mps(x, d, climbing=phase == "climb", on_approach_legs=phase != "climb"),
-                    self.speed_cap_mps())
+        v_new = min(
+            ap.speed_target_mps(x, d, climbing=phase == "climb", on_approach_legs=phase != "climb"),
+            self.speed_cap_mps(),
+        )
         if ap.v_tgt is None:
             ap.v_tgt = v_new
         ap.v_tgt = rate_limit(ap.v_tgt, v_new, KT_MPS * ap.dt)
@@ -433,8 +446,9 @@ class EnRoute(Controller):
         mg = x[ix["agl_m"]] - prof.cg_height_m
         if ap.loc_mode and ap.theta_final is None:  # the approach's mean attitude, until it is held
             th = math.degrees(x[ix["theta_rad"]])
-            ap.theta_mean = th if ap.theta_mean is None else \
-                first_order_lag(ap.theta_mean, th, ap.dt, THETA_FINAL_TAU_S)
+            ap.theta_mean = (
+                th if ap.theta_mean is None else first_order_lag(ap.theta_mean, th, ap.dt, THETA_FINAL_TAU_S)
+            )
         if ap.loc_mode and mg < 200 * FT_M:
             # short final: no diving into ground effect below the stabilised attitude (THETA_FINAL_TAU_S)
             if ap.theta_final is None:
@@ -448,8 +462,10 @@ class EnRoute(Controller):
         agl = x[ix["agl_m"]]
         sb = clamp((-err - 4.0) / 10.0, 0.0, 1.0) if thr <= 0.01 and agl > 1000 * FT_M else 0.0
         ap.ac.set("fcs/speedbrake-cmd-norm", sb)
-        if ap.loc_mode and (agl - prof.cg_height_m < flare_start_height_m(ap, x)
-                            or -d > FLOAT_LIMIT_FRACTION * ap.dest.rwy.length_m):
+        if ap.loc_mode and (
+            agl - prof.cg_height_m < flare_start_height_m(ap, x)
+            or -d > FLOAT_LIMIT_FRACTION * ap.dest.rwy.length_m
+        ):
             # over the runway's second half still above the flare height (a float in gusts on the
             # approach's speed): the flare's first tick goes around (Flare._go_around)
             p.fire("flare_height")
@@ -469,8 +485,13 @@ class EnRoute(Controller):
         if self.ref is None or p.t < self.next_check_s:
             return
         self.next_check_s = p.t + STEP_CHECK_S
-        new = next_level_m(ap.cruise_alt_m, ap.ac.get("inertia/weight-lbs"), self.ref[0], self.ref[1],
-                           p.prof.ceiling_ft * FT_M)
+        new = next_level_m(
+            ap.cruise_alt_m,
+            ap.ac.get("inertia/weight-lbs"),
+            self.ref[0],
+            self.ref[1],
+            p.prof.ceiling_ft * FT_M,
+        )
         if new is None or abs(x[p.ix["alt_m"]] - ap.cruise_alt_m) > 30.0:
             return
         if ap.path_alt_m(d_m - ap.gs(x) * STEP_MIN_CRUISE_S) < new:
@@ -564,8 +585,12 @@ class Flare(Controller):
         ix, prof = self.p.ix, self.p.prof
         self.theta_cmd = self.theta_0 = x[ix["theta_rad"]]
         self.sink_0 = x[ix["v_down_mps"]]
-        self.tau_s = exponential_flare_tau_s(x[ix["agl_m"]] - prof.cg_height_m, self.sink_0,
-                                             self.ap.draws.touchdown_sink_mps, prof.flare_tau_max_s)
+        self.tau_s = exponential_flare_tau_s(
+            x[ix["agl_m"]] - prof.cg_height_m,
+            self.sink_0,
+            self.ap.draws.touchdown_sink_mps,
+            prof.flare_tau_max_s,
+        )
         self.sink_err_int = 0.0  # the exponential law's integral of the sink-rate error (m)
         # the exponential law's speed at the flare height
         self.v_0 = max(x[ix["tas_mps"]], FLARE_EXP_MIN_TAS_MPS)
@@ -652,9 +677,11 @@ class Flare(Controller):
         if x[ix["wow"]] > 0.5:
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
             if sink > ap.tune.max_touchdown_sink_mps:
-                p.fail(f"hard landing: touchdown sink rate {sink / FT_M:.1f} ft/s exceeds "
-                       f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s, the gear's reserve-energy sink "
-                       "(14 CFR 25.723(b))")
+                p.fail(
+                    f"hard landing: touchdown sink rate {sink / FT_M:.1f} ft/s exceeds "
+                    f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s, the gear's reserve-energy sink "
+                    "(14 CFR 25.723(b))"
+                )
             p.fire("touchdown")
 
     def _go_around(self, x, gear_h_m: float, rx_m: float) -> bool:
@@ -669,13 +696,17 @@ class Flare(Controller):
         elif gear_h_m > FLARE_BALLOON_FACTOR * prof.flare_height_ft * FT_M:
             # a 787-8 pattern flight in a 27 kt wind flown with Boeing's wind additive (165 kt on
             # approach) climbed to 570 ft in its flare within a minute
-            cause = (f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway (flare height "
-                     f"{prof.flare_height_ft:.0f} ft)")
+            cause = (
+                f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway (flare height "
+                f"{prof.flare_height_ft:.0f} ft)"
+            )
             if self.approaches >= MAX_APPROACHES:
                 p.fail(f"{cause} on approach {self.approaches}; no diversion is flown after {MAX_APPROACHES}")
         elif rx_m > self.float_limit_m and x[p.ix["wow"]] < 0.5 and self.approaches < MAX_APPROACHES:
-            cause = (f"long flare: still airborne {rx_m:.0f} m past the threshold, over the runway's second half "
-                     f"({self.float_limit_m:.0f} m)")
+            cause = (
+                f"long flare: still airborne {rx_m:.0f} m past the threshold, over the runway's second half "
+                f"({self.float_limit_m:.0f} m)"
+            )
         else:
             return False
         p.event("go_around_call", cause)
@@ -702,6 +733,8 @@ GO_AROUND_FIX_NM = 8.0
 # Airbus's SRS commands up to 17.5 deg)
 GO_AROUND_PITCH_DEG = 15.0
 GO_AROUND_PITCH_RATE_DPS = 3.0
+
+
 class GoAround(EnRoute):
     """A go-around from the flare and the circuit back to the localizer. First, as the go-around modes
     of airliner flight directors fly it (Airbus SRS, Boeing TO/GA): climb thrust at once, the pitch
@@ -742,8 +775,10 @@ class GoAround(EnRoute):
         220 kt, and, capped at the last step's nominal 145 kt with landing flaps, under its mass-scaled
         Vapp, a 787-8 stalled in the turn to final)."""
         ap, steps = self.ap, self.p.prof.approach_steps
-        return max((ap.step_speed_mps(s) for s in steps if s.flaps_norm >= ap.flaps - 1e-9),
-                   default=steps[0].speed_kt * KT_MPS)
+        return max(
+            (ap.step_speed_mps(s) for s in steps if s.flaps_norm >= ap.flaps - 1e-9),
+            default=steps[0].speed_kt * KT_MPS,
+        )
 
     def tick(self, x) -> None:
         ap, p, ix = self.ap, self.p, self.p.ix
@@ -756,8 +791,11 @@ class GoAround(EnRoute):
             if self.rotating:
                 # rotate at once towards the go-around attitude: waiting for the speed to ask for it
                 # sank a 737 pattern flight from 57 ft onto the runway at 2.5 g
-                ap.theta_cmd = rate_limit(ap.theta_cmd, math.radians(GO_AROUND_PITCH_DEG),
-                                          math.radians(GO_AROUND_PITCH_RATE_DPS) * ap.dt)
+                ap.theta_cmd = rate_limit(
+                    ap.theta_cmd,
+                    math.radians(GO_AROUND_PITCH_DEG),
+                    math.radians(GO_AROUND_PITCH_RATE_DPS) * ap.dt,
+                )
                 ap.pitch_to(x, ap.theta_cmd)
                 if ap.theta_cmd >= math.radians(GO_AROUND_PITCH_DEG) - 1e-9:
                     self.rotating = False
@@ -779,8 +817,9 @@ class GoAround(EnRoute):
         super().tick(x)
 
 
-def exponential_flare_tau_s(gear_height_m: float, sink_mps: float, touchdown_sink_mps: float,
-                            tau_max_s: float) -> float:
+def exponential_flare_tau_s(
+    gear_height_m: float, sink_mps: float, touchdown_sink_mps: float, tau_max_s: float
+) -> float:
     """The exponential flare's time constant (s), set at the flare height: the one whose command
     v_td + h / tau equals the sink rate there, so the flare begins without a jump in the command,
     within FLARE_TAU_MIN_S-``tau_max_s`` (the type's ``flare_tau_max_s``; a flare entered at or below
@@ -791,8 +830,9 @@ def exponential_flare_tau_s(gear_height_m: float, sink_mps: float, touchdown_sin
     return clamp(max(gear_height_m, 0.0) / excess, FLARE_TAU_MIN_S, tau_max_s)
 
 
-def exponential_flare_sink_cmd_mps(gear_height_m: float, touchdown_sink_mps: float, tau_s: float,
-                                   entry_sink_mps: float) -> float:
+def exponential_flare_sink_cmd_mps(
+    gear_height_m: float, touchdown_sink_mps: float, tau_s: float, entry_sink_mps: float
+) -> float:
     """The exponential flare's sink-rate command (m/s, down) at main-gear height ``gear_height_m``:
     dh/dt = -(h / tau + v_td), whose path meets the runway at the touchdown sink v_td (Blakelock),
     never more than the sink at the flare height (``entry_sink_mps``): a firm or hard landing's path,
@@ -860,8 +900,10 @@ class Rollout(Controller):
         # integrator takes over the flare's bias; the rest relaxes at once, as the flare's pull)
         u_now = -ap.ac.get("fcs/elevator-cmd-norm")
         keep = prof.touchdown_elevator_keep
-        ap.pitch_pid.reset(integral=keep * (u_now + prof.pitch_kq * x[ix["q_radps"]]) / prof.pitch_ki
-                           + (1.0 - keep) * 0.5 * ap.pitch_pid.integral)
+        ap.pitch_pid.reset(
+            integral=keep * (u_now + prof.pitch_kq * x[ix["q_radps"]]) / prof.pitch_ki
+            + (1.0 - keep) * 0.5 * ap.pitch_pid.integral
+        )
         # the nose is flown down to the runway over DEROTATION_S, not let fall
         self.derotation_rate = max((theta - math.radians(1.0)) / DEROTATION_S, DEROTATION_MIN_RATE)
         self.rev_thr = prof.reverse_throttle
@@ -906,8 +948,12 @@ class Rollout(Controller):
         if nose_down:
             ap.brakes(ap.brake_pid(target - ap.decel_f, ap.dt))
         if gs < ap.tune.exit_speed_mps:
-            for prop in ("fcs/speedbrake-cmd-norm", "fcs/spoiler-cmd-norm", "fcs/rudder-cmd-norm",
-                         "fcs/elevator-cmd-norm"):
+            for prop in (
+                "fcs/speedbrake-cmd-norm",
+                "fcs/spoiler-cmd-norm",
+                "fcs/rudder-cmd-norm",
+                "fcs/elevator-cmd-norm",
+            ):
                 ap.ac.set(prop, 0.0)
             ap.set_flaps(0.0)
             p.fire("exit_speed")

@@ -43,7 +43,9 @@ SINK_BANDS_FPS = {"firm": (4.5, 7.0), "hard": (7.0, 9.5)}  # module docstring
 class FlightDraws:
     climb_vs_mps: tuple[float, float, float]  # below the CAS crossover, constant CAS, constant Mach
     initial_climb_vs_mps: float  # liftoff to 1,500 ft (ClimbSchedule.vs_initial)
-    takeoff_accel_target_mps2: float | None  # the drawn takeoff acceleration (None: the plan sets the throttle)
+    takeoff_accel_target_mps2: (
+        float | None
+    )  # the drawn takeoff acceleration (None: the plan sets the throttle)
     touchdown_sink_mps: float  # what the flare aims at
     atmosphere: Atmosphere
     departure_weather: Weather  # the airports' QNH and ISA deviation (sim.flight.cabin)
@@ -51,19 +53,28 @@ class FlightDraws:
 
     def as_dict(self) -> dict:
         a = self.atmosphere
-        return {"climb_vs_mps": list(self.climb_vs_mps), "initial_climb_vs_mps": self.initial_climb_vs_mps,
-                "takeoff_accel_target_mps2": self.takeoff_accel_target_mps2,
-                "touchdown_sink_target_mps": self.touchdown_sink_mps,
-                "surface_wind_mps": a.w20_mps, "background_edr_mid": a.edr_mid, "background_edr_upper": a.edr_upper,
-                "patch_edr": list(a.patch_edr), "convective_velocity_mps": a.w_star_mps, "mixed_layer_depth_m": a.z_i_m,
-                "departure_weather": self.departure_weather.as_dict(),
-                "arrival_weather": self.arrival_weather.as_dict()}
+        return {
+            "climb_vs_mps": list(self.climb_vs_mps),
+            "initial_climb_vs_mps": self.initial_climb_vs_mps,
+            "takeoff_accel_target_mps2": self.takeoff_accel_target_mps2,
+            "touchdown_sink_target_mps": self.touchdown_sink_mps,
+            "surface_wind_mps": a.w20_mps,
+            "background_edr_mid": a.edr_mid,
+            "background_edr_upper": a.edr_upper,
+            "patch_edr": list(a.patch_edr),
+            "convective_velocity_mps": a.w_star_mps,
+            "mixed_layer_depth_m": a.z_i_m,
+            "departure_weather": self.departure_weather.as_dict(),
+            "arrival_weather": self.arrival_weather.as_dict(),
+        }
 
 
 def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
     if quality == "normal":
         fps = SINK_NORMAL_MEDIAN_FPS * math.exp(SINK_NORMAL_LN_STD * rng.standard_normal())
-        return min(fps, SINK_BANDS_FPS["hard"][1]) * FPS_MPS  # the lognormal's far tail (1e-7 of landings) capped below the limit
+        return (
+            min(fps, SINK_BANDS_FPS["hard"][1]) * FPS_MPS
+        )  # the lognormal's far tail (1e-7 of landings) capped below the limit
     lo, hi = SINK_BANDS_FPS[quality]
     return rng.uniform(lo, hi) * FPS_MPS
 
@@ -81,8 +92,13 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
     sink = draw_sink_mps(plan.landing_quality, streams.rng("landing"))
     if plan.touchdown_sink_mps is not None:
         sink = plan.touchdown_sink_mps
-    atm = draw_atmosphere(streams.rng("turbulence/atmosphere"), plan.turbulence, w20_mps=plan.surface_wind_mps,
-                          background_edr=plan.background_edr, w_star_mps=plan.convective_velocity_mps)
+    atm = draw_atmosphere(
+        streams.rng("turbulence/atmosphere"),
+        plan.turbulence,
+        w20_mps=plan.surface_wind_mps,
+        background_edr=plan.background_edr,
+        w_star_mps=plan.convective_velocity_mps,
+    )
     dep = _weather(plan, plan.departure_qnh_hpa, streams.rng("weather/departure"))
     arr = _weather(plan, plan.arrival_qnh_hpa, streams.rng("weather/arrival"))
     if plan.origin.icao == plan.destination.icao and plan.arrival_qnh_hpa is None:
@@ -93,5 +109,7 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
 def _weather(plan: FlightPlan, qnh_hpa: float | None, rng: np.random.Generator) -> Weather:
     """One airport's weather: drawn (sim.flight.cabin.draw_weather), then the plan's fixed values."""
     w = draw_weather(rng)
-    return Weather(w.qnh_hpa if qnh_hpa is None else float(qnh_hpa),
-                   w.isa_dev_k if plan.isa_dev_k is None else float(plan.isa_dev_k))
+    return Weather(
+        w.qnh_hpa if qnh_hpa is None else float(qnh_hpa),
+        w.isa_dev_k if plan.isa_dev_k is None else float(plan.isa_dev_k),
+    )

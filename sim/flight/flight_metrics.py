@@ -20,12 +20,13 @@ from flightmode.sim.flight.track import FlightTrack
 from flightmode.units import FT_M, G0_MPS2
 
 
-
 def _phase_span(track: FlightTrack, phase: str) -> tuple[int, int]:
     idx = np.flatnonzero(track.phase_code == PHASE_CODE[phase])
     if idx.size == 0:
-        raise InputDataError(f"the track has no '{phase}' phase: flight figures need a whole gate-to-gate flight "
-                             "(fly it with flightmode.run or `flightmode fly`)")
+        raise InputDataError(
+            f"the track has no '{phase}' phase: flight figures need a whole gate-to-gate flight "
+            "(fly it with flightmode.run or `flightmode fly`)"
+        )
     return int(idx[0]), int(idx[-1])
 
 
@@ -102,6 +103,8 @@ def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     m["min_load_factor_g"] = float((-track.specific_force_body_mps2[:, 2][airborne] / G0_MPS2).min())
     for k, v in m.items():
         if not math.isfinite(v):
-            raise InputDataError(f"flight figure {k} is {v}: the track holds NaN or a phase of zero length "
-                                 "(re-fly the scenario)")
+            raise InputDataError(
+                f"flight figure {k} is {v}: the track holds NaN or a phase of zero length "
+                "(re-fly the scenario)"
+            )
     return m

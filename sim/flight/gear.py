@@ -48,14 +48,19 @@ G_FPS2 = G0_MPS2 / FT_M
 def main_gear(root: ET.Element) -> list[ET.Element]:
     """The main-gear contacts of a JSBSim model: the BOGEY contacts with wheel brakes (brake group
     LEFT or RIGHT). Some models (the A320) declare their structural contact points as BOGEYs too."""
-    mains = [c for c in root.iterfind("ground_reactions/contact")
-             if c.get("type") == "BOGEY" and (c.findtext("brake_group") or "").strip() in ("LEFT", "RIGHT")]
+    mains = [
+        c
+        for c in root.iterfind("ground_reactions/contact")
+        if c.get("type") == "BOGEY" and (c.findtext("brake_group") or "").strip() in ("LEFT", "RIGHT")
+    ]
     if len(mains) < 2:
         raise AircraftError("the model has fewer than two braked gear contacts: cannot tell its main gear")
     return mains
 
 
-def peak_load_factor(sink_fps: float, weight_lbf: float, k_lbf_per_ft: float, c2: float, n_main: int) -> float:
+def peak_load_factor(
+    sink_fps: float, weight_lbf: float, k_lbf_per_ft: float, c2: float, n_main: int
+) -> float:
     """Peak vertical load factor at the CG of a touchdown at ``sink_fps`` on ``n_main`` identical
     struts (spring k, quadratic damper c2), each carrying its share of ``MAIN_SHARE`` of the weight,
     with lift equal to weight: n = 1 + n_main F_max / W (module docstring)."""
@@ -79,7 +84,9 @@ def peak_load_factor(sink_fps: float, weight_lbf: float, k_lbf_per_ft: float, c2
 
 
 @lru_cache(maxsize=32)
-def main_strut(landing_mass_kg: float, n_main: int, hard_landing_g: float = HARD_LANDING_G) -> tuple[float, float]:
+def main_strut(
+    landing_mass_kg: float, n_main: int, hard_landing_g: float = HARD_LANDING_G
+) -> tuple[float, float]:
     """(k in lbf/ft, c2 in lbf per (ft/s)^2) of each main strut (module docstring)."""
     from scipy.optimize import brentq
 
@@ -87,19 +94,30 @@ def main_strut(landing_mass_kg: float, n_main: int, hard_landing_g: float = HARD
     k = MAIN_SHARE * weight / n_main / (STATIC_DEFLECTION_M / FT_M)
     spring_only = peak_load_factor(DESIGN_SINK_FPS, weight, k, 0.0, n_main)
     if spring_only >= hard_landing_g:
-        raise AircraftError(f"hard-landing threshold {hard_landing_g} g below what the spring alone gives ({spring_only:.2f} g)")
-    c2 = brentq(lambda c: peak_load_factor(DESIGN_SINK_FPS, weight, k, c, n_main) - hard_landing_g, 0.0, 50.0 * weight,
-                xtol=1e-6 * weight)
+        raise AircraftError(
+            f"hard-landing threshold {hard_landing_g} g below what the spring alone gives ({spring_only:.2f} g)"
+        )
+    c2 = brentq(
+        lambda c: peak_load_factor(DESIGN_SINK_FPS, weight, k, c, n_main) - hard_landing_g,
+        0.0,
+        50.0 * weight,
+        xtol=1e-6 * weight,
+    )
     return k, c2
 
 
 def nose_gear(root: ET.Element) -> ET.Element:
     """The nose-gear contact of a JSBSim model: its one steerable BOGEY contact (the structural
     contact points some models declare as BOGEYs do not steer)."""
-    steer = [c for c in root.iterfind("ground_reactions/contact")
-             if c.get("type") == "BOGEY" and float(c.findtext("max_steer") or 0.0) > 0.0]
+    steer = [
+        c
+        for c in root.iterfind("ground_reactions/contact")
+        if c.get("type") == "BOGEY" and float(c.findtext("max_steer") or 0.0) > 0.0
+    ]
     if len(steer) != 1:
-        raise AircraftError(f"the model has {len(steer)} steerable gear contacts, not one: cannot tell its nose gear")
+        raise AircraftError(
+            f"the model has {len(steer)} steerable gear contacts, not one: cannot tell its nose gear"
+        )
     return steer[0]
 
 

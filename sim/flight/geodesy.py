@@ -52,7 +52,9 @@ def ned_to_ecef(lat_deg, lon_deg, v_ned) -> np.ndarray:
     sl, cl, so, co = np.sin(la), np.cos(la), np.sin(lo), np.cos(lo)
     v = np.asarray(v_ned, float)
     n, e, d = v[..., 0], v[..., 1], v[..., 2]
-    return np.stack([-sl * co * n - so * e - cl * co * d, -sl * so * n + co * e - cl * so * d, cl * n - sl * d], axis=-1)
+    return np.stack(
+        [-sl * co * n - so * e - cl * co * d, -sl * so * n + co * e - cl * so * d, cl * n - sl * d], axis=-1
+    )
 
 
 def geodetic_to_ned(lat_deg, lon_deg, alt_m, lat0_deg: float, lon0_deg: float, alt0_m: float):
@@ -83,7 +85,10 @@ def initial_course_deg(lat1_deg, lon1_deg, lat2_deg, lon2_deg):
 def gc_distance_m(lat1_deg: float, lon1_deg: float, lat2_deg: float, lon2_deg: float) -> float:
     """Scalar :func:`great_circle_distance_m` (plain math: the pilot calls it every tick)."""
     p1, p2 = math.radians(lat1_deg), math.radians(lat2_deg)
-    h = math.sin((p2 - p1) / 2) ** 2 + math.cos(p1) * math.cos(p2) * math.sin(math.radians(lon2_deg - lon1_deg) / 2) ** 2
+    h = (
+        math.sin((p2 - p1) / 2) ** 2
+        + math.cos(p1) * math.cos(p2) * math.sin(math.radians(lon2_deg - lon1_deg) / 2) ** 2
+    )
     return 2.0 * EARTH_MEAN_RADIUS_M * math.asin(math.sqrt(min(1.0, max(0.0, h))))
 
 
@@ -91,7 +96,9 @@ def gc_course_rad(lat1_deg: float, lon1_deg: float, lat2_deg: float, lon2_deg: f
     """Scalar initial great-circle course (rad, -pi..pi) from point 1 to point 2."""
     p1, p2 = math.radians(lat1_deg), math.radians(lat2_deg)
     dl = math.radians(lon2_deg - lon1_deg)
-    return math.atan2(math.sin(dl) * math.cos(p2), math.cos(p1) * math.sin(p2) - math.sin(p1) * math.cos(p2) * math.cos(dl))
+    return math.atan2(
+        math.sin(dl) * math.cos(p2), math.cos(p1) * math.sin(p2) - math.sin(p1) * math.cos(p2) * math.cos(dl)
+    )
 
 
 def destination_point(lat_deg: float, lon_deg: float, course_deg: float, distance_m: float):

@@ -27,7 +27,6 @@ from pathlib import Path
 import numpy as np
 
 from flightmode.errors import AircraftError, did_you_mean
-
 from flightmode.units import FT_M, G0_MPS2, IN_M, KT_MPS, LBF_N
 
 
@@ -165,9 +164,7 @@ def _private_model_copy(model: str, workdir: Path, edits=()) -> Path:
             xml_sub(direc, axis, f"{val:.1f}")
         # external_reactions must come after ground_reactions in the document
         children = list(root)
-        idx = next(
-            (i + 1 for i, c in enumerate(children) if c.tag == "ground_reactions"), len(children)
-        )
+        idx = next((i + 1 for i, c in enumerate(children) if c.tag == "ground_reactions"), len(children))
         root.insert(idx, ext)
     for edit in edits:
         edit(root)
@@ -214,7 +211,9 @@ class JSBSimAircraft:
         self.channels = _channels(n_engines)
         self.index = {c.name: i for i, c in enumerate(self.channels + DERIVED_CHANNELS)}
         self.n_every_step = sum(1 for c in self.channels if not c.slow)  # the first channels
-        tmp = Path(tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir)).resolve()  # JSBSim needs absolute paths
+        tmp = Path(
+            tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir)
+        ).resolve()  # JSBSim needs absolute paths
         try:
             aircraft_path = _private_model_copy(model, tmp, edits)
             jsbsim.FGJSBBase().debug_lvl = 0  # no start-up banner on stdout
@@ -264,9 +263,7 @@ class JSBSimAircraft:
         """(getter, nodes): ``map(getter, nodes)`` yields every channel's raw value."""
         return type(self._read_nodes[0]).get_double_value, self._read_nodes
 
-    def init_on_ground(
-        self, lat_deg: float, lon_deg: float, elevation_m: float, heading_deg: float
-    ) -> None:
+    def init_on_ground(self, lat_deg: float, lon_deg: float, elevation_m: float, heading_deg: float) -> None:
         """Place the aircraft at rest on flat ground (ground start: terrain elevation set, a little above it, run_ic, gear
         down, brakes on, JSBSim's ground trim)."""
         fdm = self.fdm

@@ -105,7 +105,9 @@ def set_nose_side_friction(root: ET.Element, peak: float) -> None:
     el.text = f" {peak:g} "
 
 
-GROUND_SPOILER_LIFT_FACTOR = 0.6  # the wing's lift with the ground spoilers fully out: the stock 737 model's figure
+GROUND_SPOILER_LIFT_FACTOR = (
+    0.6  # the wing's lift with the ground spoilers fully out: the stock 737 model's figure
+)
 GROUND_SPOILER_TRAVEL_S = 0.6  # the panels' full travel: the stock 737 model's
 
 
@@ -119,13 +121,23 @@ def add_ground_spoilers(root: ET.Element) -> None:
     if any((el.text or "").strip() == "fcs/spoiler-pos-norm" for el in root.iter("output")) or any(
         fn.get("name") == "aero/function/kCLsp" for fn in root.iter("function")
     ):
-        raise AircraftError("the model already has spoilers (fcs/spoiler-pos-norm or aero/function/kCLsp): "
-                            "edit its own instead of adding a second set")
+        raise AircraftError(
+            "the model already has spoilers (fcs/spoiler-pos-norm or aero/function/kCLsp): "
+            "edit its own instead of adding a second set"
+        )
     fcs, aero = root.find("flight_control"), root.find("aerodynamics")
-    wing = None if aero is None else aero.find("axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']/product")
+    wing = (
+        None
+        if aero is None
+        else aero.find("axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']/product")
+    )
     if fcs is None or wing is None:
-        raise AircraftError("no flight_control, or no LIFT axis with a CLalpha product, to add ground spoilers to")
-    kin = xml_sub(xml_sub(fcs, "channel", name="Ground spoilers (flightmode)"), "kinematic", name="Ground spoilers")
+        raise AircraftError(
+            "no flight_control, or no LIFT axis with a CLalpha product, to add ground spoilers to"
+        )
+    kin = xml_sub(
+        xml_sub(fcs, "channel", name="Ground spoilers (flightmode)"), "kinematic", name="Ground spoilers"
+    )
     xml_sub(kin, "input", "fcs/spoiler-cmd-norm")
     traverse = xml_sub(kin, "traverse")
     for pos, t in ((0, 0), (1, GROUND_SPOILER_TRAVEL_S)):
@@ -149,14 +161,18 @@ def place_wing_tip_contacts(root: ET.Element) -> None:
     span = root.find("metrics/wingspan")
     unit = None if span is None else span.get("unit", "FT").upper()
     if unit not in LENGTH_UNITS_M:
-        raise AircraftError(f"the model's metrics/wingspan is missing or in '{unit}'; allowed: {', '.join(LENGTH_UNITS_M)}")
+        raise AircraftError(
+            f"the model's metrics/wingspan is missing or in '{unit}'; allowed: {', '.join(LENGTH_UNITS_M)}"
+        )
     half_m = float(span.text) * LENGTH_UNITS_M[unit] / 2.0
     for contact in root.iterfind("ground_reactions/contact[@type='STRUCTURE']"):
         loc = contact.find("location")
         y = None if loc is None else loc.find("y")
         loc_unit = None if loc is None else loc.get("unit", "IN").upper()
         if y is None or loc_unit not in LENGTH_UNITS_M:
-            raise AircraftError(f"contact {contact.get('name')!r}: no location y in {', '.join(LENGTH_UNITS_M)}")
+            raise AircraftError(
+                f"contact {contact.get('name')!r}: no location y in {', '.join(LENGTH_UNITS_M)}"
+            )
         y_m = float(y.text) * LENGTH_UNITS_M[loc_unit]
         if abs(y_m) > 1.05 * half_m:
             y.text = f" {math.copysign(half_m, y_m) / LENGTH_UNITS_M[loc_unit]:.2f} "
@@ -164,9 +180,11 @@ def place_wing_tip_contacts(root: ET.Element) -> None:
 
 def edits_for(profile) -> tuple:
     """The model edits of a type (module docstring), as functions of the XML root."""
-    edits = [functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg),
-             functools.partial(soften_nose_gear, landing_mass_kg=profile.ref_landing_mass_kg),
-             place_wing_tip_contacts]
+    edits = [
+        functools.partial(soften_main_gear, landing_mass_kg=profile.ref_landing_mass_kg),
+        functools.partial(soften_nose_gear, landing_mass_kg=profile.ref_landing_mass_kg),
+        place_wing_tip_contacts,
+    ]
     if profile.elevator_nose_up_deg is not None:
         edits.append(functools.partial(extend_elevator_nose_up, nose_up_deg=profile.elevator_nose_up_deg))
     if profile.spread_spoiler_lift:
@@ -174,8 +192,13 @@ def edits_for(profile) -> tuple:
     if profile.add_ground_spoilers:
         edits.append(add_ground_spoilers)
     if profile.nose_static_deflection_m is not None:
-        edits.append(functools.partial(set_nose_strut, landing_mass_kg=profile.ref_landing_mass_kg,
-                                       static_deflection_m=profile.nose_static_deflection_m))
+        edits.append(
+            functools.partial(
+                set_nose_strut,
+                landing_mass_kg=profile.ref_landing_mass_kg,
+                static_deflection_m=profile.nose_static_deflection_m,
+            )
+        )
     if profile.nose_side_friction is not None:
         edits.append(functools.partial(set_nose_side_friction, peak=profile.nose_side_friction))
     return tuple(edits)

@@ -28,23 +28,47 @@ class Transition:
 
 TRANSITIONS: tuple[Transition, ...] = (
     Transition("gate", "gate_wait_over", "engine_start", "the planned wait at the gate is over (starter on)"),
-    Transition("engine_start", "engines_running", "pushback", "every engine runs, started one by one (tug on)"),
-    Transition("pushback", "tug_disconnected", "taxi_out", "pushed back and turned 90 deg onto the taxiway, stopped"),
-    Transition("taxi_out", "lined_up", "takeoff_roll", "lined up on the runway, line-up hold over (takeoff thrust)"),
-    Transition("takeoff_roll", "liftoff", "initial_climb", "off the ground: no weight on wheels, 1 m above the gear"),
-    Transition("initial_climb", "climb_out_done", "climb", "3000 ft above the runway, or near the cruise altitude"),
-    Transition("climb", "level", "cruise", "within 250 m of the target altitude (cruise, or the descent path)"),
-    Transition("cruise", "top_of_descent", "descent", "the planned descent path falls below the cruise altitude"),
+    Transition(
+        "engine_start", "engines_running", "pushback", "every engine runs, started one by one (tug on)"
+    ),
+    Transition(
+        "pushback", "tug_disconnected", "taxi_out", "pushed back and turned 90 deg onto the taxiway, stopped"
+    ),
+    Transition(
+        "taxi_out", "lined_up", "takeoff_roll", "lined up on the runway, line-up hold over (takeoff thrust)"
+    ),
+    Transition(
+        "takeoff_roll", "liftoff", "initial_climb", "off the ground: no weight on wheels, 1 m above the gear"
+    ),
+    Transition(
+        "initial_climb", "climb_out_done", "climb", "3000 ft above the runway, or near the cruise altitude"
+    ),
+    Transition(
+        "climb", "level", "cruise", "within 250 m of the target altitude (cruise, or the descent path)"
+    ),
+    Transition(
+        "cruise", "top_of_descent", "descent", "the planned descent path falls below the cruise altitude"
+    ),
     Transition("cruise", "localizer_capture", "approach", "localizer captured at the cruise altitude"),
-    Transition("descent", "localizer_capture", "approach", "on the approach fix's leg, aligned: localizer captured"),
-    Transition("approach", "flare_height", "flare",
-               "main gear below the type's flare height on the localizer (higher on a steep approach for a "
-               "type that flares at a time to contact) or over the runway's second half still above it "
-               "(the flare then goes around)"),
+    Transition(
+        "descent", "localizer_capture", "approach", "on the approach fix's leg, aligned: localizer captured"
+    ),
+    Transition(
+        "approach",
+        "flare_height",
+        "flare",
+        "main gear below the type's flare height on the localizer (higher on a steep approach for a "
+        "type that flares at a time to contact) or over the runway's second half still above it "
+        "(the flare then goes around)",
+    ),
     Transition("flare", "touchdown", "rollout", "weight on wheels (spoilers, reversers, autobrake)"),
-    Transition("flare", "go_around", "go_around",
-               "a go-around ordered at the flare height, or the flare floats over the runway's second half or "
-               "balloons (climb thrust, a circuit)"),
+    Transition(
+        "flare",
+        "go_around",
+        "go_around",
+        "a go-around ordered at the flare height, or the flare floats over the runway's second half or "
+        "balloons (climb thrust, a circuit)",
+    ),
     Transition("go_around", "localizer_capture", "approach", "back on the localizer after the circuit"),
     Transition("rollout", "exit_speed", "taxi_in", "below the runway exit speed (20 kt): flaps in, exit"),
     Transition("taxi_in", "at_stand", "shutdown", "stopped at the stand (fuel cut off)"),

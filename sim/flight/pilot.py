@@ -82,8 +82,10 @@ class Pilot:
         gives, log it (the phase event's detail is the condition) and run the new phase's entry."""
         tr = TABLE.get((self.phase, condition))
         if tr is None:
-            raise RuntimeError(f"no transition from phase '{self.phase}' on '{condition}' in the table "
-                               "(flightmode.sim.flight.phases.TRANSITIONS)")
+            raise RuntimeError(
+                f"no transition from phase '{self.phase}' on '{condition}' in the table "
+                "(flightmode.sim.flight.phases.TRANSITIONS)"
+            )
         if tr.target is None:
             self.event("end", condition)
             self.done = True
@@ -163,7 +165,9 @@ class Pilot:
             fr = self.ap.dest if self.ap.loc_mode or self.phase == "go_around" else self.ap.origin
             rx, ry = fr.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
             if abs(ry) > fr.rwy.width_m / 2 or not (-50.0 < rx < fr.rwy.length_m):
-                self.fail(f"ground contact off the runway at x = {rx:.0f} m, y = {ry:.0f} m from the threshold")
+                self.fail(
+                    f"ground contact off the runway at x = {rx:.0f} m, y = {ry:.0f} m from the threshold"
+                )
 
     def _turbulence(self) -> None:
         """The air is turbulent from liftoff to touchdown (:mod:`flightmode.sim.flight.turbulence`):

@@ -90,8 +90,16 @@ class FlightPlan:
     go_arounds: int = 0  # go-arounds ordered at the flare height (sim.flight.controllers.GoAround)
     surface_wind_mps: float | None = None  # fixes the wind at 20 ft (the boundary layer's gustiness)
     background_edr: float | None = None  # fixes the background turbulence above 2000 ft (EDR, m^2/3 s^-1)
-    convective_velocity_mps: float | None = None  # fixes the mixed layer's convective velocity scale w* (0: none)
-    departure_qnh_hpa: float | None = None  # fixes the departure airport's QNH (None: drawn, sim.flight.cabin)
+    convective_velocity_mps: float | None = (
+        None  # fixes the mixed layer's convective velocity scale w* (0: none)
+    )
+    departure_qnh_hpa: float | None = (
+        None  # fixes the departure airport's QNH (None: drawn, sim.flight.cabin)
+    )
     arrival_qnh_hpa: float | None = None  # fixes the arrival airport's QNH (None: drawn)
-    isa_dev_k: float | None = None  # fixes the ISA temperature deviation at both airports (None: drawn per airport)
-    hold: str = "pressurised"  # the cargo hold: "pressurised" (the cabin's pressure) or "unpressurised" (ambient)
+    isa_dev_k: float | None = (
+        None  # fixes the ISA temperature deviation at both airports (None: drawn per airport)
+    )
+    hold: str = (
+        "pressurised"  # the cargo hold: "pressurised" (the cabin's pressure) or "unpressurised" (ambient)
+    )

@@ -142,9 +142,13 @@ SURFACES = {
 }
 PHASE_SURFACE = {p: None for p in FLIGHT_PHASES} | {
     "taxi_out": "origin/taxiway",
-    "takeoff_roll": "origin/runway", "initial_climb": "origin/runway",
-    "flare": "destination/runway", "rollout": "destination/runway",
-    "taxi_in": "destination/taxiway", "shutdown": "destination/taxiway", "parked": "destination/taxiway",
+    "takeoff_roll": "origin/runway",
+    "initial_climb": "origin/runway",
+    "flare": "destination/runway",
+    "rollout": "destination/runway",
+    "taxi_in": "destination/taxiway",
+    "shutdown": "destination/taxiway",
+    "parked": "destination/taxiway",
 }
 
 
@@ -168,8 +172,15 @@ def track_coherence(n_cpm, separation_m: float) -> np.ndarray:
     return np.clip(rho, 0.0, 1.0)
 
 
-def synthesize_tracks(gd_n0_m3: float, rng: np.random.Generator, track_m: float, *,
-                      n_samples: int = PERIOD_SAMPLES, dx_m: float = DX_M, band_m=BAND_M) -> np.ndarray:
+def synthesize_tracks(
+    gd_n0_m3: float,
+    rng: np.random.Generator,
+    track_m: float,
+    *,
+    n_samples: int = PERIOD_SAMPLES,
+    dx_m: float = DX_M,
+    band_m=BAND_M,
+) -> np.ndarray:
     """Three parallel profiles (3, n_samples), m: the centreline (nose wheel) and the left and right
     main-gear tracks ``track_m`` apart, periodic with period n_samples * dx_m, zero mean.
 
@@ -212,7 +223,9 @@ def _number(el: ET.Element | None, what: str) -> float:
     try:
         return float(el.text)
     except (AttributeError, TypeError, ValueError):
-        raise AircraftError(f"gear contact has no numeric {what}: cannot couple runway roughness to it") from None
+        raise AircraftError(
+            f"gear contact has no numeric {what}: cannot couple runway roughness to it"
+        ) from None
 
 
 def _converted(el: ET.Element, units: dict[str, float], default: str, what: str) -> float:
@@ -250,7 +263,9 @@ def gear_groups(root: ET.Element) -> dict[str, dict]:
             raise AircraftError(f"gear contact '{c.get('name')}' has no location")
         scale = LENGTH_UNITS_M.get(loc.get("unit", "IN"))
         if scale is None:
-            raise AircraftError(f"gear contact location unit '{loc.get('unit')}'; allowed: {', '.join(LENGTH_UNITS_M)}")
+            raise AircraftError(
+                f"gear contact location unit '{loc.get('unit')}'; allowed: {', '.join(LENGTH_UNITS_M)}"
+            )
         xyz = [_number(loc.find(a), f"location {a}") * scale for a in "xyz"]
         rows.append((i, c, xyz))
     if not rows:
@@ -267,21 +282,34 @@ def gear_groups(root: ET.Element) -> dict[str, dict]:
     out = {}
     for g, rs in members.items():
         if not rs:
-            raise AircraftError(f"the model's gear has no {g} group (contacts: "
-                                f"{', '.join(str(r[1].get('name')) for r in gear)})")
+            raise AircraftError(
+                f"the model's gear has no {g} group (contacts: "
+                f"{', '.join(str(r[1].get('name')) for r in gear)})"
+            )
         k = cl = cq = rl = rq = 0.0
         loc = [0.0, 0.0, 0.0]
         for _, c, xyz in rs:
             if c.find("strut_force") is not None or c.find("spring_coeff") is None:
-                raise AircraftError(f"gear contact '{c.get('name')}' has no spring_coeff: cannot couple roughness")
+                raise AircraftError(
+                    f"gear contact '{c.get('name')}' has no spring_coeff: cannot couple roughness"
+                )
             ki = _converted(c.find("spring_coeff"), _SPRING_UNITS, "LBS/FT", "spring")
             dl, dq = _damping(c.find("damping_coeff"))
             reb = c.find("damping_coeff_rebound")
             bl, bq = (dl, dq) if reb is None else _damping(reb)
             k, cl, cq, rl, rq = k + ki, cl + dl, cq + dq, rl + bl, rq + bq
             loc = [a + ki * b for a, b in zip(loc, xyz)]
-        out[g] = {"spring": k, "damp": cl, "damp2": cq, "rebound": rl, "rebound2": rq,
-                  "x": loc[0] / k, "y": loc[1] / k, "z": loc[2] / k, "units": [r[0] for r in rs]}
+        out[g] = {
+            "spring": k,
+            "damp": cl,
+            "damp2": cq,
+            "rebound": rl,
+            "rebound2": rq,
+            "x": loc[0] / k,
+            "y": loc[1] / k,
+            "z": loc[2] / k,
+            "units": [r[0] for r in rs],
+        }
     return out
 
 
@@ -291,6 +319,7 @@ def _prop(parent: ET.Element, name: str) -> None:
 
 def _knot_index(parent: ET.Element) -> None:
     """u mod RING, u = (sim time - t0) / knot spacing (JSBSim's ``mod`` is an integer modulo)."""
+
     def u(p: ET.Element) -> None:
         q = xml_sub(p, "quotient")
         dt = xml_sub(q, "difference")
@@ -342,7 +371,9 @@ def add_gear_roughness(root: ET.Element) -> None:
         wow = cond if len(d["units"]) == 1 else xml_sub(cond, "max")
         for i in d["units"]:
             _prop(wow, f"gear/unit[{i}]/WOW")
-        interp = xml_sub(ifthen, "interpolate1d")  # the ring of knots, linearly, round from the last to the first
+        interp = xml_sub(
+            ifthen, "interpolate1d"
+        )  # the ring of knots, linearly, round from the last to the first
         _knot_index(interp)
         for j in range(RING + 1):
             xml_sub(interp, "value", str(j))
@@ -384,10 +415,14 @@ class GearRoughness:
         def node(prop: str):
             nd = pm.get_node(prop, False)
             if nd is None:
-                raise AircraftError(f"the model has no property '{prop}': load it with roughness.add_gear_roughness")
+                raise AircraftError(
+                    f"the model has no property '{prop}': load it with roughness.add_gear_roughness"
+                )
             return nd
 
-        get = lambda p: node(p).get_double_value()
+        def get(p):
+            return node(p).get_double_value()
+
         self.surfaces = SURFACES if surfaces is None else surfaces
         self.streams = streams
         self.dt_s = 1.0 / fdm_hz
@@ -395,8 +430,10 @@ class GearRoughness:
         self.track_m = get("roughness/right/y") - get("roughness/left/y")
         self.offset = [self.wheelbase_m / DX_M, 0.0, 0.0]  # nose ahead of the mains, in samples
         self.k = [get(f"roughness/{g}/spring") / LBF_N for g in GROUPS]  # lbf per m of profile
-        self.law = [tuple(get(f"roughness/{g}/{key}") / LBF_N for key in ("damp", "damp2", "rebound", "rebound2"))
-                    for g in GROUPS]
+        self.law = [
+            tuple(get(f"roughness/{g}/{key}") / LBF_N for key in ("damp", "damp2", "rebound", "rebound2"))
+            for g in GROUPS
+        ]
         # the tyre in series with the strut (massless wheel): the strut sees the profile through a
         # first-order lag tau = c / (k_tyre + k); k_tyre = static load / TYRE_DEFLECTION_M
         self.tau_s = []
@@ -404,13 +441,17 @@ class GearRoughness:
             units = [int(get(f"roughness/{g}/unit{j}")) for j in range(int(get(f"roughness/{g}/n-units")))]
             comp_m = sum(get(f"gear/unit[{u}]/compression-ft") for u in units) / len(units) * FT_M
             if comp_m <= 0.0:
-                raise AircraftError(f"the {g} gear carries no load: make GearRoughness with the aircraft at rest on its gear")
+                raise AircraftError(
+                    f"the {g} gear carries no load: make GearRoughness with the aircraft at rest on its gear"
+                )
             k_si = get(f"roughness/{g}/spring")
             k_tyre = k_si * comp_m / TYRE_DEFLECTION_M
             cl, cq, rl, rq = (get(f"roughness/{g}/{key}") for key in ("damp", "damp2", "rebound", "rebound2"))
             c_eff = 0.5 * (cl + rl + (cq + rq) * SQUARE_DAMPING_RATE_MPS)
             self.tau_s.append(c_eff / (k_tyre + k_si))
-        self._knots = [[node(f"roughness/{g}/f{j}-lbf").set_double_value for j in range(RING)] for g in GROUPS]
+        self._knots = [
+            [node(f"roughness/{g}/f{j}-lbf").set_double_value for j in range(RING)] for g in GROUPS
+        ]
         self._active = node("roughness/active").set_double_value
         self._t0 = node("roughness/t0-sec").set_double_value
         self._knot_s = node("roughness/knot-sec").set_double_value
@@ -526,8 +567,19 @@ class GearRoughness:
         if self._prof is None:
             return
         p = self._prof
-        self._groups = [(p.h[g], p.c[g], self.k[g], *self.law[g], self._alpha[g], self.offset[g], self._knots[g],
-                         self._state[g]) for g in range(3)]
+        self._groups = [
+            (
+                p.h[g],
+                p.c[g],
+                self.k[g],
+                *self.law[g],
+                self._alpha[g],
+                self.offset[g],
+                self._knots[g],
+                self._state[g],
+            )
+            for g in range(3)
+        ]
 
     def _switch(self, surface: str) -> None:
         """Start rolling on ``surface`` from its start, continuous in force: each group's wheel keeps

@@ -23,26 +23,30 @@ from pathlib import Path
 
 import numpy as np
 
+from flightmode.errors import AircraftError, FlightDivergedError
+from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.sim.flight import geodesy
 from flightmode.sim.flight.aircraft_profiles import get_profile
-from flightmode.errors import AircraftError, FlightDivergedError
-from flightmode.sim.flight.jsbsim_adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft
-from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.sim.flight.draws import draw_flight
-from flightmode.sim.flight.turbulence import GustFeed, GustField
-from flightmode.sim.flight.model_edits import edits_for
 from flightmode.sim.flight.geodesy import RunwayFrame
+from flightmode.sim.flight.jsbsim_adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft
+from flightmode.sim.flight.model_edits import edits_for
 from flightmode.sim.flight.pilot import Pilot
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import draw_taxi
 from flightmode.sim.flight.track import Event, FlightTrack, euler_to_quat_wxyz
+from flightmode.sim.flight.turbulence import GustFeed, GustField
 from flightmode.streams import Streams, as_streams
 from flightmode.units import FT_M, LB_KG
 
 
 def max_duration_s(plan: FlightPlan) -> float:
     """A generous time limit: a flight slower than this is stuck, not slow."""
-    d = float(geodesy.great_circle_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg))
+    d = float(
+        geodesy.great_circle_distance_m(
+            plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg
+        )
+    )
     ground = plan.gate_wait_s + sum(plan.taxi_out.holds_s) + sum(plan.taxi_in.holds_s) + 2 * 3600.0
     return ground + d / 120.0 + 3600.0  # 120 m/s: slower than any airliner's mean speed
 
@@ -64,8 +68,11 @@ def planned_fuel_kg(plan: FlightPlan, prof) -> float:
     """The fuel planned at the gate: the type's mean airborne burn over the estimated airborne time
     plus reserves (:data:`RESERVE_H`), and taxi fuel; never less than the profile's ``fuel_kg``. The
     tanks may hold less: the track's conditions record what was loaded (``fuel_loaded_kg``)."""
-    d = float(geodesy.great_circle_distance_m(plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg,
-                                              plan.destination.lon_deg))
+    d = float(
+        geodesy.great_circle_distance_m(
+            plan.origin.lat_deg, plan.origin.lon_deg, plan.destination.lat_deg, plan.destination.lon_deg
+        )
+    )
     ground_h = (plan.gate_wait_s + sum(plan.taxi_out.holds_s) + sum(plan.taxi_in.holds_s)) / 3600.0 + 0.5
     tas_mps = prof.cruise_mach * 295.0  # the speed of sound in the ISA above 36,000 ft (295 m/s)
     airborne_h = d / tas_mps / 3600.0 + CLIMB_DESCENT_EXTRA_H
@@ -123,7 +130,9 @@ def fly(
     taxi = draw_taxi(plan, prof, streams.rng("taxi"))  # the taxi routes and the departure stand
     (gx, gy), gh = taxi.stand_xy_m, taxi.stand_heading_rad
     lat0, lon0 = origin.to_latlon(gx, gy)
-    ac.init_on_ground(lat0, lon0, plan.origin.elevation_m, (plan.origin.heading_deg + math.degrees(gh)) % 360.0)
+    ac.init_on_ground(
+        lat0, lon0, plan.origin.elevation_m, (plan.origin.heading_deg + math.degrees(gh)) % 360.0
+    )
     fuel_kg = planned_fuel_kg(plan, prof)
     _load_fuel(ac, fuel_kg)
     fuel_start_lbs = _fuel_lbs(ac)
@@ -131,9 +140,11 @@ def fly(
     if ac.get("simulation/integrator/rate/rotational") != ROTATIONAL_RATE_INTEGRATOR_RECT_EULER:
         # the track's angular acceleration is the rates' forward difference (jsbsim_adapter, the
         # comment above ROTATIONAL_RATE_INTEGRATOR_RECT_EULER)
-        raise AircraftError(f"'{plan.aircraft}' integrates its body rates with JSBSim integrator "
-                            f"{ac.get('simulation/integrator/rate/rotational'):g}, not rectangular Euler (1): "
-                            "remove the model's <integrator> setting")
+        raise AircraftError(
+            f"'{plan.aircraft}' integrates its body rates with JSBSim integrator "
+            f"{ac.get('simulation/integrator/rate/rotational'):g}, not rectangular Euler (1): "
+            "remove the model's <integrator> setting"
+        )
     ac.set("propulsion/cutoff_cmd", 1)
     draws = draw_flight(plan, prof, streams)
     pilot = Pilot(ac, plan, prof, fdm_hz, draws, taxi)
@@ -244,14 +255,29 @@ def fly(
     turb_code = np.repeat(np.array([c[2] for c in changes], dtype=np.uint8), reps)
     events = tuple(Event(t, n, d) for t, n, d in pilot.events)
     track = _to_track(plan, ac, fast, slow_cols, terrain, phase_code, turb_code, events, rates_after)
-    fuel = {"fuel_planned_kg": fuel_kg, "fuel_loaded_kg": fuel_start_lbs * LB_KG, "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG}
+    fuel = {
+        "fuel_planned_kg": fuel_kg,
+        "fuel_loaded_kg": fuel_start_lbs * LB_KG,
+        "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG,
+    }
     cab = pressure_truth(track, plan, draws)
-    return dataclasses.replace(track, conditions=draws.as_dict() | {"takeoff_thrust_norm": pilot.takeoff_thrust_norm}
-                               | taxi.as_dict() | {"cg_height_m": pilot.prof.cg_height_m}
-                               | fuel | {"cruise_cabin_altitude_m": cab.cruise_cabin_altitude_m,
-                                         "cabin_descent_rate_fpm": cab.descent_rate_fpm, "hold": cab.hold},
-                               ambient_pressure_pa=cab.ambient_pressure_pa, cabin_pressure_pa=cab.cabin_pressure_pa,
-                               cabin_altitude_m=cab.cabin_altitude_m, hold_pressure_pa=cab.hold_pressure_pa)
+    return dataclasses.replace(
+        track,
+        conditions=draws.as_dict()
+        | {"takeoff_thrust_norm": pilot.takeoff_thrust_norm}
+        | taxi.as_dict()
+        | {"cg_height_m": pilot.prof.cg_height_m}
+        | fuel
+        | {
+            "cruise_cabin_altitude_m": cab.cruise_cabin_altitude_m,
+            "cabin_descent_rate_fpm": cab.descent_rate_fpm,
+            "hold": cab.hold,
+        },
+        ambient_pressure_pa=cab.ambient_pressure_pa,
+        cabin_pressure_pa=cab.cabin_pressure_pa,
+        cabin_altitude_m=cab.cabin_altitude_m,
+        hold_pressure_pa=cab.hold_pressure_pa,
+    )
 
 
 def pressure_truth(track: FlightTrack, plan: FlightPlan, draws):
@@ -259,13 +285,23 @@ def pressure_truth(track: FlightTrack, plan: FlightPlan, draws):
     schedule to the plan's cruise level, under the drawn (or fixed) weather at both airports."""
     from flightmode.sim.flight.cabin import cabin_pressure
 
-    return cabin_pressure(track.t_s, track.alt_m, track.phase_code, plan.cruise_alt_m, plan.aircraft,
-                          weather=draws.departure_weather, arrival_weather=draws.arrival_weather,
-                          departure_elev_m=plan.origin.elevation_m, arrival_elev_m=plan.destination.elevation_m,
-                          hold=plan.hold)
+    return cabin_pressure(
+        track.t_s,
+        track.alt_m,
+        track.phase_code,
+        plan.cruise_alt_m,
+        plan.aircraft,
+        weather=draws.departure_weather,
+        arrival_weather=draws.arrival_weather,
+        departure_elev_m=plan.origin.elevation_m,
+        arrival_elev_m=plan.destination.elevation_m,
+        hold=plan.hold,
+    )
 
 
-def _si_groups(ac, fast: np.ndarray, slow_cols: list[np.ndarray], groups: dict[str, list[int]]) -> dict[str, np.ndarray]:
+def _si_groups(
+    ac, fast: np.ndarray, slow_cols: list[np.ndarray], groups: dict[str, list[int]]
+) -> dict[str, np.ndarray]:
     """SI arrays from the raw record: ``fast`` (steps, fast channels) and ``slow_cols`` (one array per
     slow channel, every step), in jsbsim_adapter's channel order; one (steps,) array per one-channel
     group, one (steps, k) array per group of k. Each value is scaled once, straight into its array:
@@ -279,12 +315,15 @@ def _si_groups(ac, fast: np.ndarray, slow_cols: list[np.ndarray], groups: dict[s
         elif idx[-1] < nf and idx == list(range(idx[0], idx[0] + len(idx))):  # contiguous fast channels
             out[name] = fast[:, idx[0] : idx[-1] + 1] * scales[idx[0] : idx[-1] + 1]
         else:
-            out[name] = np.stack([fast[:, i] * scales[i] if i < nf else slow_cols[i - nf] * scales[i] for i in idx],
-                                 axis=1)
+            out[name] = np.stack(
+                [fast[:, i] * scales[i] if i < nf else slow_cols[i - nf] * scales[i] for i in idx], axis=1
+            )
     return out
 
 
-def _to_track(plan, ac, fast, slow_cols, terrain_m, phase_code, turb_code, events, rates_after) -> FlightTrack:
+def _to_track(
+    plan, ac, fast, slow_cols, terrain_m, phase_code, turb_code, events, rates_after
+) -> FlightTrack:
     """Assemble the FlightTrack from the raw record (``fast``: (steps, fast channels); ``slow_cols``: the
     slow channels interpolated to every step), the terrain per step and the body rates one step past
     the last row (rad/s)."""
@@ -296,8 +335,17 @@ def _to_track(plan, ac, fast, slow_cols, terrain_m, phase_code, turb_code, event
     groups = {
         name: one(name)
         for name in (
-            "lat_deg", "lon_deg", "alt_m", "wow", "flap_norm", "gear_norm", "speedbrake_norm",
-            "ias_mps", "tas_mps", "mach", "alpha_rad",
+            "lat_deg",
+            "lon_deg",
+            "alt_m",
+            "wow",
+            "flap_norm",
+            "gear_norm",
+            "speedbrake_norm",
+            "ias_mps",
+            "tas_mps",
+            "mach",
+            "alpha_rad",
         )
     }
     groups |= {
@@ -315,7 +363,9 @@ def _to_track(plan, ac, fast, slow_cols, terrain_m, phase_code, turb_code, event
     fdm_hz = float(plan.fdm_hz)
     t = np.arange(n) / fdm_hz
     o = plan.origin
-    pos = geodesy.geodetic_to_ned(col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m)
+    pos = geodesy.geodetic_to_ned(
+        col("lat_deg"), col("lon_deg"), col("alt_m"), o.lat_deg, o.lon_deg, o.elevation_m
+    )
     vel = g["vel"]
     # JSBSim's own angular acceleration of each step: the rates' forward difference (rectangular
     # Euler: jsbsim_adapter, ROTATIONAL_RATE_INTEGRATOR_RECT_EULER)

@@ -21,7 +21,7 @@ assumption, a typical cruise-thrust climb).
 from __future__ import annotations
 
 from flightmode.sim.flight.atmosphere import pressure_altitude_m, pressure_pa
-from flightmode.units import FT_M, FPM_MPS
+from flightmode.units import FPM_MPS, FT_M
 
 STEP_FT = 2000.0
 STEP_TRIGGER_FT = 1000.0
@@ -34,7 +34,9 @@ def optimum_alt_m(weight: float, ref_weight: float, ref_alt_m: float) -> float:
     return float(pressure_altitude_m(float(pressure_pa(ref_alt_m)) * weight / ref_weight))
 
 
-def next_level_m(alt_m: float, weight: float, ref_weight: float, ref_alt_m: float, ceiling_m: float) -> float | None:
+def next_level_m(
+    alt_m: float, weight: float, ref_weight: float, ref_alt_m: float, ceiling_m: float
+) -> float | None:
     """The level to step to from the current cruise level ``alt_m``, or None when no step is due yet
     (optimum less than STEP_TRIGGER_FT above) or the next level is above ``ceiling_m``."""
     new = alt_m + STEP_FT * FT_M

@@ -145,7 +145,9 @@ class Path2D:
         """Arc length of the path's point nearest (x, y), over the whole path (vectorised; for
         building routes, not for the per-tick loop)."""
         p0 = self.points[:-1]
-        u = np.clip(((x - p0[:, 0]) * self.seg_dir[:, 0] + (y - p0[:, 1]) * self.seg_dir[:, 1]), 0.0, self.seg_len)
+        u = np.clip(
+            ((x - p0[:, 0]) * self.seg_dir[:, 0] + (y - p0[:, 1]) * self.seg_dir[:, 1]), 0.0, self.seg_len
+        )
         ex = x - (p0[:, 0] + u * self.seg_dir[:, 0])
         ey = y - (p0[:, 1] + u * self.seg_dir[:, 1])
         i = int(np.argmin(ex * ex + ey * ey))
@@ -229,7 +231,9 @@ def fillet(corners, radii_m, spacing_m: float = ARC_SPACING_M) -> Filleted:
             leg.extend([2 * k + 1] * m)
             rad.extend([r[k]] * m)
             trn.extend([abs(math.degrees(turn[k]))] * m)
-    return Filleted(np.asarray(pts), np.asarray(leg), np.asarray(rad), np.asarray(trn), tuple(float(v) for v in r))
+    return Filleted(
+        np.asarray(pts), np.asarray(leg), np.asarray(rad), np.asarray(trn), tuple(float(v) for v in r)
+    )
 
 
 # ----------------------------------------------------------------------------------------- draws
@@ -318,12 +322,17 @@ class TaxiDraws:
 
     def as_dict(self) -> dict:
         s = self.style
-        return {"taxi_speed_out_mps": s.straight_out_mps, "taxi_speed_in_mps": s.straight_in_mps,
-                "taxi_apron_speed_mps": s.apron_mps, "taxi_decel_mps2": s.decel_mps2,
-                "taxi_lat_acc_mps2": s.lat_acc_mps2, "taxi_yaw_rate_max_dps": math.degrees(s.yaw_rate_max_radps),
-                "taxi_out_junction_turns": len(self.out.apron_radii_m) + 2 * len(self.out.jogs) + 2,
-                "taxi_in_exit_angle_deg": self.arrival.exit_angle_deg,
-                "taxi_in_turns": self.arrival.n_turns}
+        return {
+            "taxi_speed_out_mps": s.straight_out_mps,
+            "taxi_speed_in_mps": s.straight_in_mps,
+            "taxi_apron_speed_mps": s.apron_mps,
+            "taxi_decel_mps2": s.decel_mps2,
+            "taxi_lat_acc_mps2": s.lat_acc_mps2,
+            "taxi_yaw_rate_max_dps": math.degrees(s.yaw_rate_max_radps),
+            "taxi_out_junction_turns": len(self.out.apron_radii_m) + 2 * len(self.out.jogs) + 2,
+            "taxi_in_exit_angle_deg": self.arrival.exit_angle_deg,
+            "taxi_in_turns": self.arrival.n_turns,
+        }
 
 
 def _u(rng: np.random.Generator, lo_hi) -> float:
@@ -391,8 +400,12 @@ def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
     # expected durations, as the statistics time a segment (taxi-out up to the takeoff roll, its line-up
     # hold included): TAXI_TIME_FIT's line in the route's length over the straight speed, and the holds
     (k_out, c_out), (k_in, c_in) = TAXI_TIME_FIT["out"], TAXI_TIME_FIT["in"]
-    t_out = k_out * plan.taxi_out.length_m / style.straight_out_mps + c_out + sum(plan.taxi_out.holds_s) \
+    t_out = (
+        k_out * plan.taxi_out.length_m / style.straight_out_mps
+        + c_out
+        + sum(plan.taxi_out.holds_s)
         + plan.taxi_out.lineup_hold_s
+    )
     t_in = k_in * plan.taxi_in.length_m / style.straight_in_mps + c_in + sum(plan.taxi_in.holds_s)
     # at least the apron turn and the two at the runway
     n_out = turn_count(rate_out, t_out, tu.taxi_turns_per_min, 3)
@@ -440,8 +453,9 @@ def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
         lead_in_radius_m=_u(rng, LEAD_IN_RADIUS_M),
         lead_in_m=float(rng.uniform(30.0, 50.0)),
     )
-    route, stand, heading, push = taxi_out_route(plan.taxi_out, plan.origin.length_m, out, style,
-                                                 profile.wheelbase_m)
+    route, stand, heading, push = taxi_out_route(
+        plan.taxi_out, plan.origin.length_m, out, style, profile.wheelbase_m
+    )
     return TaxiDraws(style, out, arrival, route, stand, heading, push)
 
 
@@ -450,13 +464,21 @@ class TaxiRoute:
     """A taxi route: its path (:class:`Path2D`, stops included) and its speed schedule on a 1 m grid
     (:meth:`speed_at`)."""
 
-    def __init__(self, fl: Filleted, zone_speed_mps: np.ndarray, style: TaxiStyle, stops: tuple[Stop, ...] = (),
-                 speed_mps: np.ndarray | None = None):
+    def __init__(
+        self,
+        fl: Filleted,
+        zone_speed_mps: np.ndarray,
+        style: TaxiStyle,
+        stops: tuple[Stop, ...] = (),
+        speed_mps: np.ndarray | None = None,
+    ):
         self.path = Path2D(fl.points, stops)
         self.fillet = fl
         self.style = style
         self.zone_speed_mps = zone_speed_mps
-        self.speed_mps = _speed_schedule(self.path, fl, zone_speed_mps, style) if speed_mps is None else speed_mps
+        self.speed_mps = (
+            _speed_schedule(self.path, fl, zone_speed_mps, style) if speed_mps is None else speed_mps
+        )
         self._v = self.speed_mps.tolist()
 
     def with_stops(self, stops: tuple[Stop, ...]) -> TaxiRoute:
@@ -530,15 +552,19 @@ def _jogs_room_m(jogs: tuple[Jog, ...]) -> float:
     return sum(j.offset_m / math.tan(math.radians(j.angle_deg)) + 2 * j.radius_m + 60.0 for j in jogs) + 60.0
 
 
-def taxi_out_route(plan: TaxiPlan, runway_length_m: float, lay: OutLayout, style: TaxiStyle, wheelbase_m: float):
+def taxi_out_route(
+    plan: TaxiPlan, runway_length_m: float, lay: OutLayout, style: TaxiStyle, wheelbase_m: float
+):
     """The taxi-out route, the stand (x, y), its heading relative to the runway, and the pushback's
     straight part. The route starts where the tug leaves the aircraft on the apron taxilane and is
     about ``plan.length_m`` less the pushback long to the line-up point; it runs on to the runway's end."""
     d, a = plan.taxiway_offset_m, plan.apron_depth_m
     r_push = wheelbase_m / math.tan(math.radians(35.0))  # the tug turns the nose wheel 35 deg
     if a < r_push + 5.0:
-        raise ScenarioError(f"[taxi_out].apron_depth_m = {a:g}: the pushback needs at least "
-                            f"{r_push + 5.0:.0f} m for the 90 deg turn of this aircraft")
+        raise ScenarioError(
+            f"[taxi_out].apron_depth_m = {a:g}: the pushback needs at least "
+            f"{r_push + 5.0:.0f} m for the 90 deg turn of this aircraft"
+        )
     target = max(plan.length_m - a, 0.0)
     room = _jogs_room_m(lay.jogs)
 
@@ -573,8 +599,10 @@ def taxi_out_route(plan: TaxiPlan, runway_length_m: float, lay: OutLayout, style
     path = route.path
     # holds: evenly along the parallel run, moved off any arc (no stopping in a turn: Boeing 737 FCTM)
     s0, s1 = path.nearest_s(x_join, -d), path.nearest_s(CONNECTOR_X_M, y_end)
-    stops = [Stop(_off_arcs(route, s0 + (k + 1) * (s1 - s0) / (len(plan.holds_s) + 1)), h, f"hold{k + 1}")
-             for k, h in enumerate(plan.holds_s)]
+    stops = [
+        Stop(_off_arcs(route, s0 + (k + 1) * (s1 - s0) / (len(plan.holds_s) + 1)), h, f"hold{k + 1}")
+        for k, h in enumerate(plan.holds_s)
+    ]
     stops.append(Stop(path.nearest_s(CONNECTOR_X_M, HOLD_SHORT_Y_M), 0.0, "hold_short"))
     stops.append(Stop(path.nearest_s(LINEUP_X_M, 0.0), plan.lineup_hold_s, "lineup"))
     return route.with_stops(tuple(stops)), stand, heading, a - r_push
@@ -593,7 +621,9 @@ def _off_arcs(route: TaxiRoute, s_m: float) -> float:
     return float(grid[ok[np.argmin(np.abs(grid[ok] - s_m))]])
 
 
-def taxi_in_route(plan: TaxiPlan, lay: InLayout, style: TaxiStyle, start_x_m: float, start_speed_mps: float) -> TaxiRoute:
+def taxi_in_route(
+    plan: TaxiPlan, lay: InLayout, style: TaxiStyle, start_x_m: float, start_speed_mps: float
+) -> TaxiRoute:
     """The taxi-in route from the runway centreline at ``start_x_m``, where the rollout handed over at
     ``start_speed_mps``, to the arrival stand (the route's end), about ``plan.length_m`` long. Its
     runway part is as long as slowing from the hand-over speed to the exit's turn speed at the crew's
@@ -617,7 +647,10 @@ def taxi_in_route(plan: TaxiPlan, lay: InLayout, style: TaxiStyle, start_x_m: fl
             corners = [(start_x_m, 0.0), (x_e1, 0.0), (x_e1, y_apron), (x_e1, -d - par_run)]
             fl = fillet(corners, [lay.exit_radius_m, 0.0])
             zones = ["taxiway", "taxiway", "apron"]
-            return TaxiRoute(fl, _zone_speeds(fl, zones, style, style.straight_in_mps), style), (x_e1, y_apron)
+            return TaxiRoute(fl, _zone_speeds(fl, zones, style, style.straight_in_mps), style), (
+                x_e1,
+                y_apron,
+            )
         x_ap = x_e2 + sgn * par_run
         corners = [(start_x_m, 0.0), (x_e1, 0.0), (x_e2, -d)]
         radii = [lay.exit_radius_m, lay.merge_radius_m]
@@ -651,6 +684,8 @@ def taxi_in_route(plan: TaxiPlan, lay: InLayout, style: TaxiStyle, start_x_m: fl
     route, par_end = build(par)
     path = route.path
     s0, s1 = path.nearest_s(x_e2, -d), path.nearest_s(*par_end)
-    stops = tuple(Stop(_off_arcs(route, s0 + (k + 1) * (s1 - s0) / (len(plan.holds_s) + 1)), h, f"hold{k + 1}")
-                  for k, h in enumerate(plan.holds_s))
+    stops = tuple(
+        Stop(_off_arcs(route, s0 + (k + 1) * (s1 - s0) / (len(plan.holds_s) + 1)), h, f"hold{k + 1}")
+        for k, h in enumerate(plan.holds_s)
+    )
     return route.with_stops(stops)

@@ -61,7 +61,9 @@ class FlightTrack:
     airborne: np.ndarray
     turbulence_code: np.ndarray  # uint8 into flightmode.labels.SEVERITIES
     events: tuple[Event, ...]
-    conditions: dict = field(default_factory=dict)  # the flight's draws (sim.flight.draws.FlightDraws.as_dict)
+    conditions: dict = field(
+        default_factory=dict
+    )  # the flight's draws (sim.flight.draws.FlightDraws.as_dict)
     # pressure truth (sim.flight.cabin.cabin_pressure; None on a track read from an older file)
     ambient_pressure_pa: np.ndarray | None = None  # static pressure outside, under the airports' weather
     cabin_pressure_pa: np.ndarray | None = None  # the pressurised cabin (ambient while the door is open)
@@ -93,7 +95,9 @@ class FlightTrack:
         from flightmode.errors import InputDataError, did_you_mean
 
         names = sorted({e.name for e in self.events})
-        raise InputDataError(f"the track has no event '{name}'{did_you_mean(name, names)}; events: {', '.join(names)}")
+        raise InputDataError(
+            f"the track has no event '{name}'{did_you_mean(name, names)}; events: {', '.join(names)}"
+        )
 
     def specific_force_at(self, lever_arm_body_m) -> np.ndarray:
         """Specific force (N x 3, m/s^2, body axes) at a point ``r`` (body axes, m) from the CG.

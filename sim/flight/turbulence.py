@@ -86,8 +86,14 @@ def _truncated_lognormal(rng: np.random.Generator, upper: float) -> float:
     return float(math.exp(EDR_LN_MEAN + EDR_LN_STD * ndtri(rng.uniform(0.0, p_max))))
 
 
-def draw_atmosphere(rng: np.random.Generator, patches=(), *, w20_mps: float | None = None,
-                    background_edr: float | None = None, w_star_mps: float | None = None) -> Atmosphere:
+def draw_atmosphere(
+    rng: np.random.Generator,
+    patches=(),
+    *,
+    w20_mps: float | None = None,
+    background_edr: float | None = None,
+    w_star_mps: float | None = None,
+) -> Atmosphere:
     """Draw one flight's turbulence (module docstring). ``patches``: the plan's turbulence segments
     (``severity`` and an optional ``edr``); ``w20_mps`` / ``background_edr`` / ``w_star_mps`` fix
     those draws. The draws are always made in the same order, so fixing one never moves the others."""
@@ -118,8 +124,9 @@ def convective_sigmas(h_m: float, w_star_mps: float, z_i_m: float) -> tuple[floa
     return 0.6 * w_star_mps, w_star_mps * math.sqrt(1.8 * x ** (2.0 / 3.0)) * (1.0 - 0.8 * x)
 
 
-def dryden_parameters(h_m: float, sigma_high_mps: float, w20_mps: float, w_star_mps: float = 0.0,
-                      z_i_m: float = 1000.0) -> tuple[float, float, float, float]:
+def dryden_parameters(
+    h_m: float, sigma_high_mps: float, w20_mps: float, w_star_mps: float = 0.0, z_i_m: float = 1000.0
+) -> tuple[float, float, float, float]:
     """(L_u, L_w, sigma_u, sigma_w) in m and m/s at height ``h_m`` above ground (module docstring):
     MIL-F-8785C's low-altitude model below 1000 ft, ``sigma_high_mps`` with L = 1750 ft above
     2000 ft, linear in between, with the convective mixed layer's variances added below ``z_i_m``.
@@ -204,15 +211,27 @@ class GustField:
     def reset(self) -> None:
         self.state[:] = 0.0
 
-    def block(self, h_agl_m: float, tas_mps: float, heading_rad: float, sigma_high_mps: float,
-              atmosphere: Atmosphere) -> np.ndarray:
+    def block(
+        self,
+        h_agl_m: float,
+        tas_mps: float,
+        heading_rad: float,
+        sigma_high_mps: float,
+        atmosphere: Atmosphere,
+    ) -> np.ndarray:
         """(block_steps, 3) gust velocity, north/east/down, m/s, in the flight's drawn ``atmosphere``
         (its surface wind and mixed layer)."""
         north, east, down = self._ned(h_agl_m, tas_mps, heading_rad, sigma_high_mps, atmosphere)
         return np.stack([north, east, down], axis=1)
 
-    def block_fps(self, h_agl_m: float, tas_mps: float, heading_rad: float, sigma_high_mps: float,
-                  atmosphere: Atmosphere) -> tuple[list[float], list[float], list[float]]:
+    def block_fps(
+        self,
+        h_agl_m: float,
+        tas_mps: float,
+        heading_rad: float,
+        sigma_high_mps: float,
+        atmosphere: Atmosphere,
+    ) -> tuple[list[float], list[float], list[float]]:
         """The next block as :meth:`block` gives it, in ft/s, as three lists (north, east, down): what
         the flight loop writes to JSBSim one float at a time. The same values as ``block(...) / FT_M``,
         bit for bit, without the (n, 3) array (small-array work costs more than the filtering here)."""
@@ -224,8 +243,9 @@ class GustField:
         if self._filter is None:
             self._filter = _first_order_filter()
         filt = self._filter
-        lu, lw, su, sw = dryden_parameters(h_agl_m, sigma_high_mps, atmosphere.w20_mps, atmosphere.w_star_mps,
-                                           atmosphere.z_i_m)
+        lu, lw, su, sw = dryden_parameters(
+            h_agl_m, sigma_high_mps, atmosphere.w20_mps, atmosphere.w_star_mps, atmosphere.z_i_m
+        )
         tv = self.dt * max(tas_mps, 10.0)
         st = self.state
         noise = self.rng.standard_normal((3, self.n))
@@ -269,8 +289,9 @@ class GustFeed:
         if len(self.buffer[0]) - pos < n:
             rest = [b[pos:] for b in self.buffer]
             while len(rest[0]) < n:
-                g = self.field.block_fps(x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps,
-                                         self.atmosphere)
+                g = self.field.block_fps(
+                    x[ix["agl_m"]], x[ix["tas_mps"]], x[ix["psi_rad"]], sigma_high_mps, self.atmosphere
+                )
                 for r, col in zip(rest, g):
                     r.extend(col)
             self.buffer, pos = tuple(rest), 0

@@ -97,10 +97,14 @@ class AccelerometerPreset:
         if self.noise_g < 0 or self.range_g <= 0:
             raise SensorError(f"sensor '{self.name}': noise must be >= 0 and range > 0")
         if not 0.0 <= self.noise_gm_fraction <= 1.0:
-            raise SensorError(f"sensor '{self.name}': noise_gm_fraction {self.noise_gm_fraction:g} must be in [0, 1]")
+            raise SensorError(
+                f"sensor '{self.name}': noise_gm_fraction {self.noise_gm_fraction:g} must be in [0, 1]"
+            )
         if self.noise_gm_fraction > 0 and not (self.noise_gm_tau_s is not None and self.noise_gm_tau_s > 0):
-            raise SensorError(f"sensor '{self.name}': a Gauss-Markov noise part needs noise_gm_tau_s > 0 "
-                              f"(got {self.noise_gm_tau_s})")
+            raise SensorError(
+                f"sensor '{self.name}': a Gauss-Markov noise part needs noise_gm_tau_s > 0 "
+                f"(got {self.noise_gm_tau_s})"
+            )
         if self.lsb_g is not None and (self.bits is None or self.lsb_g <= 0):
             raise SensorError(f"sensor '{self.name}': a quantised output needs bits and lsb_g > 0")
         if (self.burst_interval_s is None) != (self.burst_samples is None):
@@ -272,8 +276,11 @@ class UnitDraw:
         """The inverse of :meth:`as_dict` (a Recording's ``unit``, or run.json's); None: a perfect unit."""
         if d is None:
             return cls()
-        return cls(np.asarray(d["offset_g"], float), np.asarray(d["sensitivity_err"], float),
-                   np.asarray(d["cross_axis"], float))
+        return cls(
+            np.asarray(d["offset_g"], float),
+            np.asarray(d["sensitivity_err"], float),
+            np.asarray(d["cross_axis"], float),
+        )
 
     def as_dict(self) -> dict:
         return {
@@ -339,7 +346,9 @@ class SensorChain:
         if a.ndim != 2 or a.shape[0] != 3:
             raise SensorError(f"specific force rows must be a (3, N) array, got shape {a.shape}")
         if (bad := first_nonfinite(a, axis=1)) is not None:
-            raise SensorError(f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken")
+            raise SensorError(
+                f"specific force has NaN or inf (first at sample {bad}): the flight or motion is broken"
+            )
         n_in = a.shape[1]
         # the anti-alias filter is linear and per axis, the cross-axis mixing a constant matrix and the
         # offset a constant: they commute, so filter and decimate first and mix at the output rate
@@ -357,7 +366,9 @@ class SensorChain:
             a = a + self._noise(a.shape[0], rng)
         if preset.lsb_g is None:
             clipped = np.abs(a) >= preset.range_g
-            return Measurement(t, np.zeros(a.shape, np.int32), np.clip(a, -preset.range_g, preset.range_g), clipped)
+            return Measurement(
+                t, np.zeros(a.shape, np.int32), np.clip(a, -preset.range_g, preset.range_g), clipped
+            )
         # the unit's own sensitivity (lsb * (1 + s), in g per count) maps g to counts; the count
         # saturates at the range and at the width of the word
         sens_g = preset.lsb_g * (1.0 + unit.sensitivity_err)
@@ -385,8 +396,9 @@ class SensorChain:
         if m == 0:
             return np.zeros((0, 3))
         # g[k] = phi g[k-1] + sqrt(1 - phi^2) sqrt(q) sigma e[k]  (module docstring)
-        g, self._gm_zi = lfilter([1.0], [1.0, -phi], np.sqrt((1.0 - phi**2) * q * var) * z[:, 3:], axis=0,
-                                 zi=self._gm_zi)
+        g, self._gm_zi = lfilter(
+            [1.0], [1.0, -phi], np.sqrt((1.0 - phi**2) * q * var) * z[:, 3:], axis=0, zi=self._gm_zi
+        )
         return np.sqrt((1.0 - q) * var) * z[:, :3] + g
 
 
@@ -420,17 +432,25 @@ def eobs_burst(byte_count: int, n_axes: int, newer_firmware: bool = True) -> tup
     return samples // n_axes, data, 64 * blocks
 
 
-def eobs_preset(acc_interval_s: float, byte_count: int, odr_per_axis_hz: float = 10.0, n_axes: int = 3,
-                newer_firmware: bool = True) -> AccelerometerPreset:
+def eobs_preset(
+    acc_interval_s: float,
+    byte_count: int,
+    odr_per_axis_hz: float = 10.0,
+    n_axes: int = 3,
+    newer_firmware: bool = True,
+) -> AccelerometerPreset:
     """The ``eobs`` preset with bursts set as on the tag: ACC INTERVAL and ACC BYTE COUNT."""
     per_axis, _, _ = eobs_burst(byte_count, n_axes, newer_firmware)
-    p = replace(PRESETS["eobs"], odr_hz=odr_per_axis_hz, burst_interval_s=acc_interval_s, burst_samples=per_axis)
+    p = replace(
+        PRESETS["eobs"], odr_hz=odr_per_axis_hz, burst_interval_s=acc_interval_s, burst_samples=per_axis
+    )
     p.validate()
     return p
 
 
-def bench_static(preset: AccelerometerPreset, unit: UnitDraw, rng: np.random.Generator,
-                 duration_s: float = 60.0) -> Measurement:
+def bench_static(
+    preset: AccelerometerPreset, unit: UnitDraw, rng: np.random.Generator, duration_s: float = 60.0
+) -> Measurement:
     """The unit lying flat and still on a bench for ``duration_s``: the static behaviour a tracker's
     noise calibration sees (seed 000 section 5.1: sigma^2 from static measurements). The specific
     force is 1 g along the sensor's -z axis (z down in our sensor frame), so two axes read about

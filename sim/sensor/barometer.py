@@ -70,20 +70,60 @@ class BarometerPreset:
         if self.noise_pa < 0 or self.abs_accuracy_pa < 0 or self.tco_pa_per_k < 0:
             raise SensorError(f"barometer '{self.name}': noise, accuracy and TCO must be >= 0")
         if self.lsb_pa is not None and not self.lsb_pa > 0:
-            raise SensorError(f"barometer '{self.name}': lsb_pa {self.lsb_pa} must be > 0 (or None for float output)")
+            raise SensorError(
+                f"barometer '{self.name}': lsb_pa {self.lsb_pa} must be > 0 (or None for float output)"
+            )
         if not self.range_pa[0] < self.range_pa[1]:
-            raise SensorError(f"barometer '{self.name}': range {self.range_pa} must be (low, high) with low < high")
+            raise SensorError(
+                f"barometer '{self.name}': range {self.range_pa} must be (low, high) with low < high"
+            )
 
 
 # BMP5 sensor API: NORMAL-mode output data rates (Hz)
 BMP581_NORMAL_ODR_HZ: tuple[float, ...] = (
-    240.0, 218.5, 199.1, 179.2, 160.0, 149.3, 140.0, 129.8, 120.0, 110.1, 100.2, 89.6, 80.0, 70.0, 60.0,
-    50.0, 45.0, 40.0, 35.0, 30.0, 25.0, 20.0, 15.0, 10.0, 5.0, 4.0, 3.0, 2.0, 1.0, 0.5, 0.25, 0.125,
+    240.0,
+    218.5,
+    199.1,
+    179.2,
+    160.0,
+    149.3,
+    140.0,
+    129.8,
+    120.0,
+    110.1,
+    100.2,
+    89.6,
+    80.0,
+    70.0,
+    60.0,
+    50.0,
+    45.0,
+    40.0,
+    35.0,
+    30.0,
+    25.0,
+    20.0,
+    15.0,
+    10.0,
+    5.0,
+    4.0,
+    3.0,
+    2.0,
+    1.0,
+    0.5,
+    0.25,
+    0.125,
 )
 # BMP581 datasheet Table 9: pressure oversampling -> (typical RMS noise at 100 kPa, typical continuous ODR)
 BMP581_TABLE9: dict[int, tuple[float, float]] = {
-    1: (0.78, 498.0), 2: (0.58, 374.0), 4: (0.41, 255.0), 8: (0.30, 155.0),
-    16: (0.21, 87.0), 32: (0.15, 46.0), 64: (0.11, 24.0), 128: (0.08, 12.0),
+    1: (0.78, 498.0),
+    2: (0.58, 374.0),
+    4: (0.41, 255.0),
+    8: (0.30, 155.0),
+    16: (0.21, 87.0),
+    32: (0.15, 46.0),
+    64: (0.11, 24.0),
+    128: (0.08, 12.0),
 }
 
 
@@ -145,7 +185,9 @@ def get_preset(name: str) -> BarometerPreset:
 def with_odr(preset: BarometerPreset | str, odr_hz: float) -> BarometerPreset:
     """The preset at another of its allowed output data rates (a SensorError naming them otherwise)."""
     p = get_preset(preset) if isinstance(preset, str) else preset
-    q = replace(p, odr_hz=float(odr_hz), description=f"{p.description.rsplit(', ODR', 1)[0]}, ODR {odr_hz:g} Hz")
+    q = replace(
+        p, odr_hz=float(odr_hz), description=f"{p.description.rsplit(', ODR', 1)[0]}, ODR {odr_hz:g} Hz"
+    )
     q.validate()
     return q
 
@@ -195,8 +237,10 @@ def measure(
     t = np.asarray(t_s, float)
     x = np.asarray(pressure_pa, float)
     if t.ndim != 1 or x.shape != t.shape or t.size < 2:
-        raise SensorError(f"barometer: need t_s and pressure_pa as 1-D arrays of one length >= 2, "
-                          f"got {t.shape} and {x.shape}")
+        raise SensorError(
+            f"barometer: need t_s and pressure_pa as 1-D arrays of one length >= 2, "
+            f"got {t.shape} and {x.shape}"
+        )
     for name, v in (("t_s", t), ("pressure_pa", x)):
         if (i := first_nonfinite(v)) is not None:
             raise SensorError(f"barometer: {name} is NaN or inf at sample {i} (t = {t[i]:.3f} s)")
@@ -209,8 +253,9 @@ def measure(
     if temperature_c is not None:
         temp = np.asarray(temperature_c, float)
         if temp.shape != t.shape or not np.isfinite(temp).all():
-            raise SensorError(f"barometer: temperature_c must be finite with the shape of t_s {t.shape}, "
-                              f"got {temp.shape}")
+            raise SensorError(
+                f"barometer: temperature_c must be finite with the shape of t_s {t.shape}, got {temp.shape}"
+            )
         y = y + unit.tco_pa_per_k * (np.interp(t_out, t, temp) - 25.0)
     if p.noise_pa > 0:
         y = y + rng.normal(0.0, p.noise_pa, t_out.shape[0])
@@ -220,4 +265,13 @@ def measure(
     return t_out, y
 
 
-__all__ = ["PRESETS", "BaroUnit", "BarometerPreset", "draw_unit", "get_preset", "measure", "sample_times", "with_odr"]
+__all__ = [
+    "PRESETS",
+    "BaroUnit",
+    "BarometerPreset",
+    "draw_unit",
+    "get_preset",
+    "measure",
+    "sample_times",
+    "with_odr",
+]

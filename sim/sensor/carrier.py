@@ -92,7 +92,9 @@ class CarrierSpec:
 
     def validate(self) -> None:
         if self.kind not in KINDS:
-            raise CarrierError(f"carrier kind '{self.kind}'{did_you_mean(self.kind, KINDS)}: allowed {', '.join(KINDS)}")
+            raise CarrierError(
+                f"carrier kind '{self.kind}'{did_you_mean(self.kind, KINDS)}: allowed {', '.join(KINDS)}"
+            )
         if self.placement not in PLACEMENTS:
             raise CarrierError(
                 f"carrier placement '{self.placement}'{did_you_mean(self.placement, PLACEMENTS)}: "
@@ -100,8 +102,17 @@ class CarrierSpec:
             )
         if self.kind == "parcel" and self.placement != "hold":
             raise CarrierError("a parcel travels in the hold: set placement = 'hold'")
-        for name in ("terminal_walk_s", "terminal_rest_s", "gate_walk_s", "gate_rest_s", "boarding_s",
-                     "handling_s", "deplaning_s", "arrival_rest_s", "truck_s"):
+        for name in (
+            "terminal_walk_s",
+            "terminal_rest_s",
+            "gate_walk_s",
+            "gate_rest_s",
+            "boarding_s",
+            "handling_s",
+            "deplaning_s",
+            "arrival_rest_s",
+            "truck_s",
+        ):
             if getattr(self, name) < 0:
                 raise CarrierError(f"carrier {name} = {getattr(self, name)}: must be >= 0")
         for name in ("putdown_peak_g", "putdown_ms", "pickup_s"):
@@ -110,24 +121,32 @@ class CarrierSpec:
         if not self.pickup_height_m >= 0:
             raise CarrierError(f"carrier pickup_height_m = {self.pickup_height_m}: must be >= 0")
         if self.packing is not None and self.packing not in PACKINGS:
-            raise CarrierError(f"carrier packing '{self.packing}'{did_you_mean(self.packing, PACKINGS)}: "
-                               f"allowed {', '.join(PACKINGS)}")
+            raise CarrierError(
+                f"carrier packing '{self.packing}'{did_you_mean(self.packing, PACKINGS)}: "
+                f"allowed {', '.join(PACKINGS)}"
+            )
         if self.cabin_row is not None and self.cabin_row not in CABIN_ROWS:
-            raise CarrierError(f"carrier cabin_row '{self.cabin_row}'{did_you_mean(self.cabin_row, CABIN_ROWS)}: "
-                               f"allowed {', '.join(CABIN_ROWS)}")
+            raise CarrierError(
+                f"carrier cabin_row '{self.cabin_row}'{did_you_mean(self.cabin_row, CABIN_ROWS)}: "
+                f"allowed {', '.join(CABIN_ROWS)}"
+            )
         if self.stowed_yaw_deg is not None and not 0.0 <= self.stowed_yaw_deg <= 360.0:
             raise CarrierError(f"carrier stowed_yaw_deg = {self.stowed_yaw_deg}: must be within 0-360")
         if self.cruise_placement is not None:
             cp = self.cruise_placement
             if cp not in PLACEMENTS:
-                raise CarrierError(f"carrier cruise_placement '{cp}'{did_you_mean(cp, PLACEMENTS)}: "
-                                   f"allowed {', '.join(PLACEMENTS)}")
+                raise CarrierError(
+                    f"carrier cruise_placement '{cp}'{did_you_mean(cp, PLACEMENTS)}: "
+                    f"allowed {', '.join(PLACEMENTS)}"
+                )
             if self.kind != "handbag":
                 raise CarrierError("carrier cruise_placement: only a handbag is moved for the cruise")
             if LOCATION_OF[cp] != LOCATION_OF[self.placement]:
                 same = [p for p in PLACEMENTS if LOCATION_OF[p] == LOCATION_OF[self.placement]]
-                raise CarrierError(f"carrier cruise_placement '{cp}': the bag stays at the passenger's seat; "
-                                   f"with placement '{self.placement}' allowed {', '.join(same)}")
+                raise CarrierError(
+                    f"carrier cruise_placement '{cp}': the bag stays at the passenger's seat; "
+                    f"with placement '{self.placement}' allowed {', '.join(same)}"
+                )
 
 
 @dataclass(frozen=True, slots=True)
@@ -139,7 +158,9 @@ class Segment:
     orientation: np.ndarray = field(repr=False)  # (3, 3) sensor -> frame (world NED, or body)
     on_board: bool = False
     walking: bool = False
-    placement: str | None = None  # where a stowed bag rests on board (CarrierSpec.placement or cruise_placement)
+    placement: str | None = (
+        None  # where a stowed bag rests on board (CarrierSpec.placement or cruise_placement)
+    )
 
 
 def _rot(rng: np.random.Generator) -> np.ndarray:
@@ -168,7 +189,8 @@ def stowed_rot(spec: CarrierSpec, rng: np.random.Generator, placement: str | Non
     if spec.stowed_yaw_deg is not None:
         yaw = spec.stowed_yaw_deg
     r = Rotation.from_euler("z", yaw, degrees=True) * Rotation.from_rotvec(
-        np.radians(tilt) * np.array([np.cos(az), np.sin(az), 0.0]))
+        np.radians(tilt) * np.array([np.cos(az), np.sin(az), 0.0])
+    )
     return r.as_matrix() @ LEVEL
 
 
@@ -184,8 +206,9 @@ def orientation_angles(rot: np.ndarray) -> dict[str, float]:
     return {"yaw_deg": yaw, "tilt_deg": tilt, "x_from_fuselage_deg": x_fus}
 
 
-def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[float, float] | None,
-                   rng: np.random.Generator) -> list[Segment]:
+def build_timeline(
+    spec: CarrierSpec, events: dict[str, float], cruise: tuple[float, float] | None, rng: np.random.Generator
+) -> list[Segment]:
     """Lay the bag's segments on the flight. ``events`` maps event names to times (engine_start,
     engines_off); ``cruise`` is the (start, end) of the cruise phase, where handling happens."""
     spec.validate()
@@ -193,11 +216,13 @@ def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[fl
     segs: list[Segment] = []
     if spec.kind == "handbag":
         t_stow = t_es - spec.stow_before_engine_start_s
-        pre = [("carried", "terminal_walk", spec.terminal_walk_s, True),
-               ("resting", "terminal_rest", spec.terminal_rest_s, False),
-               ("carried", "terminal_walk", spec.gate_walk_s, True),
-               ("resting", "terminal_rest", spec.gate_rest_s, False),
-               ("carried", "boarding", spec.boarding_s, True)]
+        pre = [
+            ("carried", "terminal_walk", spec.terminal_walk_s, True),
+            ("resting", "terminal_rest", spec.terminal_rest_s, False),
+            ("carried", "terminal_walk", spec.gate_walk_s, True),
+            ("resting", "terminal_rest", spec.gate_rest_s, False),
+            ("carried", "boarding", spec.boarding_s, True),
+        ]
         stow_state = "stowed"
     else:
         t_stow = t_es - spec.stow_before_engine_start_s
@@ -231,11 +256,15 @@ def build_timeline(spec: CarrierSpec, events: dict[str, float], cruise: tuple[fl
     cur, where = t_stow, spec.placement
     for h, after in events_on:
         if h > cur:
-            segs.append(Segment(cur, h, stow_state, None, stowed_rot(spec, rng, where), True, placement=where))
+            segs.append(
+                Segment(cur, h, stow_state, None, stowed_rot(spec, rng, where), True, placement=where)
+            )
             segs.append(Segment(h, h + spec.handling_s, "handled", None, _rot(rng), True, True))
             cur = h + spec.handling_s
             where = after or where
-    segs.append(Segment(cur, t_deplane, stow_state, None, stowed_rot(spec, rng, where), True, placement=where))
+    segs.append(
+        Segment(cur, t_deplane, stow_state, None, stowed_rot(spec, rng, where), True, placement=where)
+    )
     post = [("carried", "deplaning", spec.deplaning_s, True)]
     if spec.kind == "parcel":
         post = [("handled", "unloading", spec.deplaning_s, True), ("carried", "truck", spec.truck_s, False)]
@@ -273,7 +302,9 @@ def gait_accel_mps2(t_s: np.ndarray, spec: CarrierSpec, rng: np.random.Generator
     return a * G0
 
 
-def band_noise(n: int, fs_hz: float, band_hz: tuple[float, float], rms: float, rng: np.random.Generator) -> np.ndarray:
+def band_noise(
+    n: int, fs_hz: float, band_hz: tuple[float, float], rms: float, rng: np.random.Generator
+) -> np.ndarray:
     """(n, 3) white noise band-limited to ``band_hz`` (2nd-order Butterworth, zero phase) and scaled
     to ``rms`` per axis; zeros for fewer than 30 samples."""
     from scipy.signal import butter, sosfiltfilt

@@ -63,8 +63,9 @@ class GyroSpec:
 
 
 PRESETS: dict[str, GyroSpec] = {
-    "bmi270": GyroSpec(name="bmi270", noise_density_dps_rthz=0.007, bias_tol_dps=0.5, range_dps=250.0,
-                       lsb_dps=1.0 / 131.072),
+    "bmi270": GyroSpec(
+        name="bmi270", noise_density_dps_rthz=0.007, bias_tol_dps=0.5, range_dps=250.0, lsb_dps=1.0 / 131.072
+    ),
     "generic": GyroSpec(),
 }
 
@@ -73,8 +74,9 @@ def get_preset(name: str) -> GyroSpec:
     try:
         return PRESETS[name]
     except KeyError:
-        raise SensorError(f"unknown gyroscope preset '{name}'{did_you_mean(name, PRESETS)}; presets: "
-                          f"{', '.join(PRESETS)}") from None
+        raise SensorError(
+            f"unknown gyroscope preset '{name}'{did_you_mean(name, PRESETS)}; presets: {', '.join(PRESETS)}"
+        ) from None
 
 
 __all__ = ["GyroSpec", "PRESETS", "get_preset"]

@@ -86,14 +86,21 @@ class Support:
 
 
 PLACEMENTS = {  # the supports (module docstring)
-    "under_seat": Support(Stage((15.0, 30.0), (30.0, 60.0), (0.1, 0.2)), 3.0,
-                          "on the cabin floor's carpet, under the seat in front"),
-    "seat": Support(Stage((5.0, 7.0), (3.0, 4.5), (0.1, 0.2)), 5.0,
-                    "on a passenger seat's foam cushion (a soft surface)"),
-    "overhead_bin": Support(Stage((15.0, 30.0), (20.0, 40.0), (0.05, 0.15)), 3.0,
-                            "on the overhead bin's moulded floor"),
+    "under_seat": Support(
+        Stage((15.0, 30.0), (30.0, 60.0), (0.1, 0.2)),
+        3.0,
+        "on the cabin floor's carpet, under the seat in front",
+    ),
+    "seat": Support(
+        Stage((5.0, 7.0), (3.0, 4.5), (0.1, 0.2)), 5.0, "on a passenger seat's foam cushion (a soft surface)"
+    ),
+    "overhead_bin": Support(
+        Stage((15.0, 30.0), (20.0, 40.0), (0.05, 0.15)), 3.0, "on the overhead bin's moulded floor"
+    ),
     "lap": Support(Stage((1.5, 3.0), (4.0, 6.0), (0.3, 0.5)), 8.0, "on a seated passenger's lap"),
-    "hold": Support(Stage((20.0, 40.0), (25.0, 50.0), (0.05, 0.15)), 3.0, "on the hold floor, or a container's"),
+    "hold": Support(
+        Stage((20.0, 40.0), (25.0, 50.0), (0.05, 0.15)), 3.0, "on the hold floor, or a container's"
+    ),
 }
 PACKINGS = {  # the bag around the sensor (module docstring)
     "soft": Stage((8.0, 16.0), (12.0, 25.0), (0.3, 0.5)),
@@ -115,8 +122,12 @@ class MountDraw:
     packing: str
 
     def as_dict(self) -> dict:
-        return {"fn_hz": self.fn_hz.tolist(), "zeta": self.zeta.tolist(), "cabin_row": self.cabin_row,
-                "packing": self.packing}
+        return {
+            "fn_hz": self.fn_hz.tolist(),
+            "zeta": self.zeta.tolist(),
+            "cabin_row": self.cabin_row,
+            "packing": self.packing,
+        }
 
 
 def draw_stage(stage: Stage, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:

@@ -6,9 +6,9 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from flightmode.sim.sensor.carrier import BAG_STATES, CarrierSpec
 from flightmode.digest import digest
 from flightmode.labels import PHASES, SEVERITIES
+from flightmode.sim.sensor.carrier import BAG_STATES, CarrierSpec
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,17 +68,20 @@ class Recording:
         return np.asarray(SEVERITIES, dtype=object)[self.turbulence_code]
 
     def summary(self) -> dict:
-        return {
-            "preset": self.preset,
-            "odr_hz": self.odr_hz,
-            "samples": self.n,
-            "duration_s": float(self.t_s[-1] - self.t_s[0]),
-            "unit": self.unit,
-            "carrier": asdict(self.carrier),
-            "static_fraction": float(self.sensor_static.mean()),
-            "clipped_samples": int(self.clipped.any(axis=1).sum()),
-        } | ({"baro": self.baro} if self.baro is not None else {}) | (
-            {"stowage": self.stowage} if self.stowage is not None else {})
+        return (
+            {
+                "preset": self.preset,
+                "odr_hz": self.odr_hz,
+                "samples": self.n,
+                "duration_s": float(self.t_s[-1] - self.t_s[0]),
+                "unit": self.unit,
+                "carrier": asdict(self.carrier),
+                "static_fraction": float(self.sensor_static.mean()),
+                "clipped_samples": int(self.clipped.any(axis=1).sum()),
+            }
+            | ({"baro": self.baro} if self.baro is not None else {})
+            | ({"stowage": self.stowage} if self.stowage is not None else {})
+        )
 
     def digest(self) -> str:
         """Equal digests mean bit-identical recordings (:func:`flightmode.digest.digest`)."""

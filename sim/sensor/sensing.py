@@ -26,18 +26,25 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import sosfilt, sosfilt_zi
 
+from flightmode.errors import SensorError, first_nonfinite
+from flightmode.labels import PHASE_CODE
+from flightmode.sim.flight import atmosphere
+from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.sim.flight.track import FlightTrack
 from flightmode.sim.sensor import carrier as car
 from flightmode.sim.sensor import mount as mnt
-from flightmode.errors import SensorError, first_nonfinite
 from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, UnitDraw, draw_unit
 from flightmode.sim.sensor.barometer import BarometerPreset
 from flightmode.sim.sensor.gyroscope import GyroSpec
-from flightmode.sim.flight import atmosphere
-from flightmode.sim.flight.aircraft_profiles import get_profile
-from flightmode.labels import PHASE_CODE
 from flightmode.sim.sensor.recording import Recording
-from flightmode.sim.flight.track import FlightTrack
-from flightmode.sim.sensor.vibration import FloorDraw, VibrationModel, draw_floor, initial_state, scaled, vibration_g
+from flightmode.sim.sensor.vibration import (
+    FloorDraw,
+    VibrationModel,
+    draw_floor,
+    initial_state,
+    scaled,
+    vibration_g,
+)
 from flightmode.streams import Streams, as_streams
 from flightmode.units import G0_MPS2 as G0
 
@@ -50,11 +57,15 @@ BAG_STATE_CODE = {s: i for i, s in enumerate(car.BAG_STATES)}
 def _check_track(track: FlightTrack) -> None:
     if not np.all(np.diff(track.t_s) > 0):
         i = int(np.flatnonzero(np.diff(track.t_s) <= 0)[0])
-        raise SensorError(f"FlightTrack time is not strictly increasing at sample {i} (t = {track.t_s[i]:.3f} s)")
+        raise SensorError(
+            f"FlightTrack time is not strictly increasing at sample {i} (t = {track.t_s[i]:.3f} s)"
+        )
     for name in ("specific_force_body_mps2", "rates_radps", "ang_acc_radps2", "n1_pct", "tas_mps", "alt_m"):
         if (i := first_nonfinite(getattr(track, name))) is not None:
-            raise SensorError(f"FlightTrack.{name} has NaN or inf at sample {i} (t = {track.t_s[i]:.3f} s): "
-                              "re-fly the scenario")
+            raise SensorError(
+                f"FlightTrack.{name} has NaN or inf at sample {i} (t = {track.t_s[i]:.3f} s): "
+                "re-fly the scenario"
+            )
 
 
 def sense(
@@ -128,7 +139,14 @@ def sense(
     qbar = 0.5 * atmosphere.density_kgpm3(track.alt_m) * track.tas_mps**2
     ne = track.n1_pct.shape[1]
     chans = np.vstack(
-        [track.specific_force_at(loc).T, track.n1_pct.T, track.n2_pct.T, qbar, track.ground_speed_mps, track.wow]
+        [
+            track.specific_force_at(loc).T,
+            track.n1_pct.T,
+            track.n2_pct.T,
+            qbar,
+            track.ground_speed_mps,
+            track.wow,
+        ]
     )
     mounts = {p: mnt.mount_sos(m, fs) for p, m in mount_draws.items()}
     mount_zi = {p: [np.zeros((sos.shape[0], 2)) for sos in m] for p, m in mounts.items()}
@@ -147,8 +165,19 @@ def sense(
             # the mounts the bag rests on in this chunk; one it leaves restarts in its steady state
             # when the bag is next set on it
             resting = {segs[k].placement for k in ks if segs[k].on_board and segs[k].state != "handled"}
-            fl, bag, vstate = _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng_vib,
-                                             {p: mounts[p] for p in resting}, mount_zi, mount_running)
+            fl, bag, vstate = _floor_and_bag(
+                track,
+                chans,
+                ne,
+                t,
+                fs,
+                vibration,
+                vstate,
+                rng_vib,
+                {p: mounts[p] for p in resting},
+                mount_zi,
+                mount_running,
+            )
             mount_running = resting
         else:
             # the bag is off the aircraft for the whole chunk: no floor, vibration or mount to run
@@ -186,21 +215,36 @@ def sense(
     pressure, baro_cols = None, {}
     if baro is not None:  # the pressure at the bag is the barometer's truth: computed only for one
         if track.cabin_pressure_pa is None:
-            raise SensorError("a barometer needs the track's pressure truth: this track has none "
-                              "(read from an older file); fly the scenario again")
+            raise SensorError(
+                "a barometer needs the track's pressure truth: this track has none "
+                "(read from an older file); fly the scenario again"
+            )
         pressure = bag_pressure_pa(t_out, segs, track)
         baro_cols = read_barometer(t_out, segs, track, baro, streams)
     return Recording(
-        t_s=t_out, counts=counts, acc_g=acc, clipped=clipped, odr_hz=preset.odr_hz,
-        preset=preset.name, unit=unit.as_dict(), carrier=spec, aircraft=track.aircraft,
-        segments=tuple(segs), gyro_dps=gyro_dps, pressure_pa=pressure, **labels, **baro_cols,
-        stowage=stowage_record(segs, events, mount_draws,
-                               floor_draw if vibration_imposed is None and mount is None else None),
+        t_s=t_out,
+        counts=counts,
+        acc_g=acc,
+        clipped=clipped,
+        odr_hz=preset.odr_hz,
+        preset=preset.name,
+        unit=unit.as_dict(),
+        carrier=spec,
+        aircraft=track.aircraft,
+        segments=tuple(segs),
+        gyro_dps=gyro_dps,
+        pressure_pa=pressure,
+        **labels,
+        **baro_cols,
+        stowage=stowage_record(
+            segs, events, mount_draws, floor_draw if vibration_imposed is None and mount is None else None
+        ),
     )
 
 
-def stowage_record(segs, events: dict[str, float], mount_draws: dict[str, mnt.MountDraw],
-                   floor_draw: FloorDraw | None) -> dict:
+def stowage_record(
+    segs, events: dict[str, float], mount_draws: dict[str, mnt.MountDraw], floor_draw: FloorDraw | None
+) -> dict:
     """What the flight drew of the bag's place on board, for the record (run.json, the manifest) and
     for reading seed 000's tables beside it. Over the in-flight window (pushback to engines off, what
     Tables 4 / 5 cover; engine start without a pushback), every segment the bag lay stowed (each
@@ -212,15 +256,18 @@ def stowage_record(segs, events: dict[str, float], mount_draws: dict[str, mnt.Mo
     t0 = events.get("pushback", events["engine_start"])
     t1 = events["engines_off"]
     span = max(t1 - t0, 1e-9)
-    out: dict = {"mounts": {p: m.as_dict() for p, m in mount_draws.items()},
-                 "floor": None if floor_draw is None else floor_draw.as_dict()}
+    out: dict = {
+        "mounts": {p: m.as_dict() for p, m in mount_draws.items()},
+        "floor": None if floor_draw is None else floor_draw.as_dict(),
+    }
     parts = []
     for seg in segs:
         cover = min(seg.t1_s, t1) - max(seg.t0_s, t0)
         if seg.on_board and seg.state in ("stowed", "in_hold") and cover > 0.0:
             place = seg.placement or "hold"
-            parts.append({"placement": place, **car.orientation_angles(seg.orientation),
-                          "share": cover / span})
+            parts.append(
+                {"placement": place, **car.orientation_angles(seg.orientation), "share": cover / span}
+            )
     if parts:
         out["in_flight_segments"] = parts
         best = max(parts, key=lambda d: d["share"])
@@ -247,8 +294,9 @@ def bag_pressure_pa(t: np.ndarray, segs, track: FlightTrack) -> np.ndarray:
     return np.choose(where, (amb, cab, hold))
 
 
-def read_barometer(t_rows: np.ndarray, segs, track: FlightTrack, preset: BarometerPreset,
-                   streams: Streams) -> dict:
+def read_barometer(
+    t_rows: np.ndarray, segs, track: FlightTrack, preset: BarometerPreset, streams: Streams
+) -> dict:
     """A barometer beside the accelerometer: it converts on its own grid ``t_rows[0] + k / ODR``
     (:func:`flightmode.sim.sensor.barometer.measure`: the unit from stream ``baro/unit``, the noise
     from ``baro/noise``) and the tracker reads it at its accelerometer rows: each row holds the
@@ -270,11 +318,16 @@ def read_barometer(t_rows: np.ndarray, segs, track: FlightTrack, preset: Baromet
     new = np.empty(t_rows.shape[0], bool)
     new[0] = True
     new[1:] = k[1:] != k[:-1]
-    return {"baro_pa": y[k], "baro_new": new,
-            "baro": {"preset": preset.name, "odr_hz": preset.odr_hz, "unit": unit.as_dict()}}
+    return {
+        "baro_pa": y[k],
+        "baro_new": new,
+        "baro": {"preset": preset.name, "odr_hz": preset.odr_hz, "unit": unit.as_dict()},
+    }
 
 
-def draw_path(aircraft: str, spec: car.CarrierSpec, streams: Streams) -> tuple[FloorDraw, dict[str, mnt.MountDraw]]:
+def draw_path(
+    aircraft: str, spec: car.CarrierSpec, streams: Streams
+) -> tuple[FloorDraw, dict[str, mnt.MountDraw]]:
     """One flight's draws of the path from the airframe to the sensor, each from its own stream: the
     mounts (support, packing, cabin row, for the placement and the cruise placement: stream
     ``mount``, :func:`~flightmode.sim.sensor.mount.draw_mounts`), then the floor's vibration at
@@ -395,6 +448,10 @@ def _labels(t: np.ndarray, segs: list[car.Segment], track: FlightTrack, events: 
     settled = since_start >= SETTLE_S
     static = (resting | stowed_quiet) & settled
     return dict(
-        phase_code=phase, in_flight_window=in_window, airborne=airborne, turbulence_code=turb,
-        bag_state_code=state, sensor_static=static,
+        phase_code=phase,
+        in_flight_window=in_window,
+        airborne=airborne,
+        turbulence_code=turb,
+        bag_state_code=state,
+        sensor_static=static,
     )

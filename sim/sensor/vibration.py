@@ -116,12 +116,17 @@ class FloorDraw:
     model: VibrationModel
 
     def as_dict(self) -> dict:
-        return {"type_level": self.type_level, "location_level": self.location_level,
-                "flight_level": self.flight_level, "mode_scale": self.mode_scale}
+        return {
+            "type_level": self.type_level,
+            "location_level": self.location_level,
+            "flight_level": self.flight_level,
+            "mode_scale": self.mode_scale,
+        }
 
 
-def draw_floor(aircraft: str, location: str, rng: np.random.Generator,
-               base: VibrationModel = VibrationModel()) -> FloorDraw:
+def draw_floor(
+    aircraft: str, location: str, rng: np.random.Generator, base: VibrationModel = VibrationModel()
+) -> FloorDraw:
     """One flight's floor vibration at ``location`` (a cabin row ``front`` / ``mid`` / ``rear`` or
     ``hold``) of ``aircraft``: ``base`` with its amplitudes scaled by the type's level, the location's
     (by engine position) and a lognormal flight-to-flight factor, and its mode frequencies jittered.
@@ -129,12 +134,16 @@ def draw_floor(aircraft: str, location: str, rng: np.random.Generator,
     if aircraft not in ENGINE_POSITION:
         from flightmode.errors import SensorError, did_you_mean
 
-        raise SensorError(f"no vibration data for aircraft '{aircraft}'{did_you_mean(aircraft, ENGINE_POSITION)}")
+        raise SensorError(
+            f"no vibration data for aircraft '{aircraft}'{did_you_mean(aircraft, ENGINE_POSITION)}"
+        )
     t = TYPE_LEVEL[aircraft]
     loc = LOCATION_LEVEL[ENGINE_POSITION[aircraft]][location]
     fl = float(np.exp(FLIGHT_LN_SIGMA * rng.standard_normal()))
     ms = float(rng.uniform(1.0 - MODE_JITTER, 1.0 + MODE_JITTER))
-    model = dataclasses.replace(scaled(base, t * loc * fl), mode_hz=tuple(round(f * ms, 6) for f in base.mode_hz))
+    model = dataclasses.replace(
+        scaled(base, t * loc * fl), mode_hz=tuple(round(f * ms, 6) for f in base.mode_hz)
+    )
     return FloorDraw(t, loc, fl, ms, model)
 
 
@@ -143,9 +152,14 @@ def scaled(model: VibrationModel, k: float) -> VibrationModel:
     multiplied by ``k``; its frequencies and shares unchanged."""
     m = model
     return dataclasses.replace(
-        m, n1_line_g=m.n1_line_g * k, n1_h2_g=m.n1_h2_g * k, n2_line_g=m.n2_line_g * k,
-        mode_engine_g=m.mode_engine_g * k, mode_airflow_g=m.mode_airflow_g * k,
-        roughness_g_per_mps=m.roughness_g_per_mps * k, joint_impulse_g=m.joint_impulse_g * k,
+        m,
+        n1_line_g=m.n1_line_g * k,
+        n1_h2_g=m.n1_h2_g * k,
+        n2_line_g=m.n2_line_g * k,
+        mode_engine_g=m.mode_engine_g * k,
+        mode_airflow_g=m.mode_airflow_g * k,
+        roughness_g_per_mps=m.roughness_g_per_mps * k,
+        joint_impulse_g=m.joint_impulse_g * k,
     )
 
 
@@ -159,7 +173,9 @@ class VibrationState:
     joint_pos_m: float  # distance rolled since the last joint
 
 
-def initial_state(n_engines: int, model: VibrationModel, fs_hz: float, rng: np.random.Generator) -> VibrationState:
+def initial_state(
+    n_engines: int, model: VibrationModel, fs_hz: float, rng: np.random.Generator
+) -> VibrationState:
     return VibrationState(
         phases=rng.uniform(0.0, 2 * np.pi, (n_engines, 3)),
         # the FDM runs both engines at identical N1; with identical frequencies the two lines would
@@ -215,14 +231,18 @@ def vibration_g(
             phases[e] = (phases[e] + np.array([th1[-1], 2.0 * th1[-1], th2[-1]])) % (2.0 * np.pi)
     # structural modes: white noise through resonators, excitation level from power and airflow
     power = level_e.mean(axis=0)
-    level = model.mode_engine_g * power + model.mode_airflow_g * np.clip(qbar_pa / model.airflow_q_ref_pa, 0.0, 2.0)
+    level = model.mode_engine_g * power + model.mode_airflow_g * np.clip(
+        qbar_pa / model.airflow_q_ref_pa, 0.0, 2.0
+    )
     # runway: roughness and joint bumps feed the same modes while rolling
     rolling = on_ground & (ground_speed_mps > 0.5)
     rough = model.roughness_g_per_mps * ground_speed_mps * rolling
     dist = state.joint_pos_m + np.cumsum(ground_speed_mps * rolling) * dt
     joints = np.zeros(n)
     k = np.floor(dist / model.joint_spacing_m)
-    hit = np.flatnonzero(np.diff(np.concatenate([[np.floor(state.joint_pos_m / model.joint_spacing_m)], k])) > 0)
+    hit = np.flatnonzero(
+        np.diff(np.concatenate([[np.floor(state.joint_pos_m / model.joint_spacing_m)], k])) > 0
+    )
     joints[hit] = model.joint_impulse_g
     new_joint = float(dist[-1] % model.joint_spacing_m) if n else state.joint_pos_m
     # the modes: the sum of unit-RMS resonators (one noise stream per axis drives all modes), run as
@@ -279,8 +299,14 @@ def _mode_bank(mode_hz: tuple[float, ...], q: float, fs_hz: float) -> np.ndarray
     z = np.roots(num)
     for _ in range(2):
         s = sum(np.polyval(b, z) / np.polyval(a, z) for b, a in secs)
-        ds = sum((np.polyval(np.polyder(b), z) * np.polyval(a, z) - np.polyval(b, z) * np.polyval(np.polyder(a), z))
-                 / np.polyval(a, z) ** 2 for b, a in secs)
+        ds = sum(
+            (
+                np.polyval(np.polyder(b), z) * np.polyval(a, z)
+                - np.polyval(b, z) * np.polyval(np.polyder(a), z)
+            )
+            / np.polyval(a, z) ** 2
+            for b, a in secs
+        )
         z = z - s / ds
     poles = np.concatenate([np.roots(a) for _, a in secs])
     return zpk2sos(z, poles, num[0] / den[0])

@@ -18,9 +18,11 @@ def test_recommended_detector_is_silent_in_flight_and_answers_after(name, run_ca
     e, rec = r.detection, r.recording
     assert rec.preset == "lis302dl-logged16"  # the seed's logger (every built-in's sensor)
     temp_in_flight = int((e.checks.temporary_static & rec.in_flight_window[e.checks.index]).sum())
-    print(f"\n{name}: sigma^2 {e.sigma2}, in-flight checks {e.in_flight_checks}, temporary statics in flight "
-          f"{temp_in_flight}, final {e.false_static_count}, response {e.response_s} s, "
-          f"accuracy {e.accuracy:.4f}, correlation {e.correlation:.4f}")
+    print(
+        f"\n{name}: sigma^2 {e.sigma2}, in-flight checks {e.in_flight_checks}, temporary statics in flight "
+        f"{temp_in_flight}, final {e.false_static_count}, response {e.response_s} s, "
+        f"accuracy {e.accuracy:.4f}, correlation {e.correlation:.4f}"
+    )
     assert e.false_static_count == 0, e.false_static_events
     # T_th = 4 s after the bag truly comes to rest, plus up to one W_s for the check grid and 2 s of
     # put-down settling before `sensor_static` starts counting: 10 s covers it with margin

@@ -28,8 +28,11 @@ def test_detect_prints_the_seed_tables(pattern_run):
         assert title in r.output
     assert "false-static events in flight" in r.output
     # EMV with another weight, a bare samples file calibrated from its own rest
-    r = CliRunner().invoke(app, ["detect", str(run / "samples.parquet"), "--method", "emv", "--weight", "5",
-                                 "--sigma2-from", "rest"], env={"COLUMNS": "160"})
+    r = CliRunner().invoke(
+        app,
+        ["detect", str(run / "samples.parquet"), "--method", "emv", "--weight", "5", "--sigma2-from", "rest"],
+        env={"COLUMNS": "160"},
+    )
     assert r.exit_code == 0, r.output
     assert "EMV weight 5" in r.output
 

@@ -9,8 +9,8 @@ import pytest
 
 from flightmode.detector import evaluation as ev
 from flightmode.detector.flight_mode import DetectorParams, detect
-from flightmode.scenarios.pipeline import unit_sigma2
 from flightmode.errors import DetectorError
+from flightmode.scenarios.pipeline import unit_sigma2
 
 P = DetectorParams()
 SIG = 2.23e-3  # seed 000 Table 1 noise, g
@@ -61,7 +61,9 @@ def test_pfa_table_follows_eq_14_and_counts_the_detector_itself():
     t, a, lab = _labelled(np.random.default_rng(2))
     s2 = np.full(3, SIG**2)
     rows = ev.pfa_table(t, a, lab, P, s2)
-    assert [(r["T_sigma"], r["T_th_s"]) for r in rows] == [(k, th) for k in (3.0, 4.0, 5.0) for th in (3.0, 4.0)]
+    assert [(r["T_sigma"], r["T_th_s"]) for r in rows] == [
+        (k, th) for k in (3.0, 4.0, 5.0) for th in (3.0, 4.0)
+    ]
     p_axis = 10 / 60
     for r in rows:
         assert r["checks"] == 60
@@ -87,10 +89,16 @@ def test_seed_tables_4_and_5_obey_eq_14_except_one_column():
     rounding each of 3-4 one-digit factors), in every column but one: Table 4's 3 sigma^2 column
     gives P_FA^t = 2e-10 where the product of its axes is 5e-2 x 7e-4 x 9e-7 = 3.2e-11, and its
     P_FA 6e-33 (T_th 3 s) fits neither (3.2e-11^3 = 3e-32, (2e-10)^3 = 8e-30). A typo in the paper."""
-    t4 = {3: (5e-2, 7e-4, 9e-7, 2e-10, 6e-33, 1e-42), 4: (8e-2, 2e-3, 2e-6, 3e-10, 3e-29, 1e-38),
-          5: (1e-1, 4e-3, 2e-4, 8e-8, 5e-22, 4e-29)}
-    t5 = {3: (3e-1, 1e-2, 7e-3, 2e-5, 9e-15, 2e-19), 4: (6e-1, 1e-1, 7e-2, 4e-3, 7e-8, 3e-10),
-          5: (7e-1, 4e-1, 2e-1, 6e-2, 2e-4, 1e-5)}
+    t4 = {
+        3: (5e-2, 7e-4, 9e-7, 2e-10, 6e-33, 1e-42),
+        4: (8e-2, 2e-3, 2e-6, 3e-10, 3e-29, 1e-38),
+        5: (1e-1, 4e-3, 2e-4, 8e-8, 5e-22, 4e-29),
+    }
+    t5 = {
+        3: (3e-1, 1e-2, 7e-3, 2e-5, 9e-15, 2e-19),
+        4: (6e-1, 1e-1, 7e-2, 4e-3, 7e-8, 3e-10),
+        5: (7e-1, 4e-1, 2e-1, 6e-2, 2e-4, 1e-5),
+    }
     close = lambda a, b, f=1.6: 1 / f <= a / b <= f  # noqa: E731
     for table, rows in (("4", t4), ("5", t5)):
         for k, (px, py, pz, pt, pfa3, pfa4) in rows.items():

@@ -46,8 +46,11 @@ def test_a_gap_resets_the_detector():
 
 
 @settings(max_examples=40, deadline=None, derandomize=True)  # CI sees the same examples every run
-@given(cuts=st.lists(st.integers(0, 6000), max_size=10), method=st.sampled_from(["nmv", "emv"]),
-       seed=st.integers(0, 2**16))
+@given(
+    cuts=st.lists(st.integers(0, 6000), max_size=10),
+    method=st.sampled_from(["nmv", "emv"]),
+    seed=st.integers(0, 2**16),
+)
 def test_any_chunking_gives_identical_decisions(cuts, method, seed):
     rng = np.random.default_rng(seed)
     t, a = _stream(30, 30, rng)
@@ -112,6 +115,8 @@ def test_pattern_flight_has_no_false_static_and_a_quick_response(fly_cached):
     _, tr = fly_cached("pattern")
     rec = sense(tr, CarrierSpec(), get_preset("lis302dl-logged16"), np.random.default_rng(1))
     false_static, response_s, c, s2 = _flight_check(rec)
-    print(f"\npattern: sigma^2 {s2}, false statics in flight window: {false_static}, response {response_s:.1f} s")
+    print(
+        f"\npattern: sigma^2 {s2}, false statics in flight window: {false_static}, response {response_s:.1f} s"
+    )
     assert false_static == 0
     assert response_s <= 10.0

@@ -29,17 +29,26 @@ def test_rate_bounds_against_known_values():
         hours_needed(0.0)
 
 
-@pytest.mark.parametrize("grid, message", [
-    (Grid(ks=()), r"--k: the grid axis is empty"),
-    (Grid(windows_s=(0.01,)), r"window 0.01 s at 100 Hz is 1 sample"),
-    (Grid(ks=(0.0,)), r"--k 0.0: the threshold k sigma\^2 needs k > 0"),
-    (Grid(time_thresholds_s=(-1.0,)), r"--time-threshold-s -1.0"),
-    (Grid(methods=(("rms", 1.0),)), r"--method 'rms': use nmv, emv, nmv\+baro, emv\+baro or one of seed 001's detectors"),
-    (Grid(methods=(("mbdc", 1.0),)), r"did you mean \"mbcd\"\?"),
-    (Grid(methods=(("amvd:sum", 1.0),)), r"--method 'amvd:sum': Acceleration Moving Variance Detector takes no input choice"),
-    (Grid(methods=(("fsd:gyro", 1.0),)), r"--method 'fsd:gyro': fsd takes acc, gyr, sum, product"),
-    (Grid(methods=(("nmv", 1.0), ("nmv", 1.0))), r"--method: a value is given twice"),
-])
+@pytest.mark.parametrize(
+    "grid, message",
+    [
+        (Grid(ks=()), r"--k: the grid axis is empty"),
+        (Grid(windows_s=(0.01,)), r"window 0.01 s at 100 Hz is 1 sample"),
+        (Grid(ks=(0.0,)), r"--k 0.0: the threshold k sigma\^2 needs k > 0"),
+        (Grid(time_thresholds_s=(-1.0,)), r"--time-threshold-s -1.0"),
+        (
+            Grid(methods=(("rms", 1.0),)),
+            r"--method 'rms': use nmv, emv, nmv\+baro, emv\+baro or one of seed 001's detectors",
+        ),
+        (Grid(methods=(("mbdc", 1.0),)), r"did you mean \"mbcd\"\?"),
+        (
+            Grid(methods=(("amvd:sum", 1.0),)),
+            r"--method 'amvd:sum': Acceleration Moving Variance Detector takes no input choice",
+        ),
+        (Grid(methods=(("fsd:gyro", 1.0),)), r"--method 'fsd:gyro': fsd takes acc, gyr, sum, product"),
+        (Grid(methods=(("nmv", 1.0), ("nmv", 1.0))), r"--method: a value is given twice"),
+    ],
+)
 def test_bad_grids_are_one_line_errors(grid, message):
     with pytest.raises(DetectorError, match=message):
         grid.validate(100.0)
@@ -48,21 +57,35 @@ def test_bad_grids_are_one_line_errors(grid, message):
 def test_grid_decisions_equal_the_detector_run_alone(run_cached):
     # the pattern flight's own recording; sigma^2 from its first static minute
     rec = run_cached("pattern").recording
-    labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
+    labels = {
+        "in_flight_window": rec.in_flight_window,
+        "sensor_static": rec.sensor_static,
+        "phase": rec.phase,
+    }
     s2 = {}
 
     def sigma2_of(window):
         s2[window] = np.var(rec.acc_g[:6000], axis=0) * (1.0 + 0.1 * window / 100.0)  # differs by window
         return s2[window]
 
-    grid = Grid(methods=(("nmv", 1.0), ("emv", 5.0), ("emv", 1.0)), windows_s=(0.5, 1.0, 2.0), ks=(3.0, 4.0, 6.0),
-                time_thresholds_s=(2.0, 3.0, 4.0))
+    grid = Grid(
+        methods=(("nmv", 1.0), ("emv", 5.0), ("emv", 1.0)),
+        windows_s=(0.5, 1.0, 2.0),
+        ks=(3.0, 4.0, 6.0),
+        time_thresholds_s=(2.0, 3.0, 4.0),
+    )
     got = list(evaluate_grid(rec.t_s, rec.acc_g, labels, grid, rec.odr_hz, sigma2_of))
     assert len(got) == len(grid) == 81
     for p, e in got[::7]:  # every seventh point: NMV and EMV, each window, k and time threshold
         alone = detect(rec.t_s, rec.acc_g, p, s2[p.window])
         for f in ("index", "t_s", "mv", "temporary_static", "final_static", "after_reset"):
-            assert np.array_equal(getattr(e.checks, f), getattr(alone, f)), (p, f)  # exactly, not approximately
+            assert np.array_equal(getattr(e.checks, f), getattr(alone, f)), (
+                p,
+                f,
+            )  # exactly, not approximately
         ref = evaluate(rec.t_s, rec.acc_g, labels, p, s2[p.window])
         assert (e.false_static_events, e.missed_static_s, e.response_s) == (
-            ref.false_static_events, ref.missed_static_s, ref.response_s)
+            ref.false_static_events,
+            ref.missed_static_s,
+            ref.response_s,
+        )

@@ -48,7 +48,7 @@ def test_nmv_stays_exact_after_ten_million_samples():
     mv = MovingVariance(100, "nmv", n_axes=1)
     for k in range(0, n, 1_000_000):  # pushed in chunks, as a logger would
         last = mv.push(x[k : k + 1_000_000])
-    ref = _two_pass_nmv(x[-(1_000_000 + 99):], 100)  # the windows ending in the last chunk
+    ref = _two_pass_nmv(x[-(1_000_000 + 99) :], 100)  # the windows ending in the last chunk
     np.testing.assert_allclose(last, ref, rtol=1e-12)
 
 

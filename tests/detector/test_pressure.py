@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 import pytest
+from scipy.stats import chi2
+
 from flightmode.detector.flight_mode import Checks, DetectorParams, detect
 from flightmode.detector.pressure import (
     PressureChecks,
@@ -26,13 +28,11 @@ from flightmode.detector.pressure import (
     rate_sigma_pa_s,
     slope_weights,
 )
+from flightmode.errors import DetectorError
+from flightmode.labels import AIRBORNE_PHASES
 from flightmode.sim.flight import atmosphere as isa
 from flightmode.sim.flight.cabin import CABIN_PROFILES, cabin_pressure
 from flightmode.sim.sensor.barometer import get_preset, measure
-from scipy.stats import chi2
-
-from flightmode.errors import DetectorError
-from flightmode.labels import AIRBORNE_PHASES
 from flightmode.units import FPM_MPS, FT_M, PSI_PA
 from tests.sim.test_cabin import synthetic_flight
 
@@ -109,7 +109,9 @@ def test_ramp_response_formula(rate):
     y = 1e5 - rate * np.maximum(t - 40.0, 0.0)
     c = detect_pressure(t, y, p)
     first = c.t_s[np.flatnonzero(~c.rate_ok)[0]]
-    assert first - 40.0 == pytest.approx(ramp_response_s(rate, P.rate_threshold_pa_s, P.window_s), abs=0.04 + 1e-9)
+    assert first - 40.0 == pytest.approx(
+        ramp_response_s(rate, P.rate_threshold_pa_s, P.window_s), abs=0.04 + 1e-9
+    )
 
 
 def test_the_default_thresholds_statistics():
@@ -120,7 +122,8 @@ def test_the_default_thresholds_statistics():
     # the rate bound keeps P_M per check below 1e-6 up to 48 Pa of sensor noise (T / sigma_r >= 4.89)
     assert design(48.0)["pm_rate"] < 1e-6 < design(49.0)["pm_rate"]
     assert cabin_rate_pa_s(300.0, 8000 * FT_M) == pytest.approx(
-        300 * FPM_MPS * float(isa.density_kgpm3(8000 * FT_M)) * 9.80665)
+        300 * FPM_MPS * float(isa.density_kgpm3(8000 * FT_M)) * 9.80665
+    )
 
 
 # -- a flight ----------------------------------------------------------------------------------
@@ -136,7 +139,11 @@ def test_flags_the_takeoff_roll_holds_cruise_and_resumes_after_the_hold():
     assert pc.static[(pc.t_s > 300) & (pc.t_s < t_roll)].all()
     # the cabin's first move is the pre-pressurisation: 400 ft/min at the field, through the valve's lag
     r_pp = cabin_rate_pa_s(prof.prepress_rate_fpm, 0.0)
-    bound = lagged_ramp_response_s(r_pp, P.rate_threshold_pa_s, P.window_s, prof.ofv_tau_s) + P.check_s + 1 / P.fs_hz
+    bound = (
+        lagged_ramp_response_s(r_pp, P.rate_threshold_pa_s, P.window_s, prof.ofv_tau_s)
+        + P.check_s
+        + 1 / P.fs_hz
+    )
     first = pc.t_s[np.flatnonzero((pc.t_s >= t_roll) & ~pc.static)[0]]
     assert t_roll < first <= t_roll + bound
     # suspended from there through the climb, cruise and descent to touchdown
@@ -150,7 +157,9 @@ def test_flags_the_takeoff_roll_holds_cruise_and_resumes_after_the_hold():
     # after touchdown: the residual 0.1 psi released at 500 ft/min, the lag's tail below T after
     # tau ln(r / T), the window clear after W more; then the hold
     r_rel = cabin_rate_pa_s(prof.release_rate_fpm, 0.0)
-    t_quiet = t_td + 0.1 * PSI_PA / r_rel + prof.ofv_tau_s * math.log(r_rel / P.rate_threshold_pa_s) + P.window_s
+    t_quiet = (
+        t_td + 0.1 * PSI_PA / r_rel + prof.ofv_tau_s * math.log(r_rel / P.rate_threshold_pa_s) + P.window_s
+    )
     loud = np.flatnonzero(~pc.quiet)
     last_loud = pc.t_s[loud[-1]]
     assert t_td < last_loud <= t_quiet + P.check_s
@@ -168,7 +177,11 @@ def test_flags_a_climb_without_prepressurisation_within_the_computed_time():
     t_lift, _ = _span(t, ph, "climb")
     cabin_fpm = 2000.0 * c.cruise_cabin_altitude_m / (35_000 * FT_M)
     rate = cabin_rate_pa_s(cabin_fpm, 0.0)  # at the field, where it starts
-    bound = lagged_ramp_response_s(rate, P.rate_threshold_pa_s, P.window_s, prof.ofv_tau_s) + P.check_s + 1 / P.fs_hz
+    bound = (
+        lagged_ramp_response_s(rate, P.rate_threshold_pa_s, P.window_s, prof.ofv_tau_s)
+        + P.check_s
+        + 1 / P.fs_hz
+    )
     assert pc.static[(pc.t_s > t_lift - 30) & (pc.t_s < t_lift)].all()
     first = pc.t_s[np.flatnonzero((pc.t_s >= t_lift) & ~pc.static)[0]]
     assert t_lift < first <= t_lift + bound
@@ -182,8 +195,9 @@ def test_streaming_equals_batch():
         whole = detect_pressure(tb, pb)
         d = PressureDetector()
         parts = [d.push(tb[s], pb[s]) for s in _chunks(tb.size, np.random.default_rng(seed), hi)]
-        got = PressureChecks(*(np.concatenate([getattr(p, f.name) for p in parts])
-                               for f in dataclasses.fields(PressureChecks)))
+        got = PressureChecks(
+            *(np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(PressureChecks))
+        )
         assert _equal(got, whole)
 
 
@@ -207,7 +221,9 @@ def test_the_combined_rule_has_no_false_static_where_the_accelerometer_alone_has
     # OR to suspend, AND to resume, per check
     assert np.array_equal(both.allowed, both.accel_static & both.pressure_static)
     c0, c1 = _span(t, ph, "cruise")
-    ev = evaluate_sources(both, t_push, [(c0 + P.window_s + 30, c1)], t_end_s=t_off)  # the window clear of the climb
+    ev = evaluate_sources(
+        both, t_push, [(c0 + P.window_s + 30, c1)], t_end_s=t_off
+    )  # the window clear of the climb
     assert ev.first_source == "accelerometer"  # the pushback's motion, long before the takeoff roll
     assert ev.first_suspend_s["pressure"] > _span(t, ph, "takeoff_roll")[0]
     assert ev.held_by["pressure_only"] == ev.cruise_checks and ev.held_by["neither"] == 0
@@ -231,10 +247,18 @@ def test_combined_streaming_equals_batch():
         for i in range(max(len(sa), len(sb))):  # the two streams in independent chunks
             x = sa[i] if i < len(sa) else None
             y = sb[i] if i < len(sb) else None
-            parts.append(d.push(None if x is None else ta[x], None if x is None else a[x],
-                                None if y is None else tb[y], None if y is None else pb[y]))
+            parts.append(
+                d.push(
+                    None if x is None else ta[x],
+                    None if x is None else a[x],
+                    None if y is None else tb[y],
+                    None if y is None else pb[y],
+                )
+            )
         parts.append(d.finish())
-        got = type(whole)(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(whole)))
+        got = type(whole)(
+            *(np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(whole))
+        )
         assert _equal(got, whole)
 
 
@@ -249,7 +273,9 @@ def _p_checks(t, static, rate_ok=None, level_ok=None):
     s = np.asarray(static)
     r = s if rate_ok is None else np.asarray(rate_ok)
     lv = np.ones(t.size, bool) if level_ok is None else np.asarray(level_ok)
-    return PressureChecks(np.arange(t.size), t, np.zeros(t.size), np.zeros(t.size), np.zeros(t.size), r, lv, r & lv, s)
+    return PressureChecks(
+        np.arange(t.size), t, np.zeros(t.size), np.zeros(t.size), np.zeros(t.size), r, lv, r & lv, s
+    )
 
 
 def test_the_rule_uses_the_pressure_state_as_of_each_check_and_waits_for_it():
@@ -289,7 +315,9 @@ def test_an_arrival_well_above_the_origin_needs_the_destination_known():
     # cabin coming to rest, and still holds the whole cruise (the cabin is ~6,000 ft above Geneva)
     from flightmode.sim.flight.cabin import ambient_pressure_pa
 
-    known = dataclasses.replace(P, arrival_ground_pa=float(ambient_pressure_pa(1411 * FT_M, datum_m=1411 * FT_M)))
+    known = dataclasses.replace(
+        P, arrival_ground_pa=float(ambient_pressure_pa(1411 * FT_M, datum_m=1411 * FT_M))
+    )
     pk = detect_pressure(tb, pb, known)
     first = pk.t_s[after & pk.static]
     assert first.size and first[0] - t_off <= P.hold_s + P.window_s + P.check_s

@@ -6,6 +6,7 @@ import warnings
 
 import numpy as np
 import pytest
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.calibration import (
     Calibration,
@@ -20,9 +21,8 @@ from flightmode.eobs.calibration import (
 )
 from flightmode.eobs.simulate import draw_unit, orientation_recordings, unit_spread
 from flightmode.eobs.tag import is_old_tag, nominal_slope_g_per_count
-from flightmode.sim.sensor.accelerometer import PRESETS
-
 from flightmode.errors import InputDataError, SensorError
+from flightmode.sim.sensor.accelerometer import PRESETS
 
 
 def test_the_notes_worked_example():

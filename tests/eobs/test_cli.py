@@ -8,7 +8,6 @@ import numpy as np
 from typer.testing import CliRunner
 
 from flightmode.scenarios.cli import app
-
 from tests.eobs.conftest import REAL_MOVEBANK as ALBATROSSES
 
 
@@ -25,12 +24,24 @@ def test_eobs_calibrate_recovers_a_simulated_tag_from_six_movebank_files(tmp_pat
     for key in ("+x", "-x", "+y", "-y", "+z", "-z"):
         g = np.zeros((60, 3))
         g[:, "xyz".index(key[1])] = 1.0 if key[0] == "+" else -1.0
-        bursts = [simulate_burst(unit, g, "XYZ", 10.0, np.datetime64("2026-01-01T00:00:00", "ns") + np.timedelta64(60 * i, "s"),
-                                 rng, noise_g) for i in range(4)]
+        bursts = [
+            simulate_burst(
+                unit,
+                g,
+                "XYZ",
+                10.0,
+                np.datetime64("2026-01-01T00:00:00", "ns") + np.timedelta64(60 * i, "s"),
+                rng,
+                noise_g,
+            )
+            for i in range(4)
+        ]
         path = tmp_path / f"{key}.csv"
         write_movebank(bursts_to_file(bursts), path)
         args += [f"--{'plus' if key[0] == '+' else 'minus'}-{key[1]}", str(path)]
-    r = CliRunner().invoke(app, ["eobs", "calibrate", *args, "--tag-number", "2242", "--out", str(tmp_path / "cal.toml")])
+    r = CliRunner().invoke(
+        app, ["eobs", "calibrate", *args, "--tag-number", "2242", "--out", str(tmp_path / "cal.toml")]
+    )
     assert r.exit_code == 0, r.output
     cal = read_calibration(tmp_path / "cal.toml")
     # 240 samples per orientation at 1 mg noise (0.45 count) and 1-count rounding: the mean of a
@@ -40,17 +51,26 @@ def test_eobs_calibrate_recovers_a_simulated_tag_from_six_movebank_files(tmp_pat
     assert np.allclose(cal.zero_count, unit.zero_count, atol=0.15)
     assert np.allclose(np.array(cal.slope_g_per_count) / np.array(unit.slope_g_per_count), 1.0, atol=5e-4)
     # a file with the wrong axes: one line
-    bad = CliRunner().invoke(app, ["eobs", "calibrate", *args[:-1], str(ALBATROSSES), "--out", str(tmp_path / "x.toml")])
+    bad = CliRunner().invoke(
+        app, ["eobs", "calibrate", *args[:-1], str(ALBATROSSES), "--out", str(tmp_path / "x.toml")]
+    )
     assert bad.exit_code == 2 and "needs bursts of all three axes (XYZ)" in bad.output
     assert not (tmp_path / "x.toml").exists()
 
 
 def test_detect_runs_the_duty_cycled_detector_on_the_real_albatross_file(real_movebank):
-    r = CliRunner().invoke(app, ["detect", str(ALBATROSSES), "--tag-number", "2242", "--k", "4", "--bursts", "1"],
-                           env={"COLUMNS": "160"})
+    r = CliRunner().invoke(
+        app,
+        ["detect", str(ALBATROSSES), "--tag-number", "2242", "--k", "4", "--bursts", "1"],
+        env={"COLUMNS": "160"},
+    )
     assert r.exit_code == 0, r.output
     assert "nominal constants of tag 2242" in r.output
-    rows = {line.split()[1]: line.split() for line in r.output.splitlines() if line.startswith("│") and "XY" in line}
+    rows = {
+        line.split()[1]: line.split()
+        for line in r.output.splitlines()
+        if line.startswith("│") and "XY" in line
+    }
     assert len(rows) == 9  # nine individuals, five bursts each
     assert all(v[5] == "5" for v in rows.values())
     # the birds seen flying by their GPS fixes (9-11 m/s) never hold still for a 12 s burst

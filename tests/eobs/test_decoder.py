@@ -6,6 +6,7 @@ import re
 
 import numpy as np
 import pytest
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.decoder import (
     day_number,

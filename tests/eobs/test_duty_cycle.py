@@ -14,6 +14,8 @@ import warnings
 
 import numpy as np
 import pytest
+from scipy.stats import chi2
+
 from flightmode.detector.statistics import pm_exact
 from flightmode.eobs.calibration import NominalCalibrationWarning
 from flightmode.eobs.duty_cycle import (
@@ -33,8 +35,6 @@ from flightmode.eobs.duty_cycle import (
     tradeoff,
 )
 from flightmode.eobs.movebank import read_movebank
-from scipy.stats import chi2
-
 from flightmode.errors import DetectorError
 
 Z_1E5 = 4.42  # two-sided normal quantile for a 1e-5 false failure rate
@@ -47,7 +47,7 @@ def _binomial_tol(p: float, trials: int) -> float:
 def _stream(rng, n_bursts=40, sigma=(0.002, 0.003)):
     """Bursts of varying length: static noise on a 1 g / 0 g mean, some with motion added."""
     bursts = []
-    for j in range(n_bursts):
+    for _ in range(n_bursts):
         n = int(rng.integers(2, 80))
         a = rng.normal(0.0, sigma, size=(n, 2)) + [1.0, 0.0]
         if rng.random() < 0.3:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.movebank import (
     DECODER_COLUMNS,
@@ -14,7 +15,6 @@ from flightmode.eobs.movebank import (
     read_movebank,
     write_movebank,
 )
-
 from flightmode.errors import InputDataError, SensorError
 
 # seed 003 section 5.4, the decoder's first line (wrapped in the note after "acceleration-sampling-")

@@ -14,14 +14,14 @@ So the note's total rates are 10 and 100 Hz, and per axis, for 1, 2 or 3 enabled
 from __future__ import annotations
 
 import pytest
+
+from flightmode.errors import SensorError
 from flightmode.sim.sensor.accelerometer import (
     EOBS_PER_AXIS_RATES_HZ,
     EOBS_TOTAL_RATES_HZ,
     PRESETS,
     eobs_preset,
 )
-
-from flightmode.errors import SensorError
 
 NOTE_TABLE_PER_AXIS_HZ = {10.0: (10.0, 5.0, 3.33), 100.0: (100.0, 50.0, 33.33)}  # total -> 1, 2, 3 axes
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.spectrum import (
     bessel_sos,
@@ -15,7 +16,6 @@ from flightmode.eobs.spectrum import (
     lowpass_forward_backward,
     n_dft_values,
 )
-
 from flightmode.errors import SensorError
 
 

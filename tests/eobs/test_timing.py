@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
 from flightmode.eobs.burst import AccBurst
 from flightmode.eobs.timing import draw_start_delay_s, max_start_delay_s, sample_offsets_s, sample_times
-
 from flightmode.errors import SensorError
 
 

@@ -91,8 +91,10 @@ def test_default_flight_ideal_world_acceleration_within_a_metre(fly_cached):
     rec = np.linalg.norm(recurrence_path(t, a, truth[0], np.zeros(3))(t) - truth, axis=1)
     pt = frames.truth_world_acceleration(tr, t, integrating=False)
     tri_pt = np.linalg.norm(tridiagonal_path(t, pt, truth[0], truth[-1])(t) - truth, axis=1)
-    print(f"\ndefault flight, {t.shape[0]:,} samples: tridiagonal max {tri.max():.4f} m; recurrence max "
-          f"{rec.max():.4f} m, final {rec[-1]:.4f} m; point samples tridiagonal max {tri_pt.max():.1f} m")
+    print(
+        f"\ndefault flight, {t.shape[0]:,} samples: tridiagonal max {tri.max():.4f} m; recurrence max "
+        f"{rec.max():.4f} m, final {rec[-1]:.4f} m; point samples tridiagonal max {tri_pt.max():.1f} m"
+    )
     assert tri.max() < 1.0
     assert rec.max() < 1.0
     assert tri_pt.max() > 5.0  # aliasing of the touchdown and gear impulses is real, not noise
@@ -109,8 +111,10 @@ def test_default_flight_sensor_noise_grows_as_the_random_walk(fly_cached):
     from flightmode.sim.sensor.sensing import sense
 
     _, tr = fly_cached("gva-lhr-a320")
-    recs = [sense(tr, CarrierSpec(), get_preset(p), np.random.default_rng(1), unit=UnitDraw())
-            for p in ("ideal", "lis302dl-logged16")]
+    recs = [
+        sense(tr, CarrierSpec(), get_preset(p), np.random.default_rng(1), unit=UnitDraw())
+        for p in ("ideal", "lis302dl-logged16")
+    ]
     t0, t1 = span(recs[0], tr)
     s = (recs[0].t_s >= t0) & (recs[0].t_s <= t1)
     t = recs[0].t_s[s] - t0
@@ -123,7 +127,9 @@ def test_default_flight_sensor_noise_grows_as_the_random_walk(fly_cached):
 
     sig_rw = noise_random_walk_sigma_g(get_preset("lis302dl-logged16")) * 9.80665
     law = predicted_random_walk_m(sig_rw, 100.0, t[-1]) * np.sqrt(3)  # 3 axes
-    print(f"\nnoise-only path error after {t[-1] / 60:.0f} min: {e[-1]:.0f} m (law, 1 sigma: {law:.0f} m); "
-          f"fitted exponent {p:.2f}")
+    print(
+        f"\nnoise-only path error after {t[-1] / 60:.0f} min: {e[-1]:.0f} m (law, 1 sigma: {law:.0f} m); "
+        f"fitted exponent {p:.2f}"
+    )
     assert 1.15 < p < 1.85
     assert e[-1] < 4 * law

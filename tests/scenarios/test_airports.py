@@ -28,7 +28,8 @@ def test_geneva_runway_ends_agree_with_the_aerodrome_chart():
     assert d == pytest.approx(e04.length_m, rel=0.01)
     # the heading given is the course from one end to the other (0.5 deg: rounding of the data)
     assert float(initial_course_deg(e04.lat_deg, e04.lon_deg, e22.lat_deg, e22.lon_deg)) == pytest.approx(
-        e04.heading_deg, abs=0.5)
+        e04.heading_deg, abs=0.5
+    )
 
 
 def test_runway_in_use_has_the_most_headwind():
@@ -41,10 +42,12 @@ def test_runway_in_use_has_the_most_headwind():
     import dataclasses
 
     e = a.runways[0]
-    ends = (dataclasses.replace(e, ident="36L", heading_deg=0.0, length_m=3000.0, displaced_m=0.0),
-            dataclasses.replace(e, ident="18R", heading_deg=180.0, length_m=3000.0, displaced_m=0.0),
-            dataclasses.replace(e, ident="36R", heading_deg=0.0, length_m=3500.0, displaced_m=1000.0),
-            dataclasses.replace(e, ident="18L", heading_deg=180.0, length_m=3500.0, displaced_m=0.0))
+    ends = (
+        dataclasses.replace(e, ident="36L", heading_deg=0.0, length_m=3000.0, displaced_m=0.0),
+        dataclasses.replace(e, ident="18R", heading_deg=180.0, length_m=3000.0, displaced_m=0.0),
+        dataclasses.replace(e, ident="36R", heading_deg=0.0, length_m=3500.0, displaced_m=1000.0),
+        dataclasses.replace(e, ident="18L", heading_deg=180.0, length_m=3500.0, displaced_m=0.0),
+    )
     twin = dataclasses.replace(a, runways=ends)
     assert ap.pick_end(twin, 2100.0, 90.0, "A320", landing=False).length_m == 3500.0
     assert ap.pick_end(twin, 2100.0, 90.0, "A320", landing=True).ident == "18L"  # 36R lands on 2,500 m only
@@ -55,14 +58,18 @@ def test_unknown_airport_and_too_short_runways_are_one_line_errors():
     with pytest.raises(ScenarioError, match=r'unknown airport .LSGX. \(did you mean "LSG.'):
         ap.airport("LSGX")
     # London City (EGLC): one 1,508 m runway; the A320 needs 2,100 m here
-    with pytest.raises(ScenarioError, match=r"EGLC .* no paved runway of 2100 m for the A320 .*longest is 15\d\d m"):
+    with pytest.raises(
+        ScenarioError, match=r"EGLC .* no paved runway of 2100 m for the A320 .*longest is 15\d\d m"
+    ):
         ap.pick_end(ap.airport("EGLC"), get_profile("A320").min_runway_m, 0.0, "A320")
     with pytest.raises(ScenarioError, match="nearest that suit: EG"):
         scenario_between("EGLC", "LFPG", "A320")
 
 
 def test_route_errors_name_the_limit():
-    with pytest.raises(ScenarioError, match=r"LFPG to KLAX is 9,\d{3} km, beyond the A320's range of 5,000 km"):
+    with pytest.raises(
+        ScenarioError, match=r"LFPG to KLAX is 9,\d{3} km, beyond the A320's range of 5,000 km"
+    ):
         scenario_between("LFPG", "KLAX", "A320")
     with pytest.raises(ScenarioError, match="both LFPG"):
         scenario_between("LFPG", "lfpg", "A320")
@@ -130,7 +137,9 @@ def test_a_routes_descent_angle_is_its_types_and_keeps_the_mach_band_inside_wrap
     assert sc.plan.descent_angle_deg == prof.descent_angle_deg
     w = WRAP(prof.wrap_type)
     h_cross_m = float(w.descent_cross_alt_conmach()["default"]) * 1e3
-    a_mps = math.sqrt(1.4 * atmosphere.R_AIR * float(atmosphere.temperature_k(h_cross_m)))  # gamma 1.4, dry air
+    a_mps = math.sqrt(
+        1.4 * atmosphere.R_AIR * float(atmosphere.temperature_k(h_cross_m))
+    )  # gamma 1.4, dry air
     gs_mps = float(w.descent_const_mach()["default"]) * a_mps + 20.0
     vs_mps = gs_mps * math.tan(math.radians(sc.plan.descent_angle_deg))
     assert vs_mps < -float(w.descent_vs_conmach()["minimum"])
@@ -160,7 +169,7 @@ def test_cli_pair_options_go_together():
     r = CliRunner().invoke(app, ["fly", "--from", "LFPG", "--to", "LEMD"])
     assert r.exit_code == 2 and "--from, --to and --aircraft go together" in r.output
     r = CliRunner().invoke(app, ["fly", "--from", "LFPG", "--to", "LEMX", "--aircraft", "A320"])
-    assert r.exit_code == 2 and 'unknown airport \'LEMX\' (did you mean "LEM' in r.output
+    assert r.exit_code == 2 and "unknown airport 'LEMX' (did you mean \"LEM" in r.output
 
 
 @pytest.mark.slow

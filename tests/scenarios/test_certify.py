@@ -14,19 +14,31 @@ from flightmode.scenarios.certify import Target, pareto_front, recommend, thresh
 
 
 def _row(i, events, hours, rate_up, p95, avail, k=4.0):
-    return {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": k, "time_threshold_s": float(i),
-            "false_statics": events, "in_window_h": hours, "rate_per_h": events / hours, "rate_upper_per_h": rate_up,
-            "response_p95_s": p95, "availability": avail}
+    return {
+        "method": "nmv",
+        "weight": 1.0,
+        "window_s": 1.0,
+        "k": k,
+        "time_threshold_s": float(i),
+        "false_statics": events,
+        "in_window_h": hours,
+        "rate_per_h": events / hours,
+        "rate_upper_per_h": rate_up,
+        "response_p95_s": p95,
+        "availability": avail,
+    }
 
 
 def test_the_pareto_front_holds_exactly_the_points_nothing_beats():
-    rows = [_row(0, 0, 10, 0.3, 10.0, 0.90),   # front: lowest bound
-            _row(1, 0, 10, 0.3, 12.0, 0.80),   # beaten by 0 everywhere
-            _row(2, 1, 10, 0.5, 5.0, 0.95),    # front: fastest
-            _row(3, 1, 10, 0.5, 5.0, 0.99),    # front: beats 2 on availability alone
-            _row(4, 2, 10, 0.6, 8.0, 0.99),    # beaten by 3 (worse bound and response, equal availability)
-            _row(5, 0, 10, 0.3, math.nan, 1.0),  # never answers: the worst response, but the best availability
-            _row(6, 0, 10, 0.3, 10.0, 0.90)]   # a tie with 0: neither beats the other, both on the front
+    rows = [
+        _row(0, 0, 10, 0.3, 10.0, 0.90),  # front: lowest bound
+        _row(1, 0, 10, 0.3, 12.0, 0.80),  # beaten by 0 everywhere
+        _row(2, 1, 10, 0.5, 5.0, 0.95),  # front: fastest
+        _row(3, 1, 10, 0.5, 5.0, 0.99),  # front: beats 2 on availability alone
+        _row(4, 2, 10, 0.6, 8.0, 0.99),  # beaten by 3 (worse bound and response, equal availability)
+        _row(5, 0, 10, 0.3, math.nan, 1.0),  # never answers: the worst response, but the best availability
+        _row(6, 0, 10, 0.3, 10.0, 0.90),
+    ]  # a tie with 0: neither beats the other, both on the front
     assert pareto_front(rows) == [0, 3, 5, 6]
 
 
@@ -36,25 +48,41 @@ def test_the_recommendation_meets_the_target_or_says_what_is_missing():
     t = Target(rate_per_h=0.01, confidence=0.95, max_response_s=30.0)
     per = {"airline-mix": 2.0, "rough-air": 1.5}
     # 600 h with no event: bound 3.0 / 600 = 5e-3 < 1e-2, so both quiet points meet it; the faster one wins
-    rows = [_row(0, 0, 600, rate_upper_bound(0, 600), 20.0, 0.9), _row(1, 0, 600, rate_upper_bound(0, 600), 12.0, 0.8),
-            _row(2, 3, 600, rate_upper_bound(3, 600), 4.0, 0.99), _row(3, 0, 600, rate_upper_bound(0, 600), 40.0, 1.0)]
+    rows = [
+        _row(0, 0, 600, rate_upper_bound(0, 600), 20.0, 0.9),
+        _row(1, 0, 600, rate_upper_bound(0, 600), 12.0, 0.8),
+        _row(2, 3, 600, rate_upper_bound(3, 600), 4.0, 0.99),
+        _row(3, 0, 600, rate_upper_bound(0, 600), 40.0, 1.0),
+    ]
     r = recommend(rows, t, lambda p: per)
     assert r["status"] == "meets" and r["point"]["time_threshold_s"] == 1.0 and r["candidates"] == 2
     # 100 h: no bound reaches 1e-2; the provisional point has no event and answers within 30 s, and the
     # claim needs 3.0 / 1e-2 = 299.6 h: 199.6 h more, 100 flights of airline-mix or 134 of rough-air
-    rows100 = [x | {"in_window_h": 100.0, "rate_upper_per_h": rate_upper_bound(x["false_statics"], 100.0),
-                    "rate_per_h": x["false_statics"] / 100.0} for x in rows]
+    rows100 = [
+        x
+        | {
+            "in_window_h": 100.0,
+            "rate_upper_per_h": rate_upper_bound(x["false_statics"], 100.0),
+            "rate_per_h": x["false_statics"] / 100.0,
+        }
+        for x in rows
+    ]
     r = recommend(rows100, t, lambda p: per)
     assert r["status"] == "too_small" and r["point"]["time_threshold_s"] == 1.0
     assert r["hours_needed"] == pytest.approx(-math.log(0.05) / 0.01)
     assert r["hours_short"] == pytest.approx(hours_needed(0.01) - 100.0)
     assert r["flights_short"] == {"airline-mix": 100, "rough-air": 134}
-    assert "199.6" not in r["text"] and "200 h more" in r["text"]  # hours shown rounded, as a reader wants them
+    assert (
+        "199.6" not in r["text"] and "200 h more" in r["text"]
+    )  # hours shown rounded, as a reader wants them
     # the best point's rate is above the target even at its lower bound (Garwood: chi2.ppf(0.05, 10) / 200
     # = 0.0197 /h for 5 events in 100 h): no amount of data helps
     from scipy.stats import chi2
 
-    hot = [_row(0, 5, 100, rate_upper_bound(5, 100), 5.0, 0.9), _row(1, 2, 100, rate_upper_bound(2, 100), 50.0, 0.9)]
+    hot = [
+        _row(0, 5, 100, rate_upper_bound(5, 100), 5.0, 0.9),
+        _row(1, 2, 100, rate_upper_bound(2, 100), 50.0, 0.9),
+    ]
     r = recommend(hot, t, lambda p: per)
     assert r["status"] == "unreachable" and r["point"]["false_statics"] == 5  # the only one within 30 s
     assert r["rate_lower_per_h"] == pytest.approx(chi2.ppf(0.05, 10) / 200)
@@ -65,13 +93,22 @@ def test_the_recommendation_meets_the_target_or_says_what_is_missing():
     assert r["status"] == "too_small" and r["hours_needed"] == pytest.approx(chi2.ppf(0.95, 4) / 2 / 0.01)
     # 3 events in 1000 h (3e-3 /h < 1e-2): if they keep coming at that rate, the bound reaches the
     # target at T with chi2.ppf(0.95, 2 (3e-3 T + 1)) / 2T = 1e-2
-    r = recommend([_row(0, 3, 100, rate_upper_bound(3, 100), 5.0, 0.9) | {"rate_per_h": 3e-3}], t, lambda p: per)
+    r = recommend(
+        [_row(0, 3, 100, rate_upper_bound(3, 100), 5.0, 0.9) | {"rate_per_h": 3e-3}], t, lambda p: per
+    )
     big_t = r["hours_needed_at_rate"]
     assert chi2.ppf(0.95, 2 * (3e-3 * big_t + 1)) / (2 * big_t) == pytest.approx(0.01, rel=1e-6)
     # points that meet the rate but not the response limit: the response limit is what fails
-    slow = [_row(0, 0, 600, rate_upper_bound(0, 600), 45.0, 0.9), _row(1, 0, 600, rate_upper_bound(0, 600), 40.0, 0.9)]
+    slow = [
+        _row(0, 0, 600, rate_upper_bound(0, 600), 45.0, 0.9),
+        _row(1, 0, 600, rate_upper_bound(0, 600), 40.0, 0.9),
+    ]
     r = recommend(slow, t, lambda p: per)
-    assert r["status"] == "too_slow" and r["point"]["time_threshold_s"] == 1.0 and "raise --max-response-s" in r["text"]
+    assert (
+        r["status"] == "too_slow"
+        and r["point"]["time_threshold_s"] == 1.0
+        and "raise --max-response-s" in r["text"]
+    )
 
 
 def _static_table(rng, n_checks: int, n: int = 100, colour: float = 1.0, keep: list | None = None):
@@ -87,9 +124,19 @@ def _static_table(rng, n_checks: int, n: int = 100, colour: float = 1.0, keep: l
         r = 1 + (r - 1) * colour
         if keep is not None:
             keep.append(r)
-        rows.append({"dataset": "d", "family": "f", "flight_id": f"{f:06d}", "sensor_preset": "x", "fs_hz": 100.0,
-                     "method": "nmv", "weight": 1.0, "window_s": 1.0,
-                     **_static_stats(r, np.ones(3), np.ones(r.shape[0], bool))})
+        rows.append(
+            {
+                "dataset": "d",
+                "family": "f",
+                "flight_id": f"{f:06d}",
+                "sensor_preset": "x",
+                "fs_hz": 100.0,
+                "method": "nmv",
+                "weight": 1.0,
+                "window_s": 1.0,
+                **_static_stats(r, np.ones(3), np.ones(r.shape[0], bool)),
+            }
+        )
     return pa.Table.from_pylist(rows)
 
 
@@ -127,23 +174,27 @@ def test_section_5_1_1_threshold_from_white_static_data_is_the_chi_square_quanti
 
 
 def test_bad_targets_and_inputs_are_one_line_errors(tmp_path):
-    for t, msg in ((Target(rate_per_h=0.0), "--target-fa-per-h 0.0: must be a rate > 0"),
-                   (Target(rate_per_h=-1e-4), "must be a rate > 0"),
-                   (Target(confidence=1.0), "--confidence 1.0: must be strictly between 0 and 1"),
-                   (Target(max_response_s=0.0), "--max-response-s 0.0: must be > 0 s"),
-                   (Target(pm=0.0), "--pm 0.0: a probability of misdetection strictly between 0 and 1")):
+    for t, msg in (
+        (Target(rate_per_h=0.0), "--target-fa-per-h 0.0: must be a rate > 0"),
+        (Target(rate_per_h=-1e-4), "must be a rate > 0"),
+        (Target(confidence=1.0), "--confidence 1.0: must be strictly between 0 and 1"),
+        (Target(max_response_s=0.0), "--max-response-s 0.0: must be > 0 s"),
+        (Target(pm=0.0), "--pm 0.0: a probability of misdetection strictly between 0 and 1"),
+    ):
         with pytest.raises(InputDataError, match=msg):
             t.validate()
     from typer.testing import CliRunner
 
     from flightmode.scenarios.cli import app
 
-    cases = ((["certify", str(tmp_path), "--target-fa-per-h", "0"], "--target-fa-per-h 0.0: must be a rate > 0"),
-             (["certify", str(tmp_path)], "no flights.parquet: not a dataset made by `flightmode dataset`"),
-             (["certify", str(tmp_path), "--k", "0,4"], "--k 0.0: the threshold k sigma^2 needs k > 0"),
-             (["certify", str(tmp_path), "--window-s", ""], "--window-s: the grid axis is empty"),
-             (["certify", str(tmp_path), "--k", "4,4"], "--k: a value is given twice"),
-             (["sweep", str(tmp_path), str(tmp_path)], "several datasets: give --out"))
+    cases = (
+        (["certify", str(tmp_path), "--target-fa-per-h", "0"], "--target-fa-per-h 0.0: must be a rate > 0"),
+        (["certify", str(tmp_path)], "no flights.parquet: not a dataset made by `flightmode dataset`"),
+        (["certify", str(tmp_path), "--k", "0,4"], "--k 0.0: the threshold k sigma^2 needs k > 0"),
+        (["certify", str(tmp_path), "--window-s", ""], "--window-s: the grid axis is empty"),
+        (["certify", str(tmp_path), "--k", "4,4"], "--k: a value is given twice"),
+        (["sweep", str(tmp_path), str(tmp_path)], "several datasets: give --out"),
+    )
     for args, msg in cases:
         r = CliRunner().invoke(app, args)
         assert r.exit_code == 2, (args, r.output)

@@ -106,9 +106,25 @@ def test_sigkill_mid_run_then_resume_gives_the_uninterrupted_dataset(tmp_path, f
 @pytest.mark.slow
 def test_a_scheduler_and_two_workers_on_localhost_give_the_same_dataset(tmp_path, family_file, reference):
     sched_file = tmp_path / "scheduler.json"
-    procs = [subprocess.Popen(["dask", "scheduler", "--host", "127.0.0.1", "--port", "0", "--dashboard-address",
-                               "127.0.0.1:0", "--scheduler-file", str(sched_file)],
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)]
+    procs = [
+        subprocess.Popen(
+            [
+                "dask",
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--dashboard-address",
+                "127.0.0.1:0",
+                "--scheduler-file",
+                str(sched_file),
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+        )
+    ]
     try:
         t0 = time.monotonic()
         while not sched_file.exists():
@@ -118,12 +134,43 @@ def test_a_scheduler_and_two_workers_on_localhost_give_the_same_dataset(tmp_path
         address = json.loads(sched_file.read_text())["address"]
         assert address.startswith("tcp://127.0.0.1:")
         for _ in range(2):
-            procs.append(subprocess.Popen(["dask", "worker", address, "--nthreads", "1", "--host", "127.0.0.1",
-                                           "--no-dashboard", "--memory-limit", "0"],
-                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True))
+            procs.append(
+                subprocess.Popen(
+                    [
+                        "dask",
+                        "worker",
+                        address,
+                        "--nthreads",
+                        "1",
+                        "--host",
+                        "127.0.0.1",
+                        "--no-dashboard",
+                        "--memory-limit",
+                        "0",
+                    ],
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                    start_new_session=True,
+                )
+            )
         out = tmp_path / "ds"
-        r = subprocess.run(["flightmode", "dataset", str(family_file), "--n", str(N), "--out", str(out),
-                            "--scheduler", address, "--rrd"], capture_output=True, text=True, timeout=600)
+        r = subprocess.run(
+            [
+                "flightmode",
+                "dataset",
+                str(family_file),
+                "--n",
+                str(N),
+                "--out",
+                str(out),
+                "--scheduler",
+                address,
+                "--rrd",
+            ],
+            capture_output=True,
+            text=True,
+            timeout=600,
+        )
         assert r.returncode == 0, r.stdout + r.stderr
     finally:
         for p in procs:
@@ -199,12 +246,14 @@ def test_the_card_documents_the_dataset_and_its_four_loaders_read_it(tmp_path, r
     assert f"{N} ok, 0 failed" in card and f"samples: {total:,}" in card
     for col in ("acc_x_g", "in_flight_window", "phase", "flight_id", "aircraft"):
         assert f"`{col}`" in card
-    blocks = dict(zip(("pyarrow", "polars", "duckdb", "datasets"), re.findall(r"```python\n(.*?)```", card, re.S)))
+    blocks = dict(
+        zip(("pyarrow", "polars", "duckdb", "datasets"), re.findall(r"```python\n(.*?)```", card, re.S))
+    )
     assert len(blocks) == 4
     got = {}
     for name, code in blocks.items():
         ns: dict = {}
-        exec(code, ns)  # noqa: S102  the card's own example, as a reader would paste it
+        exec(code, ns)
         got[name] = ns
     assert got["pyarrow"]["table"].num_rows == in_window  # filtered on the label
     assert got["polars"]["df"].shape[0] == total and "aircraft" in got["polars"]["df"].columns
@@ -247,9 +296,24 @@ def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_fil
     with pytest.raises(DatasetError, match="already holds a dataset of this family: pass --resume"):
         check_request(str(family_file), 2, ours)
     check_request(str(family_file), 2, ours, resume=True)
-    r = subprocess.run([sys.executable, "-m", "flightmode.scenarios.cli", "dataset", str(family_file), "--n", "0",
-                        "--out", str(out)], capture_output=True, text=True)
-    assert r.returncode == 2 and r.stderr.strip().splitlines() == ["error: --n 0: the number of flights must be a positive integer"]
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "flightmode.scenarios.cli",
+            "dataset",
+            str(family_file),
+            "--n",
+            "0",
+            "--out",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+    )
+    assert r.returncode == 2 and r.stderr.strip().splitlines() == [
+        "error: --n 0: the number of flights must be a positive integer"
+    ]
 
 
 def _same_response(sweep_s: float, detector_s) -> bool:
@@ -270,20 +334,28 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
     from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.grid import Grid
     from flightmode.scenarios.run_io import read_samples
-    from flightmode.scenarios.sweep import sigma2_of_flight, at_point, read_sweep, summarise, sweep
+    from flightmode.scenarios.sweep import at_point, read_sweep, sigma2_of_flight, summarise, sweep
 
-    grid = Grid(methods=(("nmv", 1.0), ("emv", 5.0)), windows_s=(1.0, 2.0), ks=(3.0, 4.0, 5.0),
-                time_thresholds_s=(2.0, 4.0))
+    grid = Grid(
+        methods=(("nmv", 1.0), ("emv", 5.0)),
+        windows_s=(1.0, 2.0),
+        ks=(3.0, 4.0, 5.0),
+        time_thresholds_s=(2.0, 4.0),
+    )
     result = sweep(reference, grid, out=tmp_path / "sweep")
     table = result.points
     assert not result.failed and table.num_rows == len(grid) * N
     back = read_sweep(tmp_path / "sweep")
-    assert back.points.equals(table) and back.phases.equals(result.phases) and back.static.equals(result.static)
+    assert (
+        back.points.equals(table) and back.phases.equals(result.phases) and back.static.equals(result.static)
+    )
     assert pq.read_table(tmp_path / "sweep" / "points.parquet").equals(table)
     # seed 000's point with sigma^2 from each unit's bench calibration (regenerated from the flight's
     # scenario and seed) is the dataset's own detector run: the same false statics and response, exactly
     manifest = read_manifest(reference)
-    rec = at_point(table, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0})
+    rec = at_point(
+        table, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0}
+    )
     assert len(rec) == N
     for r in rec:
         m = next(x for x in manifest.values() if x["flight_id"] == r["flight_id"])
@@ -293,25 +365,44 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
     row = manifest[0]
     cols, _ = read_samples(reference / row["samples_file"])
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
-    for method, weight, w, k, tth in (("emv", 5.0, 2.0, 5.0, 2.0), ("emv", 5.0, 1.0, 3.0, 4.0), ("nmv", 1.0, 2.0, 5.0, 2.0)):
-        p = DetectorParams(fs_hz=100.0, window_s=w, k_sigma=k, time_threshold_s=tth, method=method, weight=weight)
+    for method, weight, w, k, tth in (
+        ("emv", 5.0, 2.0, 5.0, 2.0),
+        ("emv", 5.0, 1.0, 3.0, 4.0),
+        ("nmv", 1.0, 2.0, 5.0, 2.0),
+    ):
+        p = DetectorParams(
+            fs_hz=100.0, window_s=w, k_sigma=k, time_threshold_s=tth, method=method, weight=weight
+        )
         e = evaluate(cols["t_s"], cols["acc_g"], labels, p, sigma2_of_flight("preset", row, cols)(p.window))
-        got = [r for r in at_point(table, {"method": method, "weight": weight, "window_s": w, "k": k,
-                                           "time_threshold_s": tth}) if r["flight_id"] == row["flight_id"]]
+        got = [
+            r
+            for r in at_point(
+                table, {"method": method, "weight": weight, "window_s": w, "k": k, "time_threshold_s": tth}
+            )
+            if r["flight_id"] == row["flight_id"]
+        ]
         assert len(got) == 1
-        assert got[0]["false_static_count"] == e.false_static_count and got[0]["false_static_s"] == e.false_static_s
+        assert (
+            got[0]["false_static_count"] == e.false_static_count
+            and got[0]["false_static_s"] == e.false_static_s
+        )
         assert _same_response(got[0]["response_s"], e.response_s)
         assert got[0]["missed_static_s"] == e.missed_static_s
         # the per-phase counts: every in-window check once, the joint count never above an axis's
-        ph = [x for x in result.phases.to_pylist() if (x["flight_id"], x["method"], x["window_s"], x["k"])
-              == (row["flight_id"], method, w, k)]
+        ph = [
+            x
+            for x in result.phases.to_pylist()
+            if (x["flight_id"], x["method"], x["window_s"], x["k"]) == (row["flight_id"], method, w, k)
+        ]
         assert sum(x["checks"] for x in ph) == e.in_flight_checks
         assert all(x["under_all"] <= min(x["under_x"], x["under_y"], x["under_z"]) for x in ph)
     # the static statistics: one row per moving variance and flight, each histogram holding every check
     st = result.static.to_pylist()
     assert len(st) == 4 * N
     for r in st:
-        assert sum(r["hist_x"]) == sum(r["hist_max"]) == r["static_checks"] > 1000  # > 15 min at rest, W_s <= 2 s
+        assert (
+            sum(r["hist_x"]) == sum(r["hist_max"]) == r["static_checks"] > 1000
+        )  # > 15 min at rest, W_s <= 2 s
     # the breakdown at that point: each condition's values partition the flights and their events
     from flightmode.scenarios.sweep import CONDITIONS, breakdown
 
@@ -322,9 +413,18 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
         assert sum(r["false_statics"] for r in part) == sum(r["false_static_count"] for r in rec)
     # by phase: the phases' in-window hours add up to the flights' (1 s checks tile the window to a
     # second per flight), and every false static began in one of them
-    bp = [r for r in breakdown(table, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0},
-                               result.phases) if r["condition"] == "phase"]
-    assert sum(r["in_window_h"] for r in bp) == pytest.approx(sum(r["in_window_h"] for r in rec), abs=N / 3600)
+    bp = [
+        r
+        for r in breakdown(
+            table,
+            {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0},
+            result.phases,
+        )
+        if r["condition"] == "phase"
+    ]
+    assert sum(r["in_window_h"] for r in bp) == pytest.approx(
+        sum(r["in_window_h"] for r in rec), abs=N / 3600
+    )
     assert sum(r["false_statics"] for r in bp) == sum(r["false_static_count"] for r in rec)
     assert {"cruise", "taxi_out", "takeoff_roll"} <= {r["value"] for r in bp}
     # two worker processes give the same rows as this process
@@ -347,7 +447,9 @@ def test_sweep_re_senses_full_truth_flights_with_other_presets(tmp_path, family_
 
     grid = Grid(methods=(("nmv", 1.0),), windows_s=(1.0,), ks=(4.0,), time_thresholds_s=(4.0,))
     # a 10 Hz truth cannot be re-sensed (the floor vibration is 10-30 Hz): said before any work
-    with pytest.raises(InputDataError, match=r"--sensor re-senses each flight from its full-rate truth.*--truth full"):
+    with pytest.raises(
+        InputDataError, match=r"--sensor re-senses each flight from its full-rate truth.*--truth full"
+    ):
         sweep(reference, grid, sensors=("lis302dl",))
     with pytest.raises(SensorError, match="lis302"):
         sweep(reference, grid, sensors=("lis302d",))
@@ -355,8 +457,12 @@ def test_sweep_re_senses_full_truth_flights_with_other_presets(tmp_path, family_
     rows = make_dataset(str(family_file), 1, full, workers=1, truth="full")
     own = rows[0]["sensor_preset"]
     res = sweep(full, grid, sensors=(own, "lis302dl-8g"))
-    got = {r["sensor_preset"]: r for r in at_point(res.points, {"method": "nmv", "weight": 1.0, "window_s": 1.0,
-                                                                "k": 4.0, "time_threshold_s": 4.0})}
+    got = {
+        r["sensor_preset"]: r
+        for r in at_point(
+            res.points, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0}
+        )
+    }
     assert sorted(got) == sorted({own, "lis302dl-8g"})
     stored = sweep(full, grid).points.to_pylist()[0]
     # re-sensed with its own preset from the full-rate truth, the flight is the flight: the same labels
@@ -389,7 +495,9 @@ def _validate_a_population(ten_hz, full, row):
     doc = json.loads(r.output)
     assert doc["flights_validated"] == 1 and not doc["not_validated"] and doc["failed_to_fly"] == 0
     checks = {c["figure"]: c for c in pq.read_table(out).to_pylist()}
-    assert {c["flight_id"] for c in checks.values()} == {row["flight_id"]} and len(checks) == len(doc["figures"])
+    assert {c["flight_id"] for c in checks.values()} == {row["flight_id"]} and len(checks) == len(
+        doc["figures"]
+    )
     # the flight's checks see the stream its own detector saw: the same unit's sigma^2 and window give
     # the same number of in-flight checks as the dataset's detector counted when it flew
     note = checks["in-flight checks under 4 sigma^2 on all axes at once"]["note"]
@@ -424,9 +532,12 @@ def _eobs_tradeoff_on_a_population(ten_hz, full):
     track = run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
     from flightmode.scenarios.scenario import Scenario
 
-    direct = tradeoff_on_track(track, Scenario.from_toml_text(r0["scenario_toml"]), (30.0, 120.0), 216, (1, 2))
-    assert [(r["interval_s"], r["m"], r["false_statics"]) for r in rows] == \
-        [(d.burst_interval_s, d.m, d.false_statics) for d in direct]
+    direct = tradeoff_on_track(
+        track, Scenario.from_toml_text(r0["scenario_toml"]), (30.0, 120.0), 216, (1, 2)
+    )
+    assert [(r["interval_s"], r["m"], r["false_statics"]) for r in rows] == [
+        (d.burst_interval_s, d.m, d.false_statics) for d in direct
+    ]
     # samples per hour per axis: N per burst, one burst per interval
     for r in rows:
         assert r["samples_per_hour_per_axis"] == pytest.approx(r["burst_samples"] * 3600.0 / r["interval_s"])
@@ -459,8 +570,13 @@ def certified(tmp_path_factory, reference):
     broken = root / "broken"
     shutil.copytree(reference, broken)
     rows = read_manifest(broken)
-    rows[1] = {k: None for k in rows[1]} | {"flight_id": "000001", "index": 1, "status": "failed", "attempts": 2,
-                                             "error": "FlightDivergedError: stall in the flare"}
+    rows[1] = {k: None for k in rows[1]} | {
+        "flight_id": "000001",
+        "index": 1,
+        "status": "failed",
+        "attempts": 2,
+        "error": "FlightDivergedError: stall in the flare",
+    }
     _write_manifest(broken, rows)
     out = root / "out"
     msgs: list[str] = []
@@ -476,7 +592,9 @@ def test_certify_recommends_from_the_sweep_and_excludes_failed_flights(certified
     from flightmode.scenarios.sweep import POINT_KEYS
 
     cert, out, msgs = certified
-    assert [x["flight_id"] for x in cert.meta["excluded"]] == ["000001"]  # excluded with a count, not silently
+    assert [x["flight_id"] for x in cert.meta["excluded"]] == [
+        "000001"
+    ]  # excluded with a count, not silently
     assert "Excluded as failed: <b>1</b>" in (out / "report.html").read_text()
     assert all(s["flights"] == N - 1 for s in cert.summary)
     # the same flight in two datasets would count its hours twice: refused before any work
@@ -495,21 +613,37 @@ def test_certify_recommends_from_the_sweep_and_excludes_failed_flights(certified
     # the provisional point has the fewest false statics of the points answering within 60 s, then the best response
     fast = [s for s in cert.summary if s["response_p95_s"] <= 60.0]
     assert p["false_statics"] == min(s["false_statics"] for s in fast)
-    assert p["response_p95_s"] == min(s["response_p95_s"] for s in fast if s["false_statics"] == p["false_statics"])
+    assert p["response_p95_s"] == min(
+        s["response_p95_s"] for s in fast if s["false_statics"] == p["false_statics"]
+    )
+
     # the Pareto front: no point beats a front point everywhere, and every other point is beaten by one
     def beats(a, b):
-        ge = (a["rate_upper_per_h"] <= b["rate_upper_per_h"] and a["response_p95_s"] <= b["response_p95_s"]
-              and a["availability"] >= b["availability"])
+        ge = (
+            a["rate_upper_per_h"] <= b["rate_upper_per_h"]
+            and a["response_p95_s"] <= b["response_p95_s"]
+            and a["availability"] >= b["availability"]
+        )
         return ge and (a["rate_upper_per_h"], a["response_p95_s"], -a["availability"]) != (
-            b["rate_upper_per_h"], b["response_p95_s"], -b["availability"])
+            b["rate_upper_per_h"],
+            b["response_p95_s"],
+            -b["availability"],
+        )
+
     front = set(cert.pareto)
     for i, s in enumerate(cert.summary):
         assert any(beats(t, s) for t in cert.summary) == (i not in front)
     assert cert.seed000 is not None and {k: cert.seed000[k] for k in POINT_KEYS} == SEED000_POINT
     # a larger target (6 false statics per hour; 95 %: 0.5 h with none) is met by the same flights'
     # sweep, reused: the point with the best response among those whose bound is under it
-    cert2 = certify([out.parent / "broken"], Grid(*GRID_SMALL), Target(6.0, 0.95, None, 1e-2), out=out,
-                    log=msgs.append, figures=False)
+    cert2 = certify(
+        [out.parent / "broken"],
+        Grid(*GRID_SMALL),
+        Target(6.0, 0.95, None, 1e-2),
+        out=out,
+        log=msgs.append,
+        figures=False,
+    )
     assert any("reusing the sweep" in m for m in msgs)
     ok = [s for s in cert2.summary if s["rate_upper_per_h"] <= 6.0]
     assert cert2.recommendation["status"] == "meets"
@@ -549,13 +683,17 @@ def test_certify_report_renders_every_figure_in_headless_chromium(certified, tmp
     _, out, _ = certified
     requests: list[str] = []
     with sync_playwright() as pw:
-        b = pw.chromium.launch(executable_path=chromium, headless=True, args=["--no-sandbox", "--no-first-run"])
+        b = pw.chromium.launch(
+            executable_path=chromium, headless=True, args=["--no-sandbox", "--no-first-run"]
+        )
         page = b.new_page(viewport={"width": 1280, "height": 1600})
         page.set_default_timeout(180_000)  # a loaded 2-core machine (tests/viz/test_rrd.py's web viewer)
         page.on("request", lambda r: requests.append(r.url))
         page.goto((out / "report.html").resolve().as_uri())
         page.wait_for_load_state("load")
-        imgs = page.eval_on_selector_all("img", "els => els.map(e => [e.alt, e.complete, e.naturalWidth, e.naturalHeight])")
+        imgs = page.eval_on_selector_all(
+            "img", "els => els.map(e => [e.alt, e.complete, e.naturalWidth, e.naturalHeight])"
+        )
         text = page.inner_text("body")
         page.screenshot(path=str(tmp_path / "report.png"), full_page=False)
         b.close()

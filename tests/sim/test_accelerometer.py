@@ -170,8 +170,7 @@ DATASHEET = {
     "lis302dl": (8, 0, (-128, 127), 0.018, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
     "lis302dl-8g": (8, 0, (-128, 127), 0.072, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
     "lis302dl-logged16": (16, 0, (-32768, 32767), 4.6 / 2**16, (100.0, 400.0), 0.5, 2.23e-3, 0.10),
-    "eobs": (12, 2048, (0, 4095), 0.0022, (3.33, 5.0, 10.0, 33.33, 50.0, 100.0), None,
-             None, None),
+    "eobs": (12, 2048, (0, 4095), 0.0022, (3.33, 5.0, 10.0, 33.33, 50.0, 100.0), None, None, None),
 }
 
 
@@ -205,8 +204,14 @@ def test_every_preset_validates():
         f = np.zeros((40, 3))
         f[:20] = 100.0
         f[20:] = -100.0
-        m = measure(f, p.odr_hz, 0.0, dataclasses.replace(p, bandwidth_hz=None, noise_g=0.0), UnitDraw(),
-                    np.random.default_rng(0))
+        m = measure(
+            f,
+            p.odr_hz,
+            0.0,
+            dataclasses.replace(p, bandwidth_hz=None, noise_g=0.0),
+            UnitDraw(),
+            np.random.default_rng(0),
+        )
         assert (m.counts[:20] == crange[1]).all() and (m.counts[20:] == crange[0]).all(), name
         assert m.acc_g.min() == pytest.approx(-span_g, rel=1e-12) and m.clipped.all(), name
         assert m.acc_g.max() == pytest.approx((crange[1] - zero) * lsb, rel=1e-12), name
@@ -242,7 +247,13 @@ def test_eobs_burst_table_and_worked_examples():
     per_axis, data, mem = eobs_burst(1197, 3, newer_firmware=True)
     assert (data, mem) == (1188, 1216) and per_axis * 3 == 792
     # a few rows of the table: setting -> data bytes, samples (all axes)
-    for setting, data_bytes, samples in [(1, 54, 36), (63, 54, 36), (64, 117, 78), (442, 495, 330), (693, 684, 456)]:
+    for setting, data_bytes, samples in [
+        (1, 54, 36),
+        (63, 54, 36),
+        (64, 117, 78),
+        (442, 495, 330),
+        (693, 684, 456),
+    ]:
         got = eobs_burst(setting, 1)
         assert got[1] == data_bytes and got[0] == samples
     p = eobs_preset(acc_interval_s=1.0, byte_count=1197, odr_per_axis_hz=33.33)

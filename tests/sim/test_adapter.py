@@ -26,7 +26,9 @@ def test_derived_height_above_ground_matches_jsbsims_own(model, n_eng):
             for _ in range(3):
                 ac.step()
             derived = ac.get("position/h-sl-ft") * FT_M - elev_m
-            assert derived == pytest.approx(ac.get("position/h-agl-ft") * FT_M, abs=0.01 + 1e-5 * agl_ft * FT_M)
+            assert derived == pytest.approx(
+                ac.get("position/h-agl-ft") * FT_M, abs=0.01 + 1e-5 * agl_ft * FT_M
+            )
 
 
 @pytest.mark.parametrize("model,n_eng", [("A320", 2), ("737", 2)])

@@ -7,6 +7,9 @@ import dataclasses
 
 import numpy as np
 import pytest
+from scipy.stats import chi2
+
+from flightmode.errors import SensorError
 from flightmode.sim.sensor.barometer import (
     BMP581_TABLE9,
     PRESETS,
@@ -16,9 +19,6 @@ from flightmode.sim.sensor.barometer import (
     measure,
     with_odr,
 )
-from scipy.stats import chi2
-
-from flightmode.errors import SensorError
 from flightmode.units import HPA_PA
 
 NOISY = [name for name, p in PRESETS.items() if p.noise_pa > 0]
@@ -84,8 +84,14 @@ def test_the_unit_offset_and_temperature_coefficient():
     ideal = get_preset("ideal")
     t = np.linspace(0.0, 10.0, 1001)
     unit = BaroUnit(offset_pa=12.0, tco_pa_per_k=0.4)
-    _, y = measure(t, np.full(t.shape, 1e5), ideal, np.random.default_rng(0), unit=unit,
-                   temperature_c=np.full(t.shape, 35.0))
+    _, y = measure(
+        t,
+        np.full(t.shape, 1e5),
+        ideal,
+        np.random.default_rng(0),
+        unit=unit,
+        temperature_c=np.full(t.shape, 35.0),
+    )
     np.testing.assert_allclose(y, 1e5 + 12.0 + 0.4 * 10.0, rtol=0, atol=1e-9)
 
 

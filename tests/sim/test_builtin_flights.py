@@ -134,9 +134,11 @@ def test_turbulence_intensity_rises_with_severity(fly_cached):
         tau = (1.0 + 2.0 * np.sum(acf[1 : int(30.0 / dt)] ** 2)) * dt
         rel_se.append(float(np.sqrt(tau / (2.0 * n * dt))))
     calm = (tr.t_s >= t_lo + 1550.0) & (tr.t_s < t_lo + 1690.0)
-    print(f"\nvertical load factor std (g): calm {nz[calm].std():.4f}, light {stds[0]:.4f}, "
-          f"moderate {stds[1]:.4f}, severe {stds[2]:.4f}; peak |dn| (g): {[round(p, 3) for p in peaks]}; "
-          f"EDR: {[seg.edr for seg in segs]}; std rel. error {[round(e, 3) for e in rel_se]}")
+    print(
+        f"\nvertical load factor std (g): calm {nz[calm].std():.4f}, light {stds[0]:.4f}, "
+        f"moderate {stds[1]:.4f}, severe {stds[2]:.4f}; peak |dn| (g): {[round(p, 3) for p in peaks]}; "
+        f"EDR: {[seg.edr for seg in segs]}; std rel. error {[round(e, 3) for e in rel_se]}"
+    )
     assert nz[calm].std() < stds[0] < stds[1] < stds[2]
     # 1. ICAO/FAA intensity at the CG: light < 0.5 g change, moderate 0.5-1.0 g, severe > 1.0 g
     assert peaks[0] < 0.5

@@ -9,6 +9,9 @@ import math
 
 import numpy as np
 import pytest
+
+from flightmode.errors import AircraftError, InputDataError, ScenarioError
+from flightmode.labels import AIRBORNE_PHASES
 from flightmode.sim.flight import atmosphere as isa
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.sim.flight.cabin import (
@@ -19,27 +22,41 @@ from flightmode.sim.flight.cabin import (
     draw_weather,
     get_cabin_profile,
 )
-
-from flightmode.errors import AircraftError, InputDataError, ScenarioError
-from flightmode.labels import AIRBORNE_PHASES
 from flightmode.units import FPM_MPS, FT_M, HPA_PA, PSI_PA
 
 FL350 = 35_000 * FT_M
 GROUND = ("gate", "engine_start", "pushback", "taxi_out")
 
 
-def synthetic_flight(fs_hz=10.0, field_m=0.0, arrival_m=None, cruise_ft=35_000.0, climb_fpm=2000.0,
-                     descent_fpm=2000.0, cruise_s=1200.0, ground_s=300.0):
+def synthetic_flight(
+    fs_hz=10.0,
+    field_m=0.0,
+    arrival_m=None,
+    cruise_ft=35_000.0,
+    climb_fpm=2000.0,
+    descent_fpm=2000.0,
+    cruise_s=1200.0,
+    ground_s=300.0,
+):
     """Gate to gate on a straight-line profile: ground phases at the field, a constant-rate climb to
     the cruise level, cruise, a constant-rate descent, rollout and taxi at the arrival field.
     Returns (t_s, alt_m, phase names)."""
     arr = field_m if arrival_m is None else arrival_m
     top = cruise_ft * FT_M
-    segs = [("gate", 120, field_m), ("engine_start", 60, field_m), ("pushback", 60, field_m),
-            ("taxi_out", ground_s, field_m), ("takeoff_roll", 40, field_m),
-            ("climb", (top - field_m) / (climb_fpm * FPM_MPS), None), ("cruise", cruise_s, top),
-            ("descent", (top - arr) / (descent_fpm * FPM_MPS), None), ("rollout", 30, arr),
-            ("taxi_in", ground_s, arr), ("shutdown", 30, arr), ("parked", 300, arr)]
+    segs = [
+        ("gate", 120, field_m),
+        ("engine_start", 60, field_m),
+        ("pushback", 60, field_m),
+        ("taxi_out", ground_s, field_m),
+        ("takeoff_roll", 40, field_m),
+        ("climb", (top - field_m) / (climb_fpm * FPM_MPS), None),
+        ("cruise", cruise_s, top),
+        ("descent", (top - arr) / (descent_fpm * FPM_MPS), None),
+        ("rollout", 30, arr),
+        ("taxi_in", ground_s, arr),
+        ("shutdown", 30, arr),
+        ("parked", 300, arr),
+    ]
     ts, hs, ph = [], [], []
     n0 = 0
     for name, dur, level in segs:
@@ -64,7 +81,9 @@ def _expected_cruise_cabin_m(model: str, cruise_m: float) -> float:
         psi = 7.45 if cruise_m <= 28_000 * FT_M else 7.80 if cruise_m <= 37_000 * FT_M else 8.35
         dp = psi * PSI_PA
     else:  # max cabin altitude at the type's certified ceiling
-        dp = isa.pressure_pa(prof.max_cabin_alt_ft * FT_M) - isa.pressure_pa(get_profile(model).ceiling_ft * FT_M)
+        dp = isa.pressure_pa(prof.max_cabin_alt_ft * FT_M) - isa.pressure_pa(
+            get_profile(model).ceiling_ft * FT_M
+        )
     return min(prof.max_cabin_alt_ft * FT_M, float(isa.pressure_altitude_m(isa.pressure_pa(cruise_m) + dp)))
 
 
@@ -159,14 +178,18 @@ def test_a_short_descent_raises_the_cabin_descent_rate_up_to_the_maximum():
 
 def test_ground_is_ambient_with_the_doors_open_and_on_the_ground():
     t, h, ph = synthetic_flight(field_m=430.0, arrival_m=1230.0)
-    c = cabin_pressure(t, h, ph, FL350, "A320", weather=Weather(1002.0, 7.0), arrival_weather=Weather(1021.0, -3.0))
+    c = cabin_pressure(
+        t, h, ph, FL350, "A320", weather=Weather(1002.0, 7.0), arrival_weather=Weather(1021.0, -3.0)
+    )
     door = np.isin(ph, ["gate", "parked"])
     assert np.array_equal(c.cabin_pressure_pa[door], c.ambient_pressure_pa[door])  # exactly
     before = np.isin(ph, GROUND)
     np.testing.assert_allclose(c.cabin_pressure_pa[before], c.ambient_pressure_pa[before], rtol=1e-12)
+
     # the ambient at the fields is the QNH's station pressure (ISA law from QNH to the elevation)
     def station(qnh, e):
         return qnh * HPA_PA * ((isa.T0_K + isa.LAPSE_KPM * e) / isa.T0_K) ** isa._EXP
+
     assert c.ambient_pressure_pa[0] == pytest.approx(station(1002.0, 430.0), rel=1e-12)
     assert c.ambient_pressure_pa[-1] == pytest.approx(station(1021.0, 1230.0), rel=1e-12)
 
@@ -198,7 +221,9 @@ def test_prepressurisation_on_the_takeoff_roll_and_release_after_landing():
 def test_holds_pressurised_or_not():
     t, h, ph = synthetic_flight()
     p = cabin_pressure(t, h, ph, FL350, "737", hold="pressurised")
-    u = cabin_pressure(t, h, ph, FL350, "737", hold="unpressurised")  # valid: it changes the schedule of the hold
+    u = cabin_pressure(
+        t, h, ph, FL350, "737", hold="unpressurised"
+    )  # valid: it changes the schedule of the hold
     assert np.array_equal(p.hold_pressure_pa, p.cabin_pressure_pa)
     assert np.array_equal(u.hold_pressure_pa, u.ambient_pressure_pa)
     assert np.array_equal(u.cabin_pressure_pa, p.cabin_pressure_pa)  # the cabin itself does not change
@@ -210,8 +235,10 @@ def test_ambient_pressure_against_the_hypsometric_equation():
 
     # dp/dz = -p g / (R T), T the ISA temperature of the pressure level plus the deviation
     for qnh, dev in ((1013.25, 0.0), (990.0, 15.0), (1035.0, -12.0)):
+
         def rhs(z, p, dev=dev):
             return [-p[0] * isa._c.g / (isa.R_AIR * (isa.temperature_k(isa.pressure_altitude_m(p[0])) + dev))]
+
         sol = solve_ivp(rhs, (0.0, 12_000.0), [qnh * HPA_PA], rtol=1e-11, atol=1e-8, dense_output=True)
         for z in (1000.0, 5000.0, 10_000.0, 12_000.0):
             assert float(ambient_pressure_pa(z, qnh, dev)) == pytest.approx(float(sol.sol(z)[0]), abs=0.05)
@@ -233,12 +260,26 @@ def test_bad_input_raises_typed_one_line_errors():
     t, h, ph = synthetic_flight()
     cases = [
         (AircraftError, 'did you mean "A320"', lambda: cabin_pressure(t, h, ph, FL350, "A32")),
-        (ScenarioError, 'did you mean "unpressurised"',
-         lambda: cabin_pressure(t, h, ph, FL350, "A320", hold="unpressurized")),
-        (InputDataError, "NaN", lambda: cabin_pressure(t, np.where(t == t[500], np.nan, h), ph, FL350, "A320")),
-        (InputDataError, "uniformly", lambda: cabin_pressure(np.where(t > 100, t + 5.0, t), h, ph, FL350, "A320")),
-        (InputDataError, 'did you mean "cruise"',
-         lambda: cabin_pressure(t, h, np.where(ph == "cruise", "cruse", ph), FL350, "A320")),
+        (
+            ScenarioError,
+            'did you mean "unpressurised"',
+            lambda: cabin_pressure(t, h, ph, FL350, "A320", hold="unpressurized"),
+        ),
+        (
+            InputDataError,
+            "NaN",
+            lambda: cabin_pressure(t, np.where(t == t[500], np.nan, h), ph, FL350, "A320"),
+        ),
+        (
+            InputDataError,
+            "uniformly",
+            lambda: cabin_pressure(np.where(t > 100, t + 5.0, t), h, ph, FL350, "A320"),
+        ),
+        (
+            InputDataError,
+            'did you mean "cruise"',
+            lambda: cabin_pressure(t, h, np.where(ph == "cruise", "cruse", ph), FL350, "A320"),
+        ),
         (InputDataError, "cruise_alt_m", lambda: cabin_pressure(t, h, ph, -1.0, "A320")),
     ]
     for err, text, call in cases:

@@ -50,8 +50,11 @@ def _routes(seed: int, holds_s=(30.0, 60.0)):
     from flightmode.sim.flight.aircraft_profiles import get_profile
 
     plan = Scenario.builtin("gva-lhr-a320").plan
-    plan = dataclasses.replace(plan, taxi_out=dataclasses.replace(plan.taxi_out, length_m=2000.0, holds_s=holds_s),
-                               taxi_in=dataclasses.replace(plan.taxi_in, length_m=2500.0))
+    plan = dataclasses.replace(
+        plan,
+        taxi_out=dataclasses.replace(plan.taxi_out, length_m=2000.0, holds_s=holds_s),
+        taxi_in=dataclasses.replace(plan.taxi_in, length_m=2500.0),
+    )
     prof = get_profile(plan.aircraft)
     tx = draw_taxi(plan, prof, np.random.default_rng(seed))
     return plan, prof, tx
@@ -148,7 +151,9 @@ def test_taxi_in_routes_turn_as_often_as_the_real_tracks_statistics_count():
     for seed in range(40):
         rng = np.random.default_rng(seed)
         length_m = float(np.exp(rng.uniform(np.log(400.0), np.log(4000.0))))  # stand near or far
-        plan = dataclasses.replace(base, taxi_in=dataclasses.replace(base.taxi_in, length_m=length_m, holds_s=()))
+        plan = dataclasses.replace(
+            base, taxi_in=dataclasses.replace(base.taxi_in, length_m=length_m, holds_s=())
+        )
         tx = draw_taxi(plan, prof, rng)
         lay = tx.arrival
         route = taxi_in_route(plan.taxi_in, lay, tx.style, 1500.0, 10.0)

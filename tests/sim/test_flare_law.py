@@ -21,7 +21,9 @@ from flightmode.units import FPS_MPS, G0_MPS2
 FLARE_TAU_MAX_S = get_profile("737").flare_tau_max_s  # 6 s
 
 
-@pytest.mark.parametrize(("h0_ft", "sink0_fps", "td_fps"), [(50.0, 11.0, 2.0), (40.0, 12.5, 1.3), (50.0, 13.5, 3.0)])
+@pytest.mark.parametrize(
+    ("h0_ft", "sink0_fps", "td_fps"), [(50.0, 11.0, 2.0), (40.0, 12.5, 1.3), (50.0, 13.5, 3.0)]
+)
 def test_the_path_meets_the_runway_at_the_touchdown_sink_when_the_closed_form_says(h0_ft, sink0_fps, td_fps):
     h0, v0, vtd = h0_ft * 0.3048, sink0_fps * FPS_MPS, td_fps * FPS_MPS
     tau = exponential_flare_tau_s(h0, v0, vtd, FLARE_TAU_MAX_S)
@@ -31,8 +33,14 @@ def test_the_path_meets_the_runway_at_the_touchdown_sink_when_the_closed_form_sa
     # fly the command exactly: dh/dt = -v_cmd(h) until h = 0
     ground = lambda t, h: h[0]  # noqa: E731
     ground.terminal, ground.direction = True, -1
-    sol = solve_ivp(lambda t, h: [-exponential_flare_sink_cmd_mps(h[0], vtd, tau, v0)], (0.0, 60.0), [h0],
-                    events=ground, rtol=1e-10, atol=1e-12)
+    sol = solve_ivp(
+        lambda t, h: [-exponential_flare_sink_cmd_mps(h[0], vtd, tau, v0)],
+        (0.0, 60.0),
+        [h0],
+        events=ground,
+        rtol=1e-10,
+        atol=1e-12,
+    )
     t_td = sol.t_events[0][0]
     # h(t) = (h0 + tau v_td) exp(-t / tau) - tau v_td reaches 0 at t = tau ln(1 + h0 / (tau v_td));
     # the integrator's tolerances above make 1e-6 s far more than its error
@@ -55,7 +63,9 @@ def test_a_hard_landing_is_never_asked_for_more_sink_than_its_approach():
     # all the way down (no push towards more sink than the landing asks for)
     assert exponential_flare_tau_s(h0, 2.0 * FPS_MPS, 2.5 * FPS_MPS, FLARE_TAU_MAX_S) == FLARE_TAU_MAX_S
     for x in (h0, 1.0, 0.0):
-        assert exponential_flare_sink_cmd_mps(x, 2.5 * FPS_MPS, FLARE_TAU_MAX_S, 2.0 * FPS_MPS) == 2.5 * FPS_MPS
+        assert (
+            exponential_flare_sink_cmd_mps(x, 2.5 * FPS_MPS, FLARE_TAU_MAX_S, 2.0 * FPS_MPS) == 2.5 * FPS_MPS
+        )
 
 
 def test_a_long_time_constant_eases_a_hard_landing_from_the_flare_height():
@@ -84,11 +94,15 @@ def test_an_unknown_flare_law_is_refused_when_the_profile_is_made():
     from flightmode.errors import AircraftError
     from flightmode.sim.flight.aircraft_profiles import get_profile
 
-    with pytest.raises(AircraftError, match=r"unknown flare_law 'linear'; use one of constant_deceleration, exponential"):
+    with pytest.raises(
+        AircraftError, match=r"unknown flare_law 'linear'; use one of constant_deceleration, exponential"
+    ):
         dataclasses.replace(get_profile("737"), flare_law="linear")
 
 
-@pytest.mark.parametrize(("wind_kt", "extra_kt"), [(9.0, 0.0), (15.0, 0.0), (27.0, 4.0), (45.0, 10.0), (60.0, 10.0)])
+@pytest.mark.parametrize(
+    ("wind_kt", "extra_kt"), [(9.0, 0.0), (15.0, 0.0), (27.0, 4.0), (45.0, 10.0), (60.0, 10.0)]
+)
 def test_the_a320s_approach_speed_adds_airbus_wind_additive(wind_kt, extra_kt):
     """Airbus's rule: VAPP = VLS + 1/3 of the headwind, 5 kt at least and 15 kt at most (A320 FCOM).
     The profile's vapp_kt holds the 5 kt already, so the additive beyond it is 1/3 of the wind less
@@ -99,16 +113,20 @@ def test_the_a320s_approach_speed_adds_airbus_wind_additive(wind_kt, extra_kt):
     from flightmode.sim.flight.autopilot import Autopilot
     from flightmode.units import KT_MPS
 
-    ap = SimpleNamespace(prof=get_profile("A320"),
-                         draws=SimpleNamespace(atmosphere=SimpleNamespace(w20_mps=wind_kt * KT_MPS)))
+    ap = SimpleNamespace(
+        prof=get_profile("A320"), draws=SimpleNamespace(atmosphere=SimpleNamespace(w20_mps=wind_kt * KT_MPS))
+    )
     assert Autopilot.vapp_wind_additive_mps(ap) / KT_MPS == pytest.approx(extra_kt, abs=1e-9)
     # a type without the rule (all three parameters 0): no additive
-    ap.prof = dataclasses.replace(get_profile("fokker100"), vapp_wind_fraction=0.0, vapp_wind_included_kt=0.0,
-                                  vapp_wind_max_kt=0.0)
+    ap.prof = dataclasses.replace(
+        get_profile("fokker100"), vapp_wind_fraction=0.0, vapp_wind_included_kt=0.0, vapp_wind_max_kt=0.0
+    )
     assert Autopilot.vapp_wind_additive_mps(ap) == 0.0
 
 
-@pytest.mark.parametrize(("wind_kt", "extra_kt"), [(9.0, 0.0), (10.0, 0.0), (27.0, 8.5), (40.0, 15.0), (60.0, 15.0)])
+@pytest.mark.parametrize(
+    ("wind_kt", "extra_kt"), [(9.0, 0.0), (10.0, 0.0), (27.0, 8.5), (40.0, 15.0), (60.0, 15.0)]
+)
 def test_the_737s_approach_speed_adds_boeing_wind_additive(wind_kt, extra_kt):
     """Boeing's rule: half the headwind, VREF + 5 kt at least and VREF + 20 kt at most (737 FCTM). The
     profile's vapp_kt holds the 5 kt, so the additive beyond it is half the wind less 5 kt, between 0
@@ -120,8 +138,10 @@ def test_the_737s_approach_speed_adds_boeing_wind_additive(wind_kt, extra_kt):
     from flightmode.units import KT_MPS
 
     for aircraft in ("737", "fokker100"):
-        ap = SimpleNamespace(prof=get_profile(aircraft),
-                             draws=SimpleNamespace(atmosphere=SimpleNamespace(w20_mps=wind_kt * KT_MPS)))
+        ap = SimpleNamespace(
+            prof=get_profile(aircraft),
+            draws=SimpleNamespace(atmosphere=SimpleNamespace(w20_mps=wind_kt * KT_MPS)),
+        )
         assert Autopilot.vapp_wind_additive_mps(ap) / KT_MPS == pytest.approx(extra_kt, abs=1e-9), aircraft
 
 
@@ -141,7 +161,9 @@ def test_a_wind_additive_lands_the_type_in_a_27_kt_wind(fly_cached, aircraft, se
     seed-to-seed spread needs."""
     from flightmode.units import KT_MPS
 
-    sc, tr = fly_cached("pattern", seed=seed, aircraft=aircraft, **{"atmosphere.surface_wind_mps": 27.0 * KT_MPS})
+    sc, tr = fly_cached(
+        "pattern", seed=seed, aircraft=aircraft, **{"atmosphere.surface_wind_mps": 27.0 * KT_MPS}
+    )
     i = np.searchsorted(tr.t_s, tr.event_time("touchdown"))
     assert -tr.vertical_speed_mps[i - 1] / FPS_MPS < 8.0
 
@@ -158,22 +180,29 @@ def test_the_fokker100s_flare_lands_at_its_drawn_sink_on_average(fly_cached, qua
     seeds, not a population's: over seeds 0-39 the normal landings' mean is +0.94 ft/s."""
     errors = []
     for seed in range(6):
-        sc, tr = fly_cached("pattern", seed=seed, aircraft="fokker100",
-                            **{"landing.quality": quality, "takeoff.thrust_norm": None})
+        sc, tr = fly_cached(
+            "pattern",
+            seed=seed,
+            aircraft="fokker100",
+            **{"landing.quality": quality, "takeoff.thrust_norm": None},
+        )
         i = np.searchsorted(tr.t_s, tr.event_time("touchdown"))
         errors.append((-tr.vertical_speed_mps[i - 1] - tr.conditions["touchdown_sink_target_mps"]) / FPS_MPS)
     assert abs(np.mean(errors)) < 1.0, errors
 
 
-@pytest.mark.parametrize(("changes", "message"), [
-    ({"flare_aim_m": -1.0}, r"flare_aim_m -1 and flare_predict_s 0 must not be negative"),
-    ({"retard_height_ft": -1.0}, r"retard_height_ft -1 is negative; give the main gear's height \(ft\)"),
-    ({"flare_height_ft": 0.0}, r"flare_height_ft 0 is not a height; give the main gear's height \(ft\)"),
-    ({"flare_lift_attitude_rad": -0.1}, r"flare_lift_attitude_rad -0.1 must not be negative \(0: no"),
-    ({"vapp_wind_fraction": 1.5}, r"the approach wind additive needs 0 <= vapp_wind_fraction <= 1"),
-    ({"vapp_wind_included_kt": 20.0}, r"0 <= vapp_wind_included_kt <= vapp_wind_max_kt"),
-    ({"go_around_climb_fpm": -500.0}, r"go_around_climb_fpm -500 is not a climb; give a positive rate"),
-])
+@pytest.mark.parametrize(
+    ("changes", "message"),
+    [
+        ({"flare_aim_m": -1.0}, r"flare_aim_m -1 and flare_predict_s 0 must not be negative"),
+        ({"retard_height_ft": -1.0}, r"retard_height_ft -1 is negative; give the main gear's height \(ft\)"),
+        ({"flare_height_ft": 0.0}, r"flare_height_ft 0 is not a height; give the main gear's height \(ft\)"),
+        ({"flare_lift_attitude_rad": -0.1}, r"flare_lift_attitude_rad -0.1 must not be negative \(0: no"),
+        ({"vapp_wind_fraction": 1.5}, r"the approach wind additive needs 0 <= vapp_wind_fraction <= 1"),
+        ({"vapp_wind_included_kt": 20.0}, r"0 <= vapp_wind_included_kt <= vapp_wind_max_kt"),
+        ({"go_around_climb_fpm": -500.0}, r"go_around_climb_fpm -500 is not a climb; give a positive rate"),
+    ],
+)
 def test_a_bad_landing_or_go_around_figure_is_refused_when_the_profile_is_made(changes, message):
     import dataclasses
 
@@ -183,8 +212,12 @@ def test_a_bad_landing_or_go_around_figure_is_refused_when_the_profile_is_made(c
         dataclasses.replace(get_profile("A320"), **changes)
 
 
-STILL_AIR = {"atmosphere.surface_wind_mps": 0.0, "atmosphere.convective_velocity_mps": 0.0,
-             "atmosphere.background_edr": 0.01, "takeoff.thrust_norm": None}
+STILL_AIR = {
+    "atmosphere.surface_wind_mps": 0.0,
+    "atmosphere.convective_velocity_mps": 0.0,
+    "atmosphere.background_edr": 0.01,
+    "takeoff.thrust_norm": None,
+}
 
 
 @pytest.mark.slow
@@ -197,8 +230,9 @@ def test_the_a320s_flare_lands_where_it_aims_in_still_air(fly_cached):
     (sim.flight.draws); the order asks that at least half of the 1.5 ft/s between the targets survive."""
     flown = []
     for fps in (1.5, 3.0):
-        _, tr = fly_cached("pattern", seed=0, aircraft="A320", **STILL_AIR,
-                           **{"landing.sink_mps": fps * FPS_MPS})
+        _, tr = fly_cached(
+            "pattern", seed=0, aircraft="A320", **STILL_AIR, **{"landing.sink_mps": fps * FPS_MPS}
+        )
         assert tr.conditions["touchdown_sink_target_mps"] == pytest.approx(fps * FPS_MPS)
         i = np.searchsorted(tr.t_s, tr.event_time("touchdown"))
         flown.append(-tr.vertical_speed_mps[i - 1] / FPS_MPS)
@@ -219,8 +253,9 @@ def test_the_exponential_flare_keeps_its_lift_as_the_speed_bleeds(fly_cached, ai
     between the targets kept."""
     flown = []
     for fps in (1.5, 3.0):
-        _, tr = fly_cached("pattern", seed=0, aircraft=aircraft, **STILL_AIR,
-                           **{"landing.sink_mps": fps * FPS_MPS})
+        _, tr = fly_cached(
+            "pattern", seed=0, aircraft=aircraft, **STILL_AIR, **{"landing.sink_mps": fps * FPS_MPS}
+        )
         i = np.searchsorted(tr.t_s, tr.event_time("touchdown"))
         flown.append(-tr.vertical_speed_mps[i - 1] / FPS_MPS)
         assert abs(flown[-1] - fps) < 1.0, (fps, flown)
@@ -237,8 +272,9 @@ def test_a_touchdown_over_the_design_sink_is_a_hard_landing_not_a_failed_flight(
     sim.flight.gear, and the peak grows about as the sink, so the reserve-energy sink's is about 3.1 g).
     (Seed 16, this test's flight before the short-final pitch floor moved to the approach's mean
     attitude, now lands at 9.1 ft/s; 3 of the 28 hard landings of seeds 12-39 land over 10 ft/s, 4 before.)"""
-    _, tr = fly_cached("pattern", seed=36, aircraft="737",
-                       **{"landing.quality": "hard", "takeoff.thrust_norm": None})
+    _, tr = fly_cached(
+        "pattern", seed=36, aircraft="737", **{"landing.quality": "hard", "takeoff.thrust_norm": None}
+    )
     i = np.searchsorted(tr.t_s, tr.event_time("touchdown"))
     sink_fps = -tr.vertical_speed_mps[i - 1] / FPS_MPS
     assert 10.0 < sink_fps < 12.0, sink_fps

@@ -5,6 +5,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 
 import pytest
+
 from flightmode.sim.flight.gear import MAIN_SHARE, main_strut, nose_gear, soften_nose_gear
 from flightmode.sim.flight.jsbsim_adapter import stock_model_xml
 
@@ -13,8 +14,9 @@ def _model(name: str) -> ET.Element:
     return ET.parse(stock_model_xml(name)).getroot()
 
 
-@pytest.mark.parametrize("model,nose", [("A320", "NOSE_LG"), ("737", "Nose Gear"), ("fokker100", "NOSE"),
-                                        ("787-8", "NOSE_GEAR")])
+@pytest.mark.parametrize(
+    "model,nose", [("A320", "NOSE_LG"), ("737", "Nose Gear"), ("fokker100", "NOSE"), ("787-8", "NOSE_GEAR")]
+)
 def test_the_nose_gear_is_the_one_steerable_contact(model, nose):
     # the models name their nose gear (the A320 also declares nine structural points as BOGEYs)
     assert nose_gear(_model(model)).get("name").strip() == nose
@@ -40,4 +42,5 @@ def test_the_nose_strut_damps_like_the_mains_scaled_to_its_weight_and_keeps_its_
     assert after.findtext("spring_coeff") == before.findtext("spring_coeff")
     rebound = before.find("damping_coeff_rebound")
     assert float(after.findtext("damping_coeff_rebound")) == float(
-        (rebound if rebound is not None else before.find("damping_coeff")).text)
+        (rebound if rebound is not None else before.find("damping_coeff")).text
+    )

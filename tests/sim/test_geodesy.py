@@ -43,8 +43,12 @@ def _sphere_unit(lat_deg, lon_deg):
 def test_geodesic_reference_reproduces_its_published_example():
     # Flinders Peak to Buninyong (Vincenty 1975; Geoscience Australia's worked example): 54,972.271 m,
     # azimuth 306 deg 52' 05.37"; the printed figures are good to 1 mm / 0.01"
-    s, az = _geodesic(-(37 + 57 / 60 + 3.72030 / 3600), 144 + 25 / 60 + 29.52440 / 3600,
-                              -(37 + 39 / 60 + 10.15610 / 3600), 143 + 55 / 60 + 35.38390 / 3600)
+    s, az = _geodesic(
+        -(37 + 57 / 60 + 3.72030 / 3600),
+        144 + 25 / 60 + 29.52440 / 3600,
+        -(37 + 39 / 60 + 10.15610 / 3600),
+        143 + 55 / 60 + 35.38390 / 3600,
+    )
     assert s == pytest.approx(54_972.271, abs=1e-3)
     assert az == pytest.approx(306 + 52 / 60 + 5.37 / 3600, abs=0.01 / 3600)
 

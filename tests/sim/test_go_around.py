@@ -59,8 +59,9 @@ def test_an_ordered_go_around_climbs_away_flies_a_circuit_and_lands(fly_cached):
 
     sc, tr = fly_cached("lhr-jfk-787")
     assert sc.plan.go_arounds == 1
-    phases = [e.name for e in tr.events if e.detail and e.name in
-              ("approach", "flare", "go_around", "rollout")]
+    phases = [
+        e.name for e in tr.events if e.detail and e.name in ("approach", "flare", "go_around", "rollout")
+    ]
     # one approach to the flare height, the go-around, the circuit back to the localizer, the landing
     assert phases == ["approach", "flare", "go_around", "approach", "flare", "rollout"], phases
     (call,) = _events(tr, "go_around_call")
@@ -72,8 +73,9 @@ def test_an_ordered_go_around_climbs_away_flies_a_circuit_and_lands(fly_cached):
     # sees one flight, one in-flight window
     between = (tr.t_s > t_ga) & (tr.t_s < t_land)
     assert not tr.wow[between].any()
-    i_lo, i_land, i_td = np.searchsorted(tr.t_s, [tr.event_time("liftoff"), t_land,
-                                                  tr.event_time("touchdown")])
+    i_lo, i_land, i_td = np.searchsorted(
+        tr.t_s, [tr.event_time("liftoff"), t_land, tr.event_time("touchdown")]
+    )
     # airborne up to the wheels' first contact, which the pilot's next flare tick (40 Hz: within 3 FDM
     # steps at 120 Hz) calls the touchdown
     i_contact = i_land + int(np.flatnonzero(tr.wow[i_land:])[0])
@@ -122,10 +124,14 @@ def test_a_flare_that_floats_over_the_runways_second_half_goes_around(monkeypatc
     from flightmode.units import KT_MPS
 
     prof = aircraft_profiles.PROFILES["787-8"]
-    monkeypatch.setitem(aircraft_profiles.PROFILES, "787-8", dataclasses.replace(
-        prof, vapp_wind_fraction=0.5, vapp_wind_included_kt=5.0, vapp_wind_max_kt=20.0))
-    sc = Scenario.builtin("pattern").replace(seed=0, aircraft="787-8",
-                                             **{"atmosphere.surface_wind_mps": 27.0 * KT_MPS})
+    monkeypatch.setitem(
+        aircraft_profiles.PROFILES,
+        "787-8",
+        dataclasses.replace(prof, vapp_wind_fraction=0.5, vapp_wind_included_kt=5.0, vapp_wind_max_kt=20.0),
+    )
+    sc = Scenario.builtin("pattern").replace(
+        seed=0, aircraft="787-8", **{"atmosphere.surface_wind_mps": 27.0 * KT_MPS}
+    )
     tr = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=1500.0)
     (call,) = _events(tr, "go_around_call")
     assert call.detail.startswith("long flare: still airborne")

@@ -20,8 +20,13 @@ from flightmode.sim.sensor.sensing import sense
 @pytest.fixture(scope="module")
 def gyro_rec(fly_cached):
     _, tr = fly_cached("pattern")
-    return sense(tr, CarrierSpec(handled_in_cruise=0), accel_preset("lis302dl"), np.random.default_rng(3),
-                 gyro=get_preset("bmi270"))
+    return sense(
+        tr,
+        CarrierSpec(handled_in_cruise=0),
+        accel_preset("lis302dl"),
+        np.random.default_rng(3),
+        gyro=get_preset("bmi270"),
+    )
 
 
 def test_bmi270_at_rest_has_its_datasheet_noise_step_and_offset(gyro_rec):
@@ -51,8 +56,12 @@ def test_the_rest_before_the_flight_calibrates_both_sensors(gyro_rec):
     from flightmode.scenarios.pipeline import stream_rest
 
     rec = gyro_rec
-    cols = {"acc_g": rec.acc_g, "gyro_dps": rec.gyro_dps, "sensor_static": rec.sensor_static,
-            "in_flight_window": rec.in_flight_window}
+    cols = {
+        "acc_g": rec.acc_g,
+        "gyro_dps": rec.gyro_dps,
+        "sensor_static": rec.sensor_static,
+        "in_flight_window": rec.in_flight_window,
+    }
     acc, gyr, said = stream_rest("rest", cols, None)
     assert gyr.shape == acc.shape and said == f"{acc.shape[0]} truly static samples before the flight"
     # the runs of truly static samples before the window, found here independently
@@ -62,7 +71,9 @@ def test_the_rest_before_the_flight_calibrates_both_sensors(gyro_rec):
     lengths = edges[1::2] - edges[::2]
     a = int(edges[::2][np.argmax(lengths)])
     assert acc.shape[0] == lengths.max()  # the longest run
-    assert np.array_equal(acc, rec.acc_g[a:a + acc.shape[0]]) and np.array_equal(gyr, rec.gyro_dps[a:a + acc.shape[0]])
+    assert np.array_equal(acc, rec.acc_g[a : a + acc.shape[0]]) and np.array_equal(
+        gyr, rec.gyro_dps[a : a + acc.shape[0]]
+    )
 
 
 def test_presets_and_bad_input():
@@ -81,11 +92,40 @@ def test_compare_methods_auc_is_the_area_under_the_k_sweep():
 
     from flightmode.scenarios.sweep import compare_methods
 
-    base = {"dataset": "d", "family": "f", "flight_id": "0", "sensor_preset": "p", "method": "nmv", "weight": 1.0,
-            "window_s": 1.0, "time_threshold_s": 4.0, "in_window_h": 1.0, "in_flight_checks": 1000,
-            "static_s": 100.0, "suspend_s": 1.0, "response_s": 2.0, "checks": 2000}
-    rows = [base | {"k": 2.0, "false_static_count": 3, "false_static_s": 100.0, "missed_static_s": 50.0, "accuracy": 0.9},
-            base | {"k": 4.0, "false_static_count": 9, "false_static_s": 300.0, "missed_static_s": 10.0, "accuracy": 0.8}]
+    base = {
+        "dataset": "d",
+        "family": "f",
+        "flight_id": "0",
+        "sensor_preset": "p",
+        "method": "nmv",
+        "weight": 1.0,
+        "window_s": 1.0,
+        "time_threshold_s": 4.0,
+        "in_window_h": 1.0,
+        "in_flight_checks": 1000,
+        "static_s": 100.0,
+        "suspend_s": 1.0,
+        "response_s": 2.0,
+        "checks": 2000,
+    }
+    rows = [
+        base
+        | {
+            "k": 2.0,
+            "false_static_count": 3,
+            "false_static_s": 100.0,
+            "missed_static_s": 50.0,
+            "accuracy": 0.9,
+        },
+        base
+        | {
+            "k": 4.0,
+            "false_static_count": 9,
+            "false_static_s": 300.0,
+            "missed_static_s": 10.0,
+            "accuracy": 0.8,
+        },
+    ]
     (r,) = compare_methods(pa.Table.from_pylist(rows))
     assert r["auc"] == pytest.approx(0.83)
     # the best point: the lower bound on false statics (k 2), its accuracy

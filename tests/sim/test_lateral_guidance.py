@@ -11,21 +11,23 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from flightmode.sim.flight.autopilot import LOC_LOOK_MIN_M, Autopilot
 from flightmode.scenarios.validate import TOUCHDOWN_CENTRELINE_FT
+from flightmode.sim.flight.autopilot import LOC_LOOK_MIN_M, Autopilot
 from flightmode.units import FT_M, G0_MPS2
 
 IX = {"v_north_mps": 0, "v_east_mps": 1, "psi_rad": 2}
 
 
-def _steady_crosswind_offset_m(wind_east_mps: float, *, track_law: bool, v_mps: float = 70.0,
-                               t_s: float = 240.0, dt_s: float = 0.05) -> np.ndarray:
+def _steady_crosswind_offset_m(
+    wind_east_mps: float, *, track_law: bool, v_mps: float = 70.0, t_s: float = 240.0, dt_s: float = 0.05
+) -> np.ndarray:
     """A point mass on final to a runway heading north (east is right of the centreline) in a steady
     crosswind, turning at g tan(phi) / V with its bank following the law's command in a 1 s lag; the
     law is the autopilot's own method. Returns the offset y (m) at every step."""
     bank = [0.0]
-    ap = SimpleNamespace(ix=IX, dest=SimpleNamespace(heading_rad=0.0),
-                         bank_to=lambda x, phi: bank.__setitem__(0, phi))
+    ap = SimpleNamespace(
+        ix=IX, dest=SimpleNamespace(heading_rad=0.0), bank_to=lambda x, phi: bank.__setitem__(0, phi)
+    )
     ap._turn = partial(Autopilot._turn, ap)
     psi = phi = y = 0.0
     ys = []

@@ -19,8 +19,13 @@ def _model(name: str) -> ET.Element:
 def _spoiler_lift_table(root: ET.Element) -> np.ndarray:
     for table in root.iterfind(".//aerodynamics//table"):
         if (table.findtext("independentVar") or "").strip() == "fcs/spoiler-pos-norm":
-            return np.array([[float(v) for v in line.split()] for line in table.findtext("tableData").split("\n")
-                             if line.strip()])
+            return np.array(
+                [
+                    [float(v) for v in line.split()]
+                    for line in table.findtext("tableData").split("\n")
+                    if line.strip()
+                ]
+            )
     raise AssertionError("no spoiler lift table")
 
 
@@ -73,11 +78,17 @@ def test_the_a320_gets_ground_spoilers_that_take_the_737s_share_of_its_wing_lift
     root = _model("A320")
     add_ground_spoilers(root)
     lift_axis = root.find(".//aerodynamics/axis[@name='LIFT']")
-    assert "aero/function/kCLsp" in [p.text for p in lift_axis.find("function[@name='aero/coefficient/CLalpha']/product")]
+    assert "aero/function/kCLsp" in [
+        p.text for p in lift_axis.find("function[@name='aero/coefficient/CLalpha']/product")
+    ]
     # the tail's lift is not the wing's
-    assert "aero/function/kCLsp" not in [p.text for p in lift_axis.find("function[@name='aero/coefficient/CLDe']/product")]
+    assert "aero/function/kCLsp" not in [
+        p.text for p in lift_axis.find("function[@name='aero/coefficient/CLDe']/product")
+    ]
 
-    rows = _model("A320").find(".//aerodynamics/axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']//tableData")
+    rows = _model("A320").find(
+        ".//aerodynamics/axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']//tableData"
+    )
     header, *body = [[float(v) for v in line.split()] for line in rows.text.strip().splitlines()]
     flaps_deg, body = np.array(header), np.array(body)  # the first row: the flap angles (columns)
     alpha_rad, cl = body[:, 0], body[:, 1:]
@@ -91,8 +102,11 @@ def test_the_a320_gets_ground_spoilers_that_take_the_737s_share_of_its_wing_lift
     ac.fdm.run_ic()
 
     def wing_lift_share() -> float:  # the lift force over the stock table's (qbar S CL)
-        expected = ac.get("aero/qbar-psf") * ac.get("metrics/Sw-sqft") * cl_table(
-            [[ac.get("aero/alpha-rad"), ac.get("fcs/flap-pos-deg")]])[0]
+        expected = (
+            ac.get("aero/qbar-psf")
+            * ac.get("metrics/Sw-sqft")
+            * cl_table([[ac.get("aero/alpha-rad"), ac.get("fcs/flap-pos-deg")]])[0]
+        )
         return ac.get("aero/coefficient/CLalpha") / expected
 
     ac.step()
@@ -164,7 +178,10 @@ def test_the_a320s_nose_tyre_gets_the_other_models_side_force_peak():
     from flightmode.sim.flight.model_edits import edits_for
 
     root = _model("A320")
-    before = {c.get("name"): c.findtext("static_friction").strip() for c in root.iterfind("ground_reactions/contact")}
+    before = {
+        c.get("name"): c.findtext("static_friction").strip()
+        for c in root.iterfind("ground_reactions/contact")
+    }
     for edit in edits_for(get_profile("A320")):
         edit(root)
     nose = nose_gear(root)
@@ -273,16 +290,24 @@ def test_wing_tip_contacts_sit_at_the_wing_tips(model):
     from flightmode.sim.flight.model_edits import edits_for
 
     root = _model(model)
-    before = {c.get("name"): float(c.findtext("location/y")) for c in root.iterfind("ground_reactions/contact[@type='STRUCTURE']")}
+    before = {
+        c.get("name"): float(c.findtext("location/y"))
+        for c in root.iterfind("ground_reactions/contact[@type='STRUCTURE']")
+    }
     assert before, f"{model}: no STRUCTURE contacts to check"
     half_in = float(root.findtext("metrics/wingspan")) * 6.0
     for edit in edits_for(get_profile(model)):
         edit(root)
-    after = {c.get("name"): float(c.findtext("location/y")) for c in root.iterfind("ground_reactions/contact[@type='STRUCTURE']")}
+    after = {
+        c.get("name"): float(c.findtext("location/y"))
+        for c in root.iterfind("ground_reactions/contact[@type='STRUCTURE']")
+    }
     for name, y in before.items():
         if abs(y) > 1.05 * half_in:
             assert after[name] == pytest.approx(np.copysign(half_in, y), abs=0.01)
         else:
             assert after[name] == y
     if model == "fokker100":
-        assert after["LEFT_WING"] == pytest.approx(-552.78, abs=0.01) and after["RIGHT_WING"] == pytest.approx(552.78, abs=0.01)
+        assert after["LEFT_WING"] == pytest.approx(-552.78, abs=0.01) and after[
+            "RIGHT_WING"
+        ] == pytest.approx(552.78, abs=0.01)

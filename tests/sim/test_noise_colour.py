@@ -96,8 +96,9 @@ def test_the_lis302dl_presets_carry_the_fit_to_seed_table2():
     def tau_fit(q):
         return brentq(lambda t: _ratio(q, t) - target, 0.01, 0.2)
 
-    q_best = minimize_scalar(lambda q: _psd_range(q, tau_fit(q)), bounds=(0.7, 0.95), method="bounded",
-                             options={"xatol": 1e-4}).x
+    q_best = minimize_scalar(
+        lambda q: _psd_range(q, tau_fit(q)), bounds=(0.7, 0.95), method="bounded", options={"xatol": 1e-4}
+    ).x
     for name in LIS:
         p = get_preset(name)
         assert p.noise_g == SIGMA_G and p.odr_hz == 100.0, name
@@ -122,7 +123,9 @@ def _imhof(lam: np.ndarray, t: float) -> float:
     from scipy.integrate import quad
 
     def f(u):
-        return math.sin(0.5 * np.arctan(lam * u).sum() - 0.5 * t * u) / (u * np.prod((1 + (lam * u) ** 2) ** 0.25))
+        return math.sin(0.5 * np.arctan(lam * u).sum() - 0.5 * t * u) / (
+            u * np.prod((1 + (lam * u) ** 2) ** 0.25)
+        )
 
     return 0.5 + quad(f, 0.0, np.inf, limit=2000, epsabs=1e-13, epsrel=1e-10)[0] / math.pi
 
@@ -159,8 +162,14 @@ def test_welch_sees_the_analytic_psd_above_bin_one():
     w = get_window("hann", L)
     m = np.outer(w, w) * (c @ toeplitz(r) @ c)
     # E|sum_n w_n x_n e^{-i 2 pi k n / L}|^2 = sum_nm w_n w_m M_nm e^{-i 2 pi k (n - m) / L}
-    e = np.real(np.einsum("kn,nm,km->k", np.exp(-2j * np.pi * np.outer(np.arange(L // 2 + 1), np.arange(L)) / L),
-                          m, np.exp(2j * np.pi * np.outer(np.arange(L // 2 + 1), np.arange(L)) / L)))
+    e = np.real(
+        np.einsum(
+            "kn,nm,km->k",
+            np.exp(-2j * np.pi * np.outer(np.arange(L // 2 + 1), np.arange(L)) / L),
+            m,
+            np.exp(2j * np.pi * np.outer(np.arange(L // 2 + 1), np.arange(L)) / L),
+        )
+    )
     e = 2.0 * e / (p.odr_hz * (w**2).sum())  # one-sided density, as welch(scaling="density")
     model = noise_psd_g2_per_hz(p, np.arange(L // 2 + 1) * p.odr_hz / L)
     rel = e[2:512] / model[2:512] - 1.0
@@ -184,8 +193,10 @@ def test_chunked_sensing_equals_one_piece_with_coloured_noise():
     rng_f = np.random.default_rng(3)
     f = rng_f.normal(0, 0.05, (120_000, 3)) + [0, 0, 1]
     cuts = [0, 1, 2, 13, 1000, 1001, 1011, 7777, 50_000, 50_005, 120_000]
-    for p in (get_preset("lis302dl-logged16"), dataclasses.replace(get_preset("lis302dl-logged16"), lsb_g=None,
-                                                                   bits=None)):
+    for p in (
+        get_preset("lis302dl-logged16"),
+        dataclasses.replace(get_preset("lis302dl-logged16"), lsb_g=None, bits=None),
+    ):
         unit = draw_unit(p, np.random.default_rng(4))
         whole = SensorChain(p, unit, 1200.0)(f, 0.0, np.random.default_rng(9))
         chain, rng = SensorChain(p, unit, 1200.0), np.random.default_rng(9)
@@ -197,7 +208,9 @@ def test_chunked_sensing_equals_one_piece_with_coloured_noise():
     # the coloured part is active: on a static input the lag-1 correlation is q phi = 0.72 (white:
     # 0); 10,000 samples give it a standard error sqrt(sum rho^2 / M) = 0.03, so 0.1 is > 3 of them
     p = get_preset("lis302dl-logged16")
-    x = SensorChain(p, UnitDraw(), 100.0)(np.tile([0.0, 0.0, 1.0], (10_000, 1)), 0.0, np.random.default_rng(5)).acc_g
+    x = SensorChain(p, UnitDraw(), 100.0)(
+        np.tile([0.0, 0.0, 1.0], (10_000, 1)), 0.0, np.random.default_rng(5)
+    ).acc_g
     x = x - x.mean(axis=0)
     lag1 = (x[1:] * x[:-1]).sum(axis=0) / (x * x).sum(axis=0)
     np.testing.assert_allclose(lag1, p.noise_gm_fraction * p.noise_gm_phi, atol=0.1)
@@ -210,7 +223,9 @@ def test_mean_static_variance_is_5e_6_g2_and_the_bench_sees_the_mv_model():
     within 5 of their standard errors sigma_MV / sqrt(60) (4 % of sigma^2)."""
     p = get_preset("lis302dl-logged16")
     n = 2 * 3600 * 100
-    x = SensorChain(p, UnitDraw(), 100.0)(np.tile([0.0, 0.0, 1.0], (n, 1)), 0.0, np.random.default_rng(21)).acc_g
+    x = SensorChain(p, UnitDraw(), 100.0)(
+        np.tile([0.0, 0.0, 1.0], (n, 1)), 0.0, np.random.default_rng(21)
+    ).acc_g
     rho = noise_autocovariance_g2(p, 2000) / SIGMA_G**2
     se = SIGMA_G**2 * math.sqrt(2.0 * (1.0 + 2.0 * (rho[1:] ** 2).sum()) / n)
     np.testing.assert_allclose(x.var(axis=0), SIGMA_G**2, atol=5 * se)
@@ -243,8 +258,10 @@ def test_monte_carlo_mv_spread_and_pm_agree_with_analytic_and_table2():
     # 6.6: 0.24 %), the mean's sd / sqrt(M) (0.08 %); neighbouring windows' MVs correlate by 0.035
     # (the Gauss-Markov memory, tau = 0.146 s, spans the boundary), inflating these variances by
     # about 7 %: 5 standard errors still hold
-    print(f"\nanalytic E[MV] {mu / s2:.4f} sigma^2, sigma_MV/E[MV] {s_mv / mu:.4f}; Monte Carlo per axis:",
-          [f"{mv[:, a].mean() / s2:.4f}, {mv[:, a].std() / mv[:, a].mean():.4f}" for a in range(3)])
+    print(
+        f"\nanalytic E[MV] {mu / s2:.4f} sigma^2, sigma_MV/E[MV] {s_mv / mu:.4f}; Monte Carlo per axis:",
+        [f"{mv[:, a].mean() / s2:.4f}, {mv[:, a].std() / mv[:, a].mean():.4f}" for a in range(3)],
+    )
     for a in range(3):
         v = mv[:, a]
         kurt = float(((v - v.mean()) ** 4).mean() / v.var() ** 2)

@@ -18,8 +18,21 @@ from flightmode.sim.flight.plan import TurbulenceSegment
 def test_pattern_flies_gate_to_gate(fly_cached):
     sc, tr = fly_cached("pattern")
     names = [e.name for e in tr.events]
-    order = ["gate", "engine_start", "pushback", "taxi_out", "takeoff_roll", "initial_climb",
-             "approach", "flare", "rollout", "taxi_in", "shutdown", "engines_off", "parked"]
+    order = [
+        "gate",
+        "engine_start",
+        "pushback",
+        "taxi_out",
+        "takeoff_roll",
+        "initial_climb",
+        "approach",
+        "flare",
+        "rollout",
+        "taxi_in",
+        "shutdown",
+        "engines_off",
+        "parked",
+    ]
     positions = [names.index(n) for n in order]
     assert positions == sorted(positions), "phases out of order"
     # under 15 simulated minutes from brake release to touchdown (the circuit), whole cycle < 20 min
@@ -60,9 +73,7 @@ def test_same_seed_is_bit_identical_in_process_and_across_processes(fly_cached):
     sc, tr = fly_cached("pattern")
     again = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"))
     assert again.digest() == tr.digest()
-    code = (
-        "import flightmode; print(flightmode.run('pattern', stages=('fly',)).track.digest())"
-    )
+    code = "import flightmode; print(flightmode.run('pattern', stages=('fly',)).track.digest())"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip().splitlines()[-1] == tr.digest()
 

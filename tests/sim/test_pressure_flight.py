@@ -5,7 +5,6 @@ schedule itself is tested on synthetic profiles in test_cabin.py; here, on JSBSi
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -16,7 +15,7 @@ from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE
 from flightmode.scenarios import pipeline
 from flightmode.scenarios.scenario import DEFAULT_SCENARIO, Scenario
 from flightmode.sim.flight.cabin import cabin_figures, get_cabin_profile
-from flightmode.units import FPM_MPS, FT_M, HPA_PA
+from flightmode.units import HPA_PA
 
 # ISA troposphere (ICAO Doc 7488): T0 288.15 K, lapse 6.5 K/km, exponent g0 M / (R L) = 5.25588
 T0_K, LAPSE_KPM, EXPONENT = 288.15, 0.0065, 5.25588
@@ -36,8 +35,9 @@ def test_the_default_flight_has_the_pressure_truth_of_its_schedule(fly_cached):
     # the track's first sample is the aircraft settled on its gear at the stand: its altitude is the
     # field's within a few metres (the CG height), 0.1 hPa per metre near sea level
     assert tr.ambient_pressure_pa[0] == pytest.approx(_station_pa(w["qnh_hpa"], tr.alt_m[0]), abs=0.5)
-    f = cabin_figures(tr.t_s, tr.alt_m, tr.cabin_altitude_m, tr.cabin_pressure_pa, tr.ambient_pressure_pa,
-                      tr.phase_code)
+    f = cabin_figures(
+        tr.t_s, tr.alt_m, tr.cabin_altitude_m, tr.cabin_pressure_pa, tr.ambient_pressure_pa, tr.phase_code
+    )
     # 14 CFR 25.841(a): at most 8,000 ft of cabin altitude in normal operation
     assert f["max_cabin_altitude_ft"] <= prof.max_cabin_alt_ft + 1.0
     # the A320 cruises at FL360 here: its maximum differential keeps the cabin above 6,000 ft
@@ -69,8 +69,15 @@ def test_weather_is_drawn_per_airport_from_its_own_streams(fly_cached):
     # fixing a QNH in the scenario replaces that draw and leaves every other draw as it was
     fixed = sc.replace(atmosphere={"departure_qnh_hpa": 990.0, "arrival_qnh_hpa": 990.0})
     c = draw_flight(fixed.plan, prof, pipeline.streams_of(1).child("flight"))
-    assert c.departure_weather.qnh_hpa == 990.0 and c.departure_weather.isa_dev_k == a.departure_weather.isa_dev_k
-    assert (c.climb_vs_mps, c.touchdown_sink_mps, c.atmosphere) == (a.climb_vs_mps, a.touchdown_sink_mps, a.atmosphere)
+    assert (
+        c.departure_weather.qnh_hpa == 990.0
+        and c.departure_weather.isa_dev_k == a.departure_weather.isa_dev_k
+    )
+    assert (c.climb_vs_mps, c.touchdown_sink_mps, c.atmosphere) == (
+        a.climb_vs_mps,
+        a.touchdown_sink_mps,
+        a.atmosphere,
+    )
 
 
 @pytest.fixture(scope="module")
@@ -95,7 +102,9 @@ def test_the_barometer_reads_the_bag_pressure_at_its_rate(baro_run):
     t_in = (rec.t_s >= tr.t_s[0]) & (rec.t_s <= tr.t_s[-1])
     cab = np.interp(rec.t_s, tr.t_s, tr.cabin_pressure_pa)
     assert np.allclose(rec.pressure_pa[stowed & t_in], cab[stowed & t_in], rtol=0, atol=1e-6)
-    assert np.allclose(rec.pressure_pa[off & (rec.t_s < tr.t_s[0])], tr.ambient_pressure_pa[0], rtol=0, atol=1e-9)
+    assert np.allclose(
+        rec.pressure_pa[off & (rec.t_s < tr.t_s[0])], tr.ambient_pressure_pa[0], rtol=0, atol=1e-9
+    )
     # reading minus truth: the unit's offset plus noise of the datasheet's RMS (0.21 Pa at x16) and a
     # 1/64 Pa quantisation (1/64 / sqrt(12) = 0.0045 Pa RMS); n ~ 1e5 readings pin the mean to 0.002 Pa
     err = pb - rec.pressure_pa[rec.baro_new]
@@ -117,7 +126,9 @@ def test_the_redundant_rule_in_the_pipeline(baro_run):
     assert acc.false_static_count == r.detection.false_static_count
     # the pressure source suspends in the air: every airborne check is suspended by it, or by the
     # accelerometer
-    air = np.isin(np.asarray(r.recording.phase_code)[acc.checks.index], [PHASE_CODE[p] for p in AIRBORNE_PHASES])
+    air = np.isin(
+        np.asarray(r.recording.phase_code)[acc.checks.index], [PHASE_CODE[p] for p in AIRBORNE_PHASES]
+    )
     assert air.any() and not comb.checks.final_static[air].any()
 
 
@@ -128,20 +139,34 @@ def test_the_sweep_gate_is_the_redundant_rule(baro_run):
 
     sc, tr, r = baro_run
     rec, red = r.recording, r.redundant
-    labels = {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
+    labels = {
+        "in_flight_window": rec.in_flight_window,
+        "sensor_static": rec.sensor_static,
+        "phase": rec.phase,
+    }
     tb, pb = rec.baro_stream
     pc = detect_pressure(tb, pb, red.pressure_params)
     p = r.detection.params
     grid = Grid(((p.method, p.weight),), (p.window_s,), (p.k_sigma,), (p.time_threshold_s,))
-    (_, e), = evaluate_grid(rec.t_s, rec.acc_g, labels, grid, rec.odr_hz, lambda n: r.detection.sigma2,
-                            gate=lambda t: static_at(pc, t))
+    ((_, e),) = evaluate_grid(
+        rec.t_s,
+        rec.acc_g,
+        labels,
+        grid,
+        rec.odr_hz,
+        lambda n: r.detection.sigma2,
+        gate=lambda t: static_at(pc, t),
+    )
     assert np.array_equal(e.checks.final_static, red.combined.checks.final_static)
-    assert e.false_static_events == red.combined.false_static_events and e.response_s == red.combined.response_s
+    assert (
+        e.false_static_events == red.combined.false_static_events and e.response_s == red.combined.response_s
+    )
 
 
 def test_an_unpressurised_hold_is_valid_and_changes_the_schedule(fly_cached):
-    sc, tr = fly_cached("pattern", cabin={"hold": "unpressurised"},
-                        carrier={"kind": "parcel", "placement": "hold"})
+    sc, tr = fly_cached(
+        "pattern", cabin={"hold": "unpressurised"}, carrier={"kind": "parcel", "placement": "hold"}
+    )
     air = tr.airborne
     assert np.array_equal(tr.hold_pressure_pa, tr.ambient_pressure_pa)
     # in the air the cabin is pressurised above ambient (up to 1.4 psi on this low pattern), the hold is not
@@ -155,8 +180,11 @@ def test_an_unpressurised_hold_is_valid_and_changes_the_schedule(fly_cached):
 
 def test_scenario_keys_and_bad_input():
     sc = Scenario.builtin("pattern")
-    s2 = sc.replace(sensor={"baro": "lps22hh", "baro_odr_hz": 10.0}, cabin={"hold": "unpressurised"},
-                    atmosphere={"isa_dev_k": 5.0})
+    s2 = sc.replace(
+        sensor={"baro": "lps22hh", "baro_odr_hz": 10.0},
+        cabin={"hold": "unpressurised"},
+        atmosphere={"isa_dev_k": 5.0},
+    )
     assert Scenario.from_toml_text(s2.to_toml()) == s2
     bad = [
         ({"sensor": {"baro": "bmp58"}}, "bmp581"),  # misspelt: the nearest preset named
@@ -191,7 +219,9 @@ def test_detect_cli_nmv_plus_baro_reads_the_run_folder(baro_run, tmp_path):
     from flightmode.scenarios.run_io import read_samples
 
     cols, _ = read_samples(run_dir)
-    assert np.array_equal(cols["baro_pa"], r.recording.baro_pa) and np.array_equal(cols["baro_new"], r.recording.baro_new)
+    assert np.array_equal(cols["baro_pa"], r.recording.baro_pa) and np.array_equal(
+        cols["baro_new"], r.recording.baro_new
+    )
     # typed one-line errors, exit status 2
     for args, words in ((["--baro-rate-pa-s", "-1"], "must be > 0"), (["--baro-margin-hpa", "-3"], ">= 0")):
         bad = cli.invoke(app, ["detect", str(run_dir), "--method", "nmv+baro", *args])

@@ -234,12 +234,12 @@ def test_a_stopped_aircraft_rocking_on_its_struts_comes_to_rest_on_its_own_gear(
         return np.array(out)
 
     rolling = ticks(1.0, 160)  # 4 m of taxiway: 40 profile samples under each wheel
-    assert np.ptp(rolling[:, R.RING:], axis=0).min() > 1.0  # lbf: the mains feel it
+    assert np.ptp(rolling[:, R.RING :], axis=0).min() > 1.0  # lbf: the mains feel it
     rocking = ticks(0.005, 1200)  # 30 s at +-5 mm/s
     assert np.abs(rocking[-1]).max() < 0.01
     # no bump felt while rocking: once the tyre's lag has settled (1 s, > 5 of its tau < 0.2 s), each
     # group's force only decays towards 0, never a step away from it
-    last = rocking[40::R.RING, R.RING - 1::R.RING]  # one slot per group, rewritten every RING ticks
+    last = rocking[40 :: R.RING, R.RING - 1 :: R.RING]  # one slot per group, rewritten every RING ticks
     assert np.all(np.diff(np.abs(last), axis=0) <= 1e-9)
 
 

@@ -28,7 +28,12 @@ def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
     assert root.findall("input") == [] and root.findall("output") == []
     forces = root.findall("external_reactions/force")
     # the tug, and the runway roughness felt through each gear group (sim.flight.roughness)
-    assert [f.get("name") for f in forces] == ["pushback", "roughness-nose", "roughness-left", "roughness-right"]
+    assert [f.get("name") for f in forces] == [
+        "pushback",
+        "roughness-nose",
+        "roughness-left",
+        "roughness-right",
+    ]
     # the stock file does have them (so the stripping above is doing something)
     stock = ET.parse(stock_model_xml("737")).getroot()
     assert len(stock.findall("input")) == 2
@@ -62,7 +67,10 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
     tmp_before = set(p.name for p in Path(tempfile.gettempdir()).iterdir())
     proc = subprocess.Popen(
         [sys.executable, "-m", "flightmode.scenarios.cli", "fly", "pattern", "--out", "out"],
-        cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        cwd=work,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
     )
     ps = psutil.Process(proc.pid)
     seen = []
@@ -78,7 +86,12 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
     # the working directory holds only OUT, and OUT only the finished run folder
     assert sorted(p.name for p in work.iterdir()) == ["out"]
     assert sorted(p.name for p in (work / "out").iterdir()) == ["pattern-s1"]
-    assert sorted(p.name for p in (work / "out" / "pattern-s1").iterdir()) == ["recording.rrd", "run.json", "samples.parquet", "truth.parquet"]
+    assert sorted(p.name for p in (work / "out" / "pattern-s1").iterdir()) == [
+        "recording.rrd",
+        "run.json",
+        "samples.parquet",
+        "truth.parquet",
+    ]
     tmp_after = set(p.name for p in Path(tempfile.gettempdir()).iterdir())
     assert not [n for n in tmp_after - tmp_before if n.startswith("flightmode")]
     info = json.loads((work / "out" / "pattern-s1" / "run.json").read_text())

@@ -149,7 +149,9 @@ def test_pick_up_lifts_the_bag_and_leaves_no_net_velocity(fly_cached):
     from flightmode.sim.sensor.sensing import FS_INTERNAL_HZ
 
     peak_g = float(pickup_pulse_mps2(1 / FS_INTERNAL_HZ, spec).max()) / 9.80665
-    assert peak_g == pytest.approx(5.77 * spec.pickup_height_m / spec.pickup_s**2 / 9.80665, rel=0.01)  # min-jerk peak
+    assert peak_g == pytest.approx(
+        5.77 * spec.pickup_height_m / spec.pickup_s**2 / 9.80665, rel=0.01
+    )  # min-jerk peak
     a = np.linalg.norm(rec.acc_g, axis=1) - 1.0
     lifts = 0
     for k, seg in enumerate(rec.segments):
@@ -186,8 +188,12 @@ def test_bad_tracks_are_named(fly_cached):
     f = tr.specific_force_body_mps2.copy()
     f[5, 2] = np.nan
     with pytest.raises(SensorError, match="specific_force_body_mps2 has NaN"):
-        sense(dataclasses.replace(tr, specific_force_body_mps2=f), CarrierSpec(), get_preset("ideal"),
-              np.random.default_rng(0))
+        sense(
+            dataclasses.replace(tr, specific_force_body_mps2=f),
+            CarrierSpec(),
+            get_preset("ideal"),
+            np.random.default_rng(0),
+        )
     from flightmode.sim.sensor.carrier import CarrierError
 
     with pytest.raises(CarrierError, match="placement 'under_sea'.*did you mean \"under_seat\""):
@@ -316,7 +322,9 @@ def test_100_hz_odr_aliases_the_fan_line_400_hz_records_it(fly_cached):
     no_lines = VibrationModel(n1_line_g=0.0)
     res = {}
     for odr in (100.0, 400.0):
-        p = dataclasses.replace(get_preset("lis302dl-logged16"), odr_hz=odr, bandwidth_hz=odr / 2, noise_g=0.0)
+        p = dataclasses.replace(
+            get_preset("lis302dl-logged16"), odr_hz=odr, bandwidth_hz=odr / 2, noise_g=0.0
+        )
         p = dataclasses.replace(p, lsb_g=None, bits=None)  # no quantisation either: a linear chain
         a = sense(tr, spec, p, np.random.default_rng(5), unit=UnitDraw(), vibration=with_lines)
         b = sense(tr, spec, p, np.random.default_rng(5), unit=UnitDraw(), vibration=no_lines)
@@ -326,8 +334,10 @@ def test_100_hz_odr_aliases_the_fan_line_400_hz_records_it(fly_cached):
         k = int(np.argmax(pxx[fr > 5.0])) + int(np.argmax(fr > 5.0))
         band = np.abs(fr - _folded_hz(f_n1, odr)) <= LINE_BAND_HZ
         res[odr] = (float(fr[k]), float(np.sqrt(2 * pxx[band].sum() * (fr[1] - fr[0]))), fr[1] - fr[0])
-    print(f"\ncruise N1 line at {f_n1:.2f} Hz: 100 Hz ODR records a tone at {res[100.0][0]:.2f} Hz "
-          f"({1000 * res[100.0][1]:.3f} mg), 400 Hz ODR at {res[400.0][0]:.2f} Hz ({1000 * res[400.0][1]:.3f} mg)")
+    print(
+        f"\ncruise N1 line at {f_n1:.2f} Hz: 100 Hz ODR records a tone at {res[100.0][0]:.2f} Hz "
+        f"({1000 * res[100.0][1]:.3f} mg), 400 Hz ODR at {res[400.0][0]:.2f} Hz ({1000 * res[400.0][1]:.3f} mg)"
+    )
     assert 50.0 < f_n1 < 200.0  # above the 100 Hz part's Nyquist, below the 400 Hz part's
     # Frequency tolerance: half a Welch bin (0.125 Hz: the peak bin of a tone) + the spread of the
     # two engines' lines (each shaft runs within +-0.3 % of the FDM's N1, the model's stated
@@ -378,7 +388,6 @@ def test_eobs_bursts_and_a_parcel_in_the_hold(fly_cached):
     np.testing.assert_array_equal(rec.sensor_static[rest], rec.t_s[rest] - seg.t0_s >= 2.0)
 
 
-
 @pytest.mark.slow
 def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
     from flightmode.scenarios.validate import comparable_x_from_fuselage_deg, placement_text
@@ -394,8 +403,9 @@ def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
     # time the bag lay stowed there (the rest: the handlings, in hand)
     ev = {e.name: e.t_s for e in tr.events}
     t0, t1 = ev["pushback"], ev["engines_off"]
-    stowed = [s for s in rec.segments
-              if s.on_board and s.state == "stowed" and min(s.t1_s, t1) > max(s.t0_s, t0)]
+    stowed = [
+        s for s in rec.segments if s.on_board and s.state == "stowed" and min(s.t1_s, t1) > max(s.t0_s, t0)
+    ]
     parts = st["in_flight_segments"]
     assert len(parts) == len(stowed) >= 4  # under the seat, on the seat (moved twice), under the seat again
     for p, s in zip(parts, stowed):
@@ -403,8 +413,11 @@ def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
         assert angles == orientation_angles(s.orientation)
         assert p["placement"] == s.placement
         assert p["share"] == pytest.approx((min(s.t1_s, t1) - max(s.t0_s, t0)) / (t1 - t0), rel=1e-12)
-    handled = sum(min(s.t1_s, t1) - max(s.t0_s, t0) for s in rec.segments
-                  if s.on_board and s.state == "handled" and min(s.t1_s, t1) > max(s.t0_s, t0))
+    handled = sum(
+        min(s.t1_s, t1) - max(s.t0_s, t0)
+        for s in rec.segments
+        if s.on_board and s.state == "handled" and min(s.t1_s, t1) > max(s.t0_s, t0)
+    )
     assert sum(p["share"] for p in parts) == pytest.approx(1.0 - handled / (t1 - t0), abs=1e-9)
     # the in-flight record is the segment covering most, with its mount's row and packing
     best = max(parts, key=lambda p: p["share"])
@@ -420,28 +433,49 @@ def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
     assert placement_text(st)[1] == (near >= 0.9)
     # with every segment at yaw 0 they are comparable whatever their shares; at yaw 90, never
     for yaw, comparable in ((0.0, True), (90.0, False)):
-        fixed = sense(tr, dataclasses.replace(spec, stowed_yaw_deg=yaw), get_preset("lis302dl-logged16"),
-                      np.random.default_rng(5))
+        fixed = sense(
+            tr,
+            dataclasses.replace(spec, stowed_yaw_deg=yaw),
+            get_preset("lis302dl-logged16"),
+            np.random.default_rng(5),
+        )
         assert placement_text(fixed.stowage)[1] is comparable
     # a parcel in the hold: no cabin row
-    rec = sense(tr, CarrierSpec(kind="parcel", placement="hold"), get_preset("lis302dl-logged16"),
-                np.random.default_rng(5))
+    rec = sense(
+        tr,
+        CarrierSpec(kind="parcel", placement="hold"),
+        get_preset("lis302dl-logged16"),
+        np.random.default_rng(5),
+    )
     assert rec.stowage["in_flight"]["placement"] == "hold" and rec.stowage["in_flight"]["cabin_row"] == "hold"
 
 
 def test_cli_sense_writes_a_new_run_folder(tmp_path, pattern_run):
+    import pyarrow.parquet as pq
     from typer.testing import CliRunner
 
-    import pyarrow.parquet as pq
     from flightmode.scenarios.cli import app
 
     run, _ = pattern_run
-    r = CliRunner().invoke(app, ["sense", str(run), "--sensor", "lis302dl", "--carrier", "placement=overhead_bin",
-                                 "--out", str(tmp_path)])
+    r = CliRunner().invoke(
+        app,
+        [
+            "sense",
+            str(run),
+            "--sensor",
+            "lis302dl",
+            "--carrier",
+            "placement=overhead_bin",
+            "--out",
+            str(tmp_path),
+        ],
+    )
     assert r.exit_code == 0, r.output
     new = tmp_path / "pattern-s1-lis302dl-placement-overhead_bin"
     t = pq.read_table(new / "samples.parquet")
-    assert {"raw_x", "acc_z_g", "phase", "sensor_static", "bag_state", "in_flight_window"} <= set(t.column_names)
+    assert {"raw_x", "acc_z_g", "phase", "sensor_static", "bag_state", "in_flight_window"} <= set(
+        t.column_names
+    )
     # the native part's 8-bit two's complement counts (datasheet: -128..127)
     assert -128 <= t["raw_z"].to_numpy().min() and t["raw_z"].to_numpy().max() <= 127
     r = CliRunner().invoke(app, ["sense", str(run), "--carrier", "placment=hold", "--out", str(tmp_path)])
@@ -467,7 +501,9 @@ def test_optional_gyroscope_sees_the_aircraft_turn_in_sensor_axes(fly_cached):
 
     _, tr = fly_cached("pattern")
     spec = GyroSpec(noise_dps=0.0, bias_tol_dps=0.0)
-    rec = sense(tr, CarrierSpec(handled_in_cruise=0), get_preset("ideal"), np.random.default_rng(6), gyro=spec)
+    rec = sense(
+        tr, CarrierSpec(handled_in_cruise=0), get_preset("ideal"), np.random.default_rng(6), gyro=spec
+    )
     assert rec.gyro_dps is not None and rec.gyro_dps.shape == rec.acc_g.shape
     # stowed: the gyro reads the body rates rotated into the bag's axes (|w| is frame-invariant)
     st = rec.bag_state == "stowed"

@@ -20,7 +20,9 @@ def test_optimum_level_rises_as_the_stratosphere_scale_height_says():
     # the closed-form inverse (sim.flight.atmosphere.pressure_altitude_m).
     scale_m = constants.R / 0.0289644 * 216.65 / constants.g
     for w in (0.97, 0.9, 0.8):
-        assert optimum_alt_m(w, 1.0, 11_500.0) - 11_500.0 == pytest.approx(scale_m * math.log(1.0 / w), abs=0.02)
+        assert optimum_alt_m(w, 1.0, 11_500.0) - 11_500.0 == pytest.approx(
+            scale_m * math.log(1.0 / w), abs=0.02
+        )
     assert optimum_alt_m(1.0, 1.0, 9_000.0) == pytest.approx(9_000.0, abs=0.01)  # the reference is optimal
 
 
@@ -55,4 +57,6 @@ def test_the_transatlantic_787_steps_up_2000_ft_and_the_737_stays_below_its_ceil
     s = (tr.t_s > t_step) & (tr.t_s < t_step + 600)
     assert tr.vertical_speed_mps[s].max() < 1000 * FT_M / 60 + 0.5
     _, tr7 = fly_cached("ist-osl-737")
-    assert not [e for e in tr7.events if e.name == "step_climb"]  # FL371 is at the 737-300's 37,000 ft already
+    assert not [
+        e for e in tr7.events if e.name == "step_climb"
+    ]  # FL371 is at the 737-300's 37,000 ft already

@@ -26,9 +26,10 @@ def test_each_curve_rises_and_spans_the_middle_of_wrap(model):
     # the curve's mass times 1.1 ** mass_exp; 5 % thinner air, that of 1 / 0.95 ** TAKEOFF_DENSITY_EXP
     assert t.throttle_for(acc[2], t.mass_kg, t.rho_kgm3) == pytest.approx(thr[2], abs=1e-12)
     a = float(np.mean(acc[1:3]))
-    assert t.throttle_for(a, 1.1 * t.mass_kg) == pytest.approx(t.throttle_for(a * 1.1 ** t.mass_exp), abs=1e-12)
+    assert t.throttle_for(a, 1.1 * t.mass_kg) == pytest.approx(t.throttle_for(a * 1.1**t.mass_exp), abs=1e-12)
     assert t.throttle_for(a, rho_kgm3=0.95 * t.rho_kgm3) == pytest.approx(
-        t.throttle_for(a / 0.95 ** TAKEOFF_DENSITY_EXP), abs=1e-12)
+        t.throttle_for(a / 0.95**TAKEOFF_DENSITY_EXP), abs=1e-12
+    )
     assert t.throttle_for(a, 1.1 * t.mass_kg) > t.throttle_for(a) > t.throttle_for(a, 0.9 * t.mass_kg)
 
 
@@ -59,8 +60,9 @@ def test_a_flown_takeoff_gives_the_drawn_acceleration(fly_cached, model, field):
     0.05 throttle apart (under 0.02 m/s^2): 0.05 m/s^2, a sixth of WRAP's standard deviation. The same
     pattern from a 900 m field (air 4.6 % thinner) keeps it only with the density scaling: without it
     the 737's acceleration falls by about 0.09 m/s^2 (measured at 0.90 throttle)."""
-    sc, track = fly_cached("pattern", seed=4, stop_after_s=430.0, aircraft=model, **{"takeoff.thrust_norm": None},
-                           **field)
+    sc, track = fly_cached(
+        "pattern", seed=4, stop_after_s=430.0, aircraft=model, **{"takeoff.thrust_norm": None}, **field
+    )
     accel = takeoff_accel_mps2(track)
     target = track.conditions["takeoff_accel_target_mps2"]
     w = PROFILES[model].takeoff.accel
@@ -92,7 +94,9 @@ def test_the_a320_climbs_to_1500_ft_at_its_drawn_wrap_rate(fly_cached):
     draws up to 12.4 m/s)."""
     from flightmode.sim.flight.flight_metrics import initial_climb_vs_mps
 
-    sc, track = fly_cached("pattern", seed=4, stop_after_s=430.0, aircraft="A320", **{"takeoff.thrust_norm": None})
+    sc, track = fly_cached(
+        "pattern", seed=4, stop_after_s=430.0, aircraft="A320", **{"takeoff.thrust_norm": None}
+    )
     h = track.alt_m - sc.plan.origin.elevation_m
     assert h.max() > 1500 * 0.3048 + 10.0  # the prefix reaches past 1,500 ft
     drawn = track.conditions["initial_climb_vs_mps"]

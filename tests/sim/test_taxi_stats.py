@@ -87,8 +87,16 @@ def test_straight_taxi_at_constant_speed_irregular_adsb_like_sampling():
     # reported inputs: a constant stays constant through interpolation and the filter (float rounding)
     for k in ("speed_p50_mps", "speed_p90_mps", "speed_p99_mps", "speed_max_mps"):
         assert rep[k] == pytest.approx(8.0, abs=1e-9), k
-    for k in ("yaw_rate_p50_dps", "yaw_rate_p90_dps", "yaw_rate_p99_dps", "yaw_rate_max_dps", "brake_max_g",
-              "accel_max_g", "n_turns", "turns_per_min"):
+    for k in (
+        "yaw_rate_p50_dps",
+        "yaw_rate_p90_dps",
+        "yaw_rate_p99_dps",
+        "yaw_rate_max_dps",
+        "brake_max_g",
+        "accel_max_g",
+        "n_turns",
+        "turns_per_min",
+    ):
         assert rep[k] == pytest.approx(0.0, abs=1e-9), k
     assert rep["duration_s"] == pytest.approx(t[-1] - t[0])
     assert rep["distance_m"] == pytest.approx(8.0 * math.floor(t[-1] - t[0]), rel=1e-9)
@@ -102,8 +110,15 @@ def test_straight_taxi_at_constant_speed_irregular_adsb_like_sampling():
 
 
 V, R = 5.0, 40.0  # three 90 deg turns at 5 m/s on a 40 m radius: v/R = 7.16 deg/s, 12.6 s per turn
-THREE_TURNS = [("straight", 200.0), ("turn", R, 90.0, +1), ("straight", 200.0), ("turn", R, 90.0, -1),
-               ("straight", 200.0), ("turn", R, 90.0, +1), ("straight", 200.0)]
+THREE_TURNS = [
+    ("straight", 200.0),
+    ("turn", R, 90.0, +1),
+    ("straight", 200.0),
+    ("turn", R, 90.0, -1),
+    ("straight", 200.0),
+    ("turn", R, 90.0, +1),
+    ("straight", 200.0),
+]
 
 
 def test_three_right_angle_turns_at_known_radius_and_speed():
@@ -128,8 +143,15 @@ def test_turn_rate_derived_from_positions_matches_v_over_r():
     # derived from positions the heading passes two 9 s fits (velocity, then heading rate): the rate
     # is exact where both windows lie inside the arc, so the arc must last > 18 s: R = 60 m (18.8 s)
     r = 60.0
-    legs = [("straight", 150.0), ("turn", r, 90.0, -1), ("straight", 150.0), ("turn", r, 90.0, +1),
-            ("straight", 150.0), ("turn", r, 90.0, -1), ("straight", 150.0)]
+    legs = [
+        ("straight", 150.0),
+        ("turn", r, 90.0, -1),
+        ("straight", 150.0),
+        ("turn", r, 90.0, +1),
+        ("straight", 150.0),
+        ("turn", r, 90.0, -1),
+        ("straight", 150.0),
+    ]
     t, lat, lon, _, _ = _path(legs, V)
     st = ts.taxi_statistics(t, lat, lon)
     assert st["n_turns"] == 3.0
@@ -176,7 +198,9 @@ def test_bad_input_raises_typed_errors():
 
 
 def _adsb_files():
-    assert ADSB_DIR.is_dir(), f"the real ADS-B tracks are expected in {ADSB_DIR} (shared/data beside the checkout)"
+    assert ADSB_DIR.is_dir(), (
+        f"the real ADS-B tracks are expected in {ADSB_DIR} (shared/data beside the checkout)"
+    )
     return {p.stem: p for p in sorted(ADSB_DIR.glob("*.csv"))}
 
 
@@ -221,8 +245,9 @@ def _fake_track():
     phase[-100:] = PHASE_CODE["takeoff_roll"]
     euler = np.zeros((n, 3))
     euler[:, 2] = np.radians(psi)
-    return SimpleNamespace(t_s=t, lat_deg=lat, lon_deg=lon, ground_speed_mps=np.full(n, V), euler_rad=euler,
-                           phase_code=phase)
+    return SimpleNamespace(
+        t_s=t, lat_deg=lat, lon_deg=lon, ground_speed_mps=np.full(n, V), euler_rad=euler, phase_code=phase
+    )
 
 
 def test_flight_segments_follow_the_phase_labels():
@@ -231,8 +256,9 @@ def test_flight_segments_follow_the_phase_labels():
     assert segs == {"taxi_out": slice(100, tr.t_s.size - 100)}
     st = ts.flight_taxi_statistics(tr)["taxi_out"]
     s = segs["taxi_out"]
-    assert st == ts.taxi_statistics(tr.t_s[s], tr.lat_deg[s], tr.lon_deg[s], tr.ground_speed_mps[s],
-                                    np.degrees(tr.euler_rad[s, 2]))
+    assert st == ts.taxi_statistics(
+        tr.t_s[s], tr.lat_deg[s], tr.lon_deg[s], tr.ground_speed_mps[s], np.degrees(tr.euler_rad[s, 2])
+    )
     tr.phase_code[:] = PHASE_CODE["cruise"]
     with pytest.raises(InputDataError, match="no taxi_out or taxi_in"):
         ts.flight_taxi_segments(tr)

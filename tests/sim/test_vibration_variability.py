@@ -47,8 +47,15 @@ def test_floor_draws_follow_their_distributions():
     base = vib.VibrationModel()
     d = draws[0]
     k = d.type_level * d.location_level * d.flight_level
-    for name in ("n1_line_g", "n1_h2_g", "n2_line_g", "mode_engine_g", "mode_airflow_g", "roughness_g_per_mps",
-                 "joint_impulse_g"):
+    for name in (
+        "n1_line_g",
+        "n1_h2_g",
+        "n2_line_g",
+        "mode_engine_g",
+        "mode_airflow_g",
+        "roughness_g_per_mps",
+        "joint_impulse_g",
+    ):
         assert getattr(d.model, name) == pytest.approx(getattr(base, name) * k, rel=1e-12)
     np.testing.assert_allclose(d.model.mode_hz, np.array(base.mode_hz) * d.mode_scale, rtol=1e-6)
     # the axis weights and the modes' sharpness are not drawn
@@ -110,7 +117,9 @@ def test_engines_are_felt_until_the_labels_turn_them_off_and_not_after():
     assert np.all(np.diff(level[:5]) < 0) and np.all(level[:4] > 0.0)
     assert np.all(level[4:] == 0.0)
     # above 15 % N2 only the N1 fade acts: at N1 7.5 % it halves the running level
-    assert level[2] == pytest.approx((model.engine_idle_share + (1 - model.engine_idle_share) * 0.075**2) * 0.5)
+    assert level[2] == pytest.approx(
+        (model.engine_idle_share + (1 - model.engine_idle_share) * 0.075**2) * 0.5
+    )
 
 
 def test_floor_rms_matches_the_documented_cruise_level():
@@ -122,8 +131,18 @@ def test_floor_rms_matches_the_documented_cruise_level():
     fs, n = 800.0, 48_000
     model = vib.VibrationModel()
     st = vib.initial_state(2, model, fs, _rng(2))
-    y, _ = vib.vibration_g(np.full((2, n), 80.0), np.full((2, n), 90.0), np.full(n, 9600.0), np.zeros(n),
-                           np.zeros(n, bool), fs, "A320", model, st, _rng(3))
+    y, _ = vib.vibration_g(
+        np.full((2, n), 80.0),
+        np.full((2, n), 90.0),
+        np.full(n, 9600.0),
+        np.zeros(n),
+        np.zeros(n, bool),
+        fs,
+        "A320",
+        model,
+        st,
+        _rng(3),
+    )
     rms = np.sqrt(np.mean(y**2, axis=1))
     np.testing.assert_allclose(rms, 20e-3 * np.array(model.axis_share), rtol=0.1)
 
@@ -158,7 +177,15 @@ def test_a_vibration_level_scales_the_floor_exactly():
     fs, n = 800.0, 8_000
     model = vib.VibrationModel()
     gs = np.linspace(0.0, 60.0, n)
-    args = (np.full((2, n), 80.0), np.full((2, n), 90.0), np.full(n, 9600.0), gs, np.ones(n, bool), fs, "A320")
+    args = (
+        np.full((2, n), 80.0),
+        np.full((2, n), 90.0),
+        np.full(n, 9600.0),
+        gs,
+        np.ones(n, bool),
+        fs,
+        "A320",
+    )
     st = vib.initial_state(2, model, fs, _rng(2))
     y1, _ = vib.vibration_g(*args, model, st, _rng(3))
     y2, _ = vib.vibration_g(*args, vib.scaled(model, 2.0), st, _rng(3))
@@ -263,14 +290,22 @@ def test_digital_mount_matches_the_continuous_transmissibility():
     from scipy.signal import sosfreqz
 
     fs = 800.0
-    m = mnt.MountDraw(np.array([[6.0, 5.5, 4.0], [10.0, 11.0, 18.0]]), np.array([[0.1, 0.15, 0.2], [0.3, 0.4, 0.5]]),
-                      "mid", "soft")
+    m = mnt.MountDraw(
+        np.array([[6.0, 5.5, 4.0], [10.0, 11.0, 18.0]]),
+        np.array([[0.1, 0.15, 0.2], [0.3, 0.4, 0.5]]),
+        "mid",
+        "soft",
+    )
     f = np.linspace(5.0, 40.0, 36)
     for ax, sos in enumerate(mnt.mount_sos(m, fs)):
         digital = np.abs(sosfreqz(sos, worN=f, fs=fs)[1])
-        analog = mnt.stage_gain(m.fn_hz[0, ax], m.zeta[0, ax], f) * mnt.stage_gain(m.fn_hz[1, ax], m.zeta[1, ax], f)
+        analog = mnt.stage_gain(m.fn_hz[0, ax], m.zeta[0, ax], f) * mnt.stage_gain(
+            m.fn_hz[1, ax], m.zeta[1, ax], f
+        )
         np.testing.assert_allclose(digital, analog, rtol=0.03)
-        assert abs(np.sum(sos[:, :3], axis=1) / np.sum(sos[:, 3:], axis=1)).prod() == pytest.approx(1.0)  # 0 Hz
+        assert abs(np.sum(sos[:, :3], axis=1) / np.sum(sos[:, 3:], axis=1)).prod() == pytest.approx(
+            1.0
+        )  # 0 Hz
 
 
 # ---------------------------------------------------------------------- stowage and orientation (carrier)
@@ -280,8 +315,9 @@ def _tilt_and_yaw(r: np.ndarray) -> tuple[float, float]:
     return a["tilt_deg"], a["yaw_deg"]
 
 
-@pytest.mark.parametrize("yaw, x_fus", [(0.0, 0.0), (30.0, 30.0), (90.0, 90.0), (150.0, 30.0), (270.0, 90.0),
-                                        (330.0, 30.0)])
+@pytest.mark.parametrize(
+    "yaw, x_fus", [(0.0, 0.0), (30.0, 30.0), (90.0, 90.0), (150.0, 30.0), (270.0, 90.0), (330.0, 30.0)]
+)
 def test_orientation_angles_of_a_level_sensor(yaw, x_fus):
     # a level sensor yawed by ``yaw``: its x axis makes |yaw| folded into 0-90 deg with the fuselage
     # axis (fore or aft alike: the same vibration), its z axis is vertical (tilt 0); 1e-9 deg: rounding
@@ -292,9 +328,16 @@ def test_orientation_angles_of_a_level_sensor(yaw, x_fus):
     # the tilt turns the x axis's heading and its angle to the fuselage by at most the tilt (small tilt)
     assert min(abs(a["yaw_deg"] - yaw), 360.0 - abs(a["yaw_deg"] - yaw)) <= tilt + 1e-9
     assert abs(a["x_from_fuselage_deg"] - x_fus) <= tilt + 1e-9
-    level = orientation_angles(np.array([[math.cos(math.radians(yaw)), -math.sin(math.radians(yaw)), 0.0],
-                                         [math.sin(math.radians(yaw)), math.cos(math.radians(yaw)), 0.0],
-                                         [0.0, 0.0, 1.0]]) @ np.diag([1.0, -1.0, -1.0]))
+    level = orientation_angles(
+        np.array(
+            [
+                [math.cos(math.radians(yaw)), -math.sin(math.radians(yaw)), 0.0],
+                [math.sin(math.radians(yaw)), math.cos(math.radians(yaw)), 0.0],
+                [0.0, 0.0, 1.0],
+            ]
+        )
+        @ np.diag([1.0, -1.0, -1.0])
+    )
     assert level["tilt_deg"] == pytest.approx(0.0, abs=1e-9)
     assert level["x_from_fuselage_deg"] == pytest.approx(x_fus, abs=1e-6)
     assert level["yaw_deg"] % 360.0 == pytest.approx(yaw, abs=1e-6)
@@ -349,7 +392,11 @@ def test_bags_are_stowed_for_taxi_takeoff_and_landing_and_moved_for_the_cruise()
         # stowed under the seat, on the seat, under the seat: one move there and one back, and the
         # in-cruise handlings (two drawn; one is dropped if it overlaps another) in between, on the seat
         places = [s.placement for s in stowed]
-        assert [p for i, p in enumerate(places) if i == 0 or p != places[i - 1]] == ["under_seat", "seat", "under_seat"]
+        assert [p for i, p in enumerate(places) if i == 0 or p != places[i - 1]] == [
+            "under_seat",
+            "seat",
+            "under_seat",
+        ]
         in_seat = [s for s in on if s.state == "handled" and on_seat[0].t0_s <= s.t0_s < on_seat[-1].t1_s]
         assert 1 <= len(in_seat) <= 2
     # without a cruise placement the bag stays put
@@ -374,11 +421,19 @@ def test_new_carrier_keys_round_trip_through_toml():
     from flightmode.scenarios.scenario import Scenario
 
     sc = Scenario.builtin("hel-zrh-f100-calm")
-    assert (sc.carrier.placement, sc.carrier.cruise_placement, sc.carrier.stowed_yaw_deg) == ("under_seat", "seat", 0.0)
+    assert (sc.carrier.placement, sc.carrier.cruise_placement, sc.carrier.stowed_yaw_deg) == (
+        "under_seat",
+        "seat",
+        0.0,
+    )
     assert sc.plan.background_edr == 0.01 and sc.plan.turbulence == ()
     assert Scenario.from_toml_text(sc.to_toml()) == sc
     other = sc.replace(carrier={"packing": "rigid", "cabin_row": "rear", "cruise_placement": None})
-    assert (other.carrier.packing, other.carrier.cabin_row, other.carrier.cruise_placement) == ("rigid", "rear", None)
+    assert (other.carrier.packing, other.carrier.cabin_row, other.carrier.cruise_placement) == (
+        "rigid",
+        "rear",
+        None,
+    )
     assert Scenario.from_toml_text(other.to_toml()) == other
 
 
@@ -389,8 +444,16 @@ def test_new_carrier_keys_round_trip_through_toml():
 # (and its P_FA column, 6e-33 = (P_FA^t)^3, implies 1.8e-11): the per-axis cells are used, and
 # P_FA^t is compared as their product.
 TABLES = {
-    "gva-lhr-a320": {3: (5e-2, 7e-4, 9e-7), 4: (8e-2, 2e-3, 2e-6), 5: (1e-1, 4e-3, 2e-4)},  # Table 4, flight 1
-    "hel-zrh-f100-calm": {3: (3e-1, 1e-2, 7e-3), 4: (6e-1, 1e-1, 7e-2), 5: (7e-1, 4e-1, 2e-1)},  # Table 5, flight 2
+    "gva-lhr-a320": {
+        3: (5e-2, 7e-4, 9e-7),
+        4: (8e-2, 2e-3, 2e-6),
+        5: (1e-1, 4e-3, 2e-4),
+    },  # Table 4, flight 1
+    "hel-zrh-f100-calm": {
+        3: (3e-1, 1e-2, 7e-3),
+        4: (6e-1, 1e-1, 7e-2),
+        5: (7e-1, 4e-1, 2e-1),
+    },  # Table 5, flight 2
 }
 RESOLVED = 10.0  # expected checks at the paper's fraction above which a cell is compared both ways
 
@@ -416,18 +479,24 @@ def test_table_4_and_5_cells_within_a_decade(name, run_cached):
     r = run_cached(name)
     rec, det = r.recording, r.detection  # sigma^2: the bench calibration of the run's own unit
     # the checks the paper counted: the in-flight window without the engines' run-down (validate.dynamic_part)
-    labels = dynamic_part({"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static,
-                           "phase": rec.phase})
-    rows = [row for row in pfa_table(rec.t_s, rec.acc_g, labels, recommended_params(rec.odr_hz), det.sigma2)
-            if row["T_th_s"] == 4.0]
+    labels = dynamic_part(
+        {"in_flight_window": rec.in_flight_window, "sensor_static": rec.sensor_static, "phase": rec.phase}
+    )
+    rows = [
+        row
+        for row in pfa_table(rec.t_s, rec.acc_g, labels, recommended_params(rec.odr_hz), det.sigma2)
+        if row["T_th_s"] == 4.0
+    ]
     report, bad = [], []
     for row in rows:
         k = int(row["T_sigma"])
         n = row["checks"]
         ours = (row["P_FA_x"], row["P_FA_y"], row["P_FA_z"])
         paper = TABLES[name][k]
-        report.append(f"{k} sigma^2: ours {['%.1e' % v for v in ours]} P_t {row['P_FA_t']:.1e} | paper "
-                      f"{['%.0e' % v for v in paper]} P_t {math.prod(paper):.0e} (n = {n})")
+        report.append(
+            f"{k} sigma^2: ours {[f'{v:.1e}' for v in ours]} P_t {row['P_FA_t']:.1e} | paper "
+            f"{[f'{v:.0e}' for v in paper]} P_t {math.prod(paper):.0e} (n = {n})"
+        )
         for axis, o, p in zip("xyz", ours, paper):
             if not _within_a_decade(o, p, n):
                 bad.append(f"{axis} at {k} sigma^2: {o:.2e} against {p:.0e}")

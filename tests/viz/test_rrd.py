@@ -45,7 +45,9 @@ def test_default_flight_rrd_round_trip(default_run):
     t = s["t_s"].to_numpy()
     # every accelerometer sample, on exact integer-nanosecond timestamps
     data = [b for b in ch["/sensor/acc_g"] if "Scalars:scalars" in b.schema.names]  # not the static style
-    acc_t = np.concatenate([b.column(b.schema.names.index("sim_time")).cast("int64").to_numpy() for b in data])
+    acc_t = np.concatenate(
+        [b.column(b.schema.names.index("sim_time")).cast("int64").to_numpy() for b in data]
+    )
     acc_v = np.array(_column(data, "Scalars:scalars"))
     order = np.argsort(acc_t, kind="stable")
     acc_t, acc_v = acc_t[order], acc_v[order]
@@ -57,8 +59,12 @@ def test_default_flight_rrd_round_trip(default_run):
     from flightmode.detector.flight_mode import DetectorParams, detect
 
     d = info["detector"]
-    c = detect(t, np.column_stack([s[f"acc_{a}_g"].to_numpy() for a in "xyz"]),
-               DetectorParams(), np.array(d["sigma2_g2"]))
+    c = detect(
+        t,
+        np.column_stack([s[f"acc_{a}_g"].to_numpy() for a in "xyz"]),
+        DetectorParams(),
+        np.array(d["sigma2_g2"]),
+    )
     code = np.where(c.final_static, 2, np.where(c.temporary_static, 1, 0))
     change = np.flatnonzero(np.r_[True, np.diff(code) != 0])
     states = _column(ch["/detector/state"], "StateChange:state")
@@ -69,8 +75,9 @@ def test_default_flight_rrd_round_trip(default_run):
     texts = [x[0] for x in _column(ch["/events"], "TextLog:text")]
     levels = [x[0] for x in _column(ch["/events"], "TextLog:level")]
     assert levels.count("WARN") == d["false_static_count"]
-    assert {"engines_off", "liftoff", "bag: arrival_rest"} <= {x.split(":")[0] if not x.startswith("bag") else x
-                                                               for x in texts}
+    assert {"engines_off", "liftoff", "bag: arrival_rest"} <= {
+        x.split(":")[0] if not x.startswith("bag") else x for x in texts
+    }
     assert sum(1 for x in texts if x.startswith("touchdown")) == 1
 
 
@@ -87,8 +94,12 @@ def test_blueprint_holds_every_view(pattern_run):
     names, kinds = [], []
     for ent, batches in ch.items():
         if ent.startswith("/view/"):
-            names += [x[0] if isinstance(x, list) else x for x in _column(batches, "ViewBlueprint:display_name")]
-            kinds += [x[0] if isinstance(x, list) else x for x in _column(batches, "ViewBlueprint:class_identifier")]
+            names += [
+                x[0] if isinstance(x, list) else x for x in _column(batches, "ViewBlueprint:display_name")
+            ]
+            kinds += [
+                x[0] if isinstance(x, list) else x for x in _column(batches, "ViewBlueprint:class_identifier")
+            ]
     assert set(view_names()) <= set(names), set(view_names()) - set(names)
     assert {"TimeSeries", "StateTimeline", "3D", "Map", "TextLog"} <= set(kinds)
 
@@ -108,8 +119,12 @@ def _listening(proc):
 def _serve(run):
     import psutil
 
-    proc = subprocess.Popen([sys.executable, "-m", "flightmode.scenarios.cli", "view", str(run), "--web"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "flightmode.scenarios.cli", "view", str(run), "--web"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
     ps = psutil.Process(proc.pid)
     deadline = time.time() + 30
     socks = []
@@ -160,12 +175,23 @@ def test_web_viewer_renders_the_recording_in_headless_chromium(pattern_run, tmp_
         deadline = time.time() + 10
         while "http://" not in line and time.time() < deadline:
             line += proc.stdout.readline()
-        url = line[line.index("http://"):].split()[0]
+        url = line[line.index("http://") :].split()[0]
         with sync_playwright() as pw:
-            b = pw.chromium.launch(executable_path=chromium, headless=True, args=[
-                "--no-sandbox", "--disable-quic", "--no-first-run", "--disable-background-networking",
-                "--disable-component-update", "--disable-sync", "--use-angle=swiftshader",
-                "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist"])
+            b = pw.chromium.launch(
+                executable_path=chromium,
+                headless=True,
+                args=[
+                    "--no-sandbox",
+                    "--disable-quic",
+                    "--no-first-run",
+                    "--disable-background-networking",
+                    "--disable-component-update",
+                    "--disable-sync",
+                    "--use-angle=swiftshader",
+                    "--enable-unsafe-swiftshader",
+                    "--ignore-gpu-blocklist",
+                ],
+            )
             page = b.new_page(viewport={"width": 1600, "height": 1000})
             # software WebGL on a loaded 2-core machine (the suite's other worker busy): the screenshot
             # waited over Playwright's default 30 s for a frame once, in a full run with Chromium

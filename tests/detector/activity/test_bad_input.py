@@ -133,8 +133,10 @@ def test_fs_hz_that_is_not_the_stream_rate(name):
     _raises("sampled at 100 Hz but fs_hz = 50", registry.get(name).detect, t, a, g, fs_hz=50.0, **_p(name))
 
 
-@pytest.mark.parametrize(("name", "signal"), [("ared", None), ("shod", None)]
-                         + [(n, s) for n in NAMES for s in registry.get(n).signals if s != "acc"])
+@pytest.mark.parametrize(
+    ("name", "signal"),
+    [("ared", None), ("shod", None)] + [(n, s) for n in NAMES for s in registry.get(n).signals if s != "acc"],
+)
 def test_a_gyroscope_detector_without_gyroscope(name, signal):
     t, a, _ = _data()
     p = _p(name, signal=signal) if signal else _p(name)
@@ -172,6 +174,7 @@ def test_memory_and_noise_scales_must_be_positive():
     t, a, g = _data()
     _raises("bandwidth = 0", registry.get("mbcd").detect, t, a, g, **_p("mbcd", bandwidth=0.0))
     _raises("sigma_acc_g = -1", registry.get("amd").detect, t, a, g, **_p("amd", sigma_acc_g=-1))
-    _raises("sigma_gyr_dps = nan", registry.get("ared").detect, t, a, g,
-            **_p("ared", sigma_gyr_dps=float("nan")))
+    _raises(
+        "sigma_gyr_dps = nan", registry.get("ared").detect, t, a, g, **_p("ared", sigma_gyr_dps=float("nan"))
+    )
     _raises("lp_cutoff_hz = 30", registry.get("frd").detect, t, a, g, **_p("frd", lp_cutoff_hz=30.0))

@@ -77,8 +77,9 @@ def test_shod_eq4():
 
 def test_shod_in_free_fall_is_active():
     a = np.array([[0, 0, 0.1], [0, 0, -0.1]])  # the window's mean acceleration is zero
-    r = detect_shod(_t(2), a, np.zeros((2, 3)), window=2, threshold=1e9, sigma_acc_g=1, sigma_gyr_dps=1,
-                    fs_hz=FS)
+    r = detect_shod(
+        _t(2), a, np.zeros((2, 3)), window=2, threshold=1e9, sigma_acc_g=1, sigma_gyr_dps=1, fs_hz=FS
+    )
     assert r.merit[1] == np.inf and r.marker[1] == 1
 
 
@@ -97,8 +98,14 @@ def test_frd_eq5_level_of_a_sinusoid():
     transients (slowest: the high-pass poles) have decayed below 1e-10 of the level."""
     f, amp, fc = 5.0, 0.2, 0.3
     t = _t(2000)
-    r = detect_frd(t, _scalar_as_acc(1.0 + amp * np.sin(2 * np.pi * f * t)), threshold=0.0,
-                   hp_cutoff_hz=fc, lp_cutoff_hz=1.0, fs_hz=FS)
+    r = detect_frd(
+        t,
+        _scalar_as_acc(1.0 + amp * np.sin(2 * np.pi * f * t)),
+        threshold=0.0,
+        hp_cutoff_hz=fc,
+        lp_cutoff_hz=1.0,
+        fs_hz=FS,
+    )
     w, wc = math.tan(math.pi * f / FS), math.tan(math.pi * fc / FS)
     h = -(w**2) / (-(w**2) + math.sqrt(2) * wc * 1j * w + wc**2)
     tk = t[1000:2000]  # 10 s: 50 whole periods of the rectified ripple
@@ -113,8 +120,15 @@ def test_fsd_eq8_is_the_frame_energy_over_a_flat_noise():
     noise spectrum N(l) = c, eq. (8) is 10 log10(sum_k x_k^2 / c^2)."""
     x = [1, 2, 3, 6, 2, 4]  # frames (window 2, shift 2): (1, 2), (3, 6), (2, 4): energies 5, 45, 20
     c = 0.5
-    r = detect_fsd(_t(6), _scalar_as_acc(x), window=2, shift=2, threshold=20.0,
-                   noise_spectrum=np.full(N_BANDS, c), fs_hz=FS)
+    r = detect_fsd(
+        _t(6),
+        _scalar_as_acc(x),
+        window=2,
+        shift=2,
+        threshold=20.0,
+        noise_spectrum=np.full(N_BANDS, c),
+        fs_hz=FS,
+    )
     e = [10 * math.log10(v / c**2) for v in (5, 45, 20)]  # 13.0, 22.6, 19.0 dB
     # sample k has the merit of the last frame ending at or before it (frame n ends at 2n + 1)
     _close(r.merit, [NAN, e[0], e[0], e[1], e[1], e[2]])
@@ -128,8 +142,16 @@ def test_ltsd_eq6_7_envelope_of_scaled_frames():
     s = [1, 2, 3, 0.5, 0.5, 0.5]
     x = np.concatenate([[v, 2 * v] for v in s])
     c = 1.0
-    r = detect_ltsd(_t(12), _scalar_as_acc(x), window=2, shift=2, threshold=0.0, order=1,
-                    noise_spectrum=np.full(N_BANDS, c), fs_hz=FS)
+    r = detect_ltsd(
+        _t(12),
+        _scalar_as_acc(x),
+        window=2,
+        shift=2,
+        threshold=0.0,
+        order=1,
+        noise_spectrum=np.full(N_BANDS, c),
+        fs_hz=FS,
+    )
     v = [10 * math.log10(max(s[max(0, n - 1) : n + 2]) ** 2 * 5 / c**2) for n in range(5)]
     # envelopes: frame 0 {1, 2} -> 2; 1 {1, 2, 3} -> 3; 2 {2, 3, .5} -> 3; 3 {3, .5, .5} -> 3; 4 -> 0.5
     assert v[0] == pytest.approx(10 * math.log10(20)) and v[4] == pytest.approx(10 * math.log10(1.25))

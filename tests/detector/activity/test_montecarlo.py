@@ -104,23 +104,41 @@ def test_grid_search_finds_the_known_best_window_and_accuracy():
     pos = b.merit[np.isfinite(b.merit) & (b.merit > 0)]
     assert 0 < b.threshold < pos.min()
     # and a coarse explicit threshold grid containing a separating value finds the same point
-    c = mc.grid_search("amvd", None, t, acc, None, truth, [(w, None) for w in sorted(windows)], fs_hz=FS,
-                       thresholds=[-1.0, b.threshold, 10.0])
+    c = mc.grid_search(
+        "amvd",
+        None,
+        t,
+        acc,
+        None,
+        truth,
+        [(w, None) for w in sorted(windows)],
+        fs_hz=FS,
+        thresholds=[-1.0, b.threshold, 10.0],
+    )
     assert (c.window, c.accuracy, c.threshold) == (8, b.accuracy, b.threshold)
 
 
 # ---------------------------------------------------------------- a tiny study
 TINY = mc.MonteCarloConfig(
-    duration_s=30.0, bench_s=4.0,
-    grid=mc.Grid(detectors=("shod", "mbgtd"), signals=("acc", "product"), magnitude_windows=(5, 10),
-                 memory_windows=(4, 8)))
+    duration_s=30.0,
+    bench_s=4.0,
+    grid=mc.Grid(
+        detectors=("shod", "mbgtd"),
+        signals=("acc", "product"),
+        magnitude_windows=(5, 10),
+        memory_windows=(4, 8),
+    ),
+)
 
 
 def _same(a: mc.MonteCarloResult, b: mc.MonteCarloResult) -> bool:
     # json: NaN-safe (NaN != NaN) and exact (floats written with their shortest round-trip repr)
     rows_equal = json.dumps(a.rows, default=str) == json.dumps(b.rows, default=str)
-    return rows_equal and a.roc_tpr.keys() == b.roc_tpr.keys() and all(
-        np.array_equal(a.roc_tpr[k], b.roc_tpr[k]) for k in a.roc_tpr)
+    return (
+        rows_equal
+        and a.roc_tpr.keys() == b.roc_tpr.keys()
+        and all(np.array_equal(a.roc_tpr[k], b.roc_tpr[k]) for k in a.roc_tpr)
+    )
 
 
 @pytest.fixture(scope="module")
@@ -143,8 +161,10 @@ def test_tiny_study_is_reproducible_in_any_run_order(tiny):
 def test_tiny_study_on_dask_equals_in_process(tiny):
     from dask.distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster, \
-            Client(cluster) as client:
+    with (
+        LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster,
+        Client(cluster) as client,
+    ):
         assert _same(tiny, mc.run_montecarlo(3, seed=5, config=TINY, client=client))
 
 
@@ -198,8 +218,12 @@ def test_the_cli_runs_the_study_and_prints_the_paper_beside_it(tmp_path):
 
     from flightmode.scenarios.cli import app
 
-    r = CliRunner().invoke(app, ["activity", "synth", "--n", "1", "--workers", "1", "--out", str(tmp_path / "mc")])
+    r = CliRunner().invoke(
+        app, ["activity", "synth", "--n", "1", "--workers", "1", "--out", str(tmp_path / "mc")]
+    )
     assert r.exit_code == 0, r.output
     assert "MBCD-Acc." in r.output and (tmp_path / "mc" / "results.json").exists()
     r = CliRunner().invoke(app, ["activity", "synth", "--n", "0"])
-    assert r.exit_code == 2 and r.output.strip() == "error: --n 0: the number of runs must be a positive integer"
+    assert (
+        r.exit_code == 2 and r.output.strip() == "error: --n 0: the number of runs must be a positive integer"
+    )

@@ -45,15 +45,17 @@ def test_every_stream_has_the_shared_protocol(name):
 
 
 def test_an_unknown_name_suggests_the_nearest():
-    with pytest.raises(DetectorError, match='no \\(in\\)activity detector \'mbgd\'.*did you mean "mbgtd"'):
+    with pytest.raises(DetectorError, match="no \\(in\\)activity detector 'mbgd'.*did you mean \"mbgtd\""):
         registry.get("mbgd")
     with pytest.raises(DetectorError, match="use one of amvd, amd"):
         registry.get("variance")
 
 
 def test_importing_the_registry_loads_no_detector_and_no_numpy():
-    code = ("import sys; from flightmode.detector.activity import registry; registry.get('shod');"
-            "print(sorted(m for m in sys.modules"
-            " if m.startswith('numpy') or m.endswith(('magnitude', 'memory', 'spectrum')))[:3])")
+    code = (
+        "import sys; from flightmode.detector.activity import registry; registry.get('shod');"
+        "print(sorted(m for m in sys.modules"
+        " if m.startswith('numpy') or m.endswith(('magnitude', 'memory', 'spectrum')))[:3])"
+    )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert r.stdout.strip() == "[]"

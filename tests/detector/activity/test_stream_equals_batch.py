@@ -87,9 +87,11 @@ def test_warm_up_is_nan_and_active(name):
     first = int(np.flatnonzero(~nan)[0])
     assert not nan[first:].any()  # once warm, always warm
     p = _small(name, "acc")
-    expected = {"frd": 0,  # a filter: a merit from the first sample
-                # the noise spectrum's 20 frames (shift 3, window 8): the 20th frame ends at 19*3 + 7
-                "fsd": 19 * 3 + 7,
-                # and the envelope's 6 frames ahead (already inside the 20)
-                "ltsd": 19 * 3 + 7}.get(name, p.get("window", 0) - 1)
+    expected = {
+        "frd": 0,  # a filter: a merit from the first sample
+        # the noise spectrum's 20 frames (shift 3, window 8): the 20th frame ends at 19*3 + 7
+        "fsd": 19 * 3 + 7,
+        # and the envelope's 6 frames ahead (already inside the 20)
+        "ltsd": 19 * 3 + 7,
+    }.get(name, p.get("window", 0) - 1)
     assert first == expected

@@ -49,7 +49,11 @@ def test_marker_is_the_periods_drawn(seed):
         else:
             # activity: the sensor moves at some sample (by far more than these bounds: the smallest
             # draws are 0.1 g of constant acceleration and a 20 deg/s constant rate)
-            moved = np.abs(acc - acc[0]).max() > 0.05 or np.abs(acc - still).max() > 0.05 or np.abs(gyr).max() > 1.0
+            moved = (
+                np.abs(acc - acc[0]).max() > 0.05
+                or np.abs(acc - still).max() > 0.05
+                or np.abs(gyr).max() > 1.0
+            )
             assert moved, p
     # sit/lie: down (active), the rest (inactive), up (active)
     kinds = [p.kind for p in s.periods]
@@ -82,7 +86,9 @@ def test_gravity_axis(axis):
     p = s.periods[0]
     expect = np.zeros(3)
     expect["xyz".index(axis[-1])] = -1.0 if axis.startswith("-") else 1.0
-    assert np.array_equal(s.acc_g[p.start : p.stop], np.tile(expect, (p.stop - p.start, 1)))  # +1 g on the up axis
+    assert np.array_equal(
+        s.acc_g[p.start : p.stop], np.tile(expect, (p.stop - p.start, 1))
+    )  # +1 g on the up axis
     # the same recording on another axis is the same body motion rotated: exactly (sigma 0; the
     # rotation is a signed permutation, so no rounding)
     z = _rec(3, 30.0, gravity_axis="z", **QUIET)
@@ -110,18 +116,28 @@ def test_noise_level_and_the_bench():
     assert np.std(b.gyr_dps, axis=0) == pytest.approx(np.full(3, 0.05), rel=0.03)
 
 
-@pytest.mark.parametrize(("kw", "match"), [
-    ({"gravity_axis": "zz"}, 'did you mean "z"'),
-    ({"acc_range_g": 1.0}, "must exceed the 1 g"),
-    ({"fs_hz": 0.0}, "fs_hz"),
-    ({"sigma_acc_g": -1.0}, "sigma_acc_g"),
-    ({"activities": ("walkng",)}, 'did you mean "walking"'),
-])
+@pytest.mark.parametrize(
+    ("kw", "match"),
+    [
+        ({"gravity_axis": "zz"}, 'did you mean "z"'),
+        ({"acc_range_g": 1.0}, "must exceed the 1 g"),
+        ({"fs_hz": 0.0}, "fs_hz"),
+        ({"sigma_acc_g": -1.0}, "sigma_acc_g"),
+        ({"activities": ("walkng",)}, 'did you mean "walking"'),
+    ],
+)
 def test_bad_settings_raise_one_typed_error(kw, match):
     with pytest.raises(SensorError, match=match):
         synthesize(np.random.default_rng(0), 10.0, **kw)
 
 
 def test_the_activity_list_is_the_seeds():
-    assert ACTIVITIES == ("walking", "sit_stand", "lie_stand", "running", "jumping", "constant_rate",
-                          "constant_acc")
+    assert ACTIVITIES == (
+        "walking",
+        "sit_stand",
+        "lie_stand",
+        "running",
+        "jumping",
+        "constant_rate",
+        "constant_acc",
+    )
