@@ -36,7 +36,7 @@ def report(res: dict) -> None:
 
 def fly_scenario(name: str):
     """(scenario, its track flown as ``flightmode.run`` flies it, wall s)."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
     sc = Scenario.resolve(name)
@@ -75,7 +75,7 @@ def in_flight_stepping_s(scenario) -> tuple[float, int]:
     ``flightmode.run`` flies it: the part of the fly stage that is JSBSim's own. Each step is timed on its
     own (the timer's calls are outside the sum), so the flight this measures is slower than an untimed
     one; what it sums is not."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.sim.flight import jsbsim_adapter
 
     total = [0.0, 0]

@@ -32,7 +32,7 @@ def _mb(root: Path, part: str) -> float:
 
 def main(n: int = 6, family: str = "regional-hops") -> dict:
     import flightmode
-    from flightmode.scenarios.dataset import make_dataset, read_manifest
+    from flightmode.datasets.make import make_dataset, read_manifest
     from flightmode.scenarios.family import Family
 
     fam = Family.resolve(family)

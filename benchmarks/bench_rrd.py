@@ -18,8 +18,8 @@ from _bench import best, best_timed, fly_scenario, report
 
 
 def main(name: str = "gva-lhr-a320") -> dict:
-    from flightmode.scenarios import pipeline
-    from flightmode.scenarios.run_view import run_view
+    from flightmode.runs import pipeline
+    from flightmode.runs.run_view import run_view
     from flightmode.viz.rrd import write_rrd
 
     (sc, track, _), t_fly = best_timed(lambda: fly_scenario(name))

@@ -15,7 +15,7 @@ from _bench import best_timed, fly_scenario, report
 
 
 def main(name: str = "gva-lhr-a320", preset_name: str = "lis302dl-logged16", repeats: int = 3) -> dict:
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.sim.sensor.sensing import FS_INTERNAL_HZ
 
     (sc, track, _), t_fly = best_timed(lambda: fly_scenario(name), repeats)

@@ -8,7 +8,7 @@ point), and :func:`~flightmode.detector.grid.evaluate_grid` over 20 k x 10 time 
 at one window and method (the moving variance computed once, each point a comparison and a run-length
 pass), and over the same 200 points for each of NMV and EMV (w 5) and windows 0.5, 1 and 2 s (1,200
 points, six moving variances). Goal: the 200-point grid in <= 3x the single run. Then what
-``flightmode sweep`` does per flight (:func:`~flightmode.scenarios.sweep.sweep_flight`: read, the
+``flightmode sweep`` does per flight (:func:`~flightmode.studies.sweep.sweep_flight`: read, the
 unit's sigma^2, the default 624-point grid, per-phase counts, static histograms) against reading the
 flight and running the detector once.
 """
@@ -24,7 +24,7 @@ from _bench import best, report
 
 
 def main(dataset: str | None = None) -> dict:
-    from flightmode.scenarios.dataset import make_dataset
+    from flightmode.datasets.make import make_dataset
 
     with tempfile.TemporaryDirectory() as d:
         if dataset is None:
@@ -37,8 +37,8 @@ def _measure(dataset: str) -> dict:
     from flightmode.detector.evaluation import evaluate
     from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.grid import Grid, evaluate_grid
-    from flightmode.scenarios.dataset import read_manifest
-    from flightmode.scenarios.run_io import read_samples
+    from flightmode.datasets.make import read_manifest
+    from flightmode.runs.run_io import read_samples
 
     row = next(r for r in read_manifest(Path(dataset)).values() if r["status"] == "ok")
     cols, _ = read_samples(Path(dataset) / row["samples_file"])
@@ -57,7 +57,7 @@ def _measure(dataset: str) -> dict:
     # what `flightmode sweep` does per flight with its default 624-point grid: read the samples,
     # regenerate the unit's bench sigma^2 per window, every point, the per-phase counts and the
     # static-MV histograms; against the same flight's one detector run with its reading
-    from flightmode.scenarios.sweep import sweep_flight
+    from flightmode.studies.sweep import sweep_flight
 
     g624 = Grid(
         (("nmv", 1.0), ("emv", 5.0)),
@@ -84,7 +84,7 @@ def _measure(dataset: str) -> dict:
 
 
 def _read(dataset, row, fs):
-    from flightmode.scenarios.run_io import read_samples
+    from flightmode.runs.run_io import read_samples
 
     cols, _ = read_samples(Path(dataset) / row["samples_file"])
     return cols["t_s"], cols["acc_g"], {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}

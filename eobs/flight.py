@@ -127,7 +127,7 @@ def tradeoff_on_track(
     import dataclasses
 
     from flightmode.eobs.duty_cycle import calibrate_sigma2_bursts
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, eobs_preset
 
     rows = []

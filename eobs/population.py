@@ -4,7 +4,7 @@ detector (:mod:`flightmode.eobs.duty_cycle`) at each ``m``, and per (interval, m
 hour (the battery's cost: the ADC and the radio-off time are proportional to them, seed 003
 section 10) against the false statics per in-window flight-hour (with Garwood's upper bound) and
 the response at the gate. One flight per task on the sweep's executor
-(:func:`flightmode.scenarios.sweep.map_flights`)."""
+(:func:`flightmode.studies.sweep.map_flights`)."""
 
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ def tradeoff_flight(
     """One flight's rows (:func:`flightmode.eobs.flight.tradeoff_on_track` on its full-rate truth)."""
     from flightmode.eobs.flight import tradeoff_on_track
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.scenarios.sweep import full_truth_track
+    from flightmode.studies.sweep import full_truth_track
 
     track = full_truth_track(dataset, row)
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
@@ -62,7 +62,7 @@ def check_request(
 ) -> list[tuple]:
     """(dataset, row) of every successful flight, after checking the request (one-line errors)."""
     from flightmode.errors import DetectorError
-    from flightmode.scenarios.dataset import ok_flights
+    from flightmode.datasets.make import ok_flights
     from flightmode.sim.sensor.accelerometer import eobs_preset
 
     paths = [Path(d) for d in datasets]
@@ -98,7 +98,7 @@ def tradeoff_population(
     on_flight: Callable[[int], None] | None = None,
 ) -> list[dict]:
     """Every flight's rows (:func:`tradeoff_flight`), in dataset and flight order."""
-    from flightmode.scenarios.sweep import map_flights
+    from flightmode.studies.sweep import map_flights
 
     jobs = check_request(datasets, intervals_s, byte_count, ms, k, odr_per_axis_hz)
     if on_start:
@@ -110,7 +110,7 @@ def tradeoff_population(
 def summarise(rows: list[dict], confidence: float = 0.95) -> list[dict]:
     """Per (interval, burst, m): flights, in-window hours, false statics, their rate and exact upper
     bound per flight-hour, response p50 / p95 / max at the gate, samples per hour per axis."""
-    from flightmode.scenarios.sweep import rate_and_response
+    from flightmode.studies.sweep import rate_and_response
 
     groups: dict[tuple, list[dict]] = {}
     for r in rows:

@@ -17,13 +17,13 @@ from __future__ import annotations
 __version__ = "0.1.0"
 
 _LAZY = {
-    "run": "flightmode.scenarios.pipeline",
-    "fly": "flightmode.scenarios.pipeline",
-    "sense": "flightmode.scenarios.pipeline",
-    "detect": "flightmode.scenarios.pipeline",
-    "estimate_path": "flightmode.scenarios.pipeline",
-    "write": "flightmode.scenarios.pipeline",
-    "RunResult": "flightmode.scenarios.pipeline",
+    "run": "flightmode.runs.pipeline",
+    "fly": "flightmode.runs.pipeline",
+    "sense": "flightmode.runs.pipeline",
+    "detect": "flightmode.runs.pipeline",
+    "estimate_path": "flightmode.runs.pipeline",
+    "write": "flightmode.runs.pipeline",
+    "RunResult": "flightmode.runs.pipeline",
     "Scenario": "flightmode.scenarios.scenario",
     "SensorChoice": "flightmode.scenarios.scenario",
     "Streams": "flightmode.streams",

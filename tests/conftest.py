@@ -93,7 +93,7 @@ def _fly_ahead(request, _flight_cache_dir):
     """Fly ahead (module docstring): the built-in scenarios the selected tests are parametrised
     over (``name``), longest route first, each by the first worker to claim it; then their runs
     (``run_cached``'s default stages) whose flight is already stored. Nothing is kept in memory."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario, builtin_names
     from flightmode.sim.flight.simulate import max_duration_s
 
@@ -122,7 +122,7 @@ def fly_cached(_flight_cache_dir):
     scenario (a built-in with ``Scenario.replace`` changes) flown by the pipeline's own ``fly`` with
     the run's ``flight`` streams, exactly as ``flightmode.run`` flies it (``stop_after_s``: only that
     much of it, the exact prefix)."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
     memo: dict = {}
@@ -153,7 +153,7 @@ def run_cached(fly_cached, _flight_cache_dir):
     ``flightmode.run`` (no files written), on the session's cached flight; like the flights, each
     result is computed once per session whatever the number of workers (pickled, renamed into
     place, under a lock)."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
 
     memo: dict = {}
 
@@ -179,7 +179,7 @@ def pattern_run(_flight_cache_dir):
     from filelock import FileLock
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     out = _flight_cache_dir / "pattern-cli"
     with FileLock(str(out) + ".lock"):
@@ -194,7 +194,7 @@ def pattern_run(_flight_cache_dir):
 def default_run(tmp_path_factory, fly_cached):
     """The default scenario's run folder (recording.rrd included), written by ``flightmode.run`` on the
     session's cached flight (the CLI end to end is `pattern_run`'s)."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import DEFAULT_SCENARIO
 
     sc, track = fly_cached(DEFAULT_SCENARIO)

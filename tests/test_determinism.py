@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from flightmode.digest import digest
-from flightmode.scenarios import pipeline
+from flightmode.runs import pipeline
 from flightmode.scenarios.scenario import builtin_names
 
 ARRAYS = (
@@ -45,7 +45,7 @@ def test_same_seed_bit_identical_track_in_another_process_and_samples_here(name,
     # phases, the takeoff and the climb-out: every controller up to there): the exact prefix
     stop = full.event_time("liftoff") + 120.0
     code = (
-        "import sys, flightmode; from flightmode.scenarios import pipeline; from flightmode.digest import digest;"
+        "import sys, flightmode; from flightmode.runs import pipeline; from flightmode.digest import digest;"
         f"sc = flightmode.Scenario.builtin({name!r});"
         f"tr = pipeline.fly(sc, pipeline.streams_of(sc.seed).child('flight'), stop_after_s={stop!r});"
         f"print(tr.n); print(digest(tuple(getattr(tr, a) for a in {ARRAYS!r})"

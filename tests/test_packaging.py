@@ -24,6 +24,16 @@ ROOMS = {
 HEAVY = ("numpy", "scipy", "jsbsim", "rerun", "pyarrow", "pandas", "dask", "distributed", "matplotlib")
 
 
+_IGNORE_ANYWHERE = shutil.ignore_patterns("build", "*.egg-info", "__pycache__", ".pytest_cache", ".hypothesis")
+
+
+def _ignore(folder: str, names: list[str]) -> set[str]:
+    """What the copy leaves out: caches and build output anywhere; at the checkout's top also git and
+    the output folders a user's runs leave there (``runs/``; flightmode/runs/ is a room and is kept)."""
+    top = {".git", "runs", ".venv"} if Path(folder) == ROOT else set()
+    return set(_IGNORE_ANYWHERE(folder, names)) | (top & set(names))
+
+
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("wheel")
@@ -33,9 +43,7 @@ def wheel(tmp_path_factory) -> Path:
     shutil.copytree(
         ROOT,
         src,
-        ignore=shutil.ignore_patterns(
-            ".git", "build", "*.egg-info", "__pycache__", ".pytest_cache", ".hypothesis", "runs", ".venv"
-        ),
+        ignore=_ignore,
     )
     subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(src)],
@@ -90,7 +98,7 @@ def test_importing_flightmode_and_its_cli_loads_nothing_heavy():
     """`flightmode --help` must start fast: jsbsim, scipy, rerun, pyarrow (and numpy) are imported
     only inside the commands that need them. Counted in a fresh interpreter, not timed."""
     code = (
-        "import sys, flightmode, flightmode.scenarios.cli;"
+        "import sys, flightmode, flightmode.cli.main;"
         f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))"
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -98,7 +106,7 @@ def test_importing_flightmode_and_its_cli_loads_nothing_heavy():
     # rendering the help loads none of them either, nor Typer's Rich help (rich.markdown and
     # markdown_it: 0.15-0.2 s of the 0.5 s budget, measured with python -X importtime)
     code = (
-        "import sys, contextlib, io; from flightmode.scenarios.cli import app\n"
+        "import sys, contextlib, io; from flightmode.cli.main import app\n"
         "with contextlib.redirect_stdout(io.StringIO()) as out, contextlib.suppress(SystemExit):\n"
         "    app(['--help'])\n"
         "assert 'Commands:' in out.getvalue() and 'fly' in out.getvalue(), out.getvalue()\n"

@@ -1,5 +1,5 @@
 """The certification report: PNG figures (matplotlib, Agg) and one self-contained ``report.html``
-(every figure embedded as a data URI, no script, no network) for :mod:`flightmode.scenarios.certify`.
+(every figure embedded as a data URI, no script, no network) for :mod:`flightmode.studies.certify`.
 
 Figures (``OUT/figures``):
 
@@ -49,7 +49,7 @@ def _plt():
 
 
 def _save(fig, path: Path) -> None:
-    from flightmode.scenarios.dataset import _tmp_name
+    from flightmode.datasets.make import _tmp_name
 
     tmp = _tmp_name(path)
     fig.savefig(tmp, dpi=110, format="png")
@@ -107,8 +107,8 @@ def fig_vs_k(
 
 
 def fig_response_cdf(points, cert, path: Path) -> None:
-    from flightmode.scenarios.certify import SEED000_POINT, point_name
-    from flightmode.scenarios.sweep import POINT_KEYS, at_point
+    from flightmode.studies.certify import SEED000_POINT, point_name
+    from flightmode.studies.sweep import POINT_KEYS, at_point
 
     plt = _plt()
     rec = {k: cert.recommendation["point"][k] for k in POINT_KEYS}
@@ -144,7 +144,7 @@ def fig_response_cdf(points, cert, path: Path) -> None:
 
 def fig_phase_heatmap(phases, cert, path: Path) -> None:
     from flightmode.labels import PHASES
-    from flightmode.scenarios.sweep import where
+    from flightmode.studies.sweep import where
 
     plt = _plt()
     p = cert.recommendation["point"]
@@ -192,7 +192,7 @@ def fig_phase_heatmap(phases, cert, path: Path) -> None:
 
 
 def fig_pareto(cert, path: Path) -> None:
-    from flightmode.scenarios.certify import _point
+    from flightmode.studies.certify import _point
 
     plt = _plt()
     s = cert.summary
@@ -295,8 +295,8 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
     import dataclasses
 
     from flightmode.detector.flight_mode import DetectorParams, detect, final_static
-    from flightmode.scenarios.dataset import read_manifest
-    from flightmode.scenarios.sweep import _streams, sigma2_of_flight
+    from flightmode.datasets.make import read_manifest
+    from flightmode.studies.sweep import _streams, sigma2_of_flight
 
     plt = _plt()
     w = cert.worst_flight
@@ -435,7 +435,7 @@ def _section_511(th: dict) -> list[str]:
 
 
 def render_html(cert, figures: dict[str, bytes]) -> str:
-    from flightmode.scenarios.certify import point_name
+    from flightmode.studies.certify import point_name
 
     def named(rows):
         return [r | {"name": point_name(r)} for r in rows]
@@ -550,7 +550,7 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
 
 def write_report(cert, result, out: Path) -> dict[str, Path]:
     """The figures (``out/figures``) and ``out/report.html``; the paths written."""
-    from flightmode.scenarios.dataset import atomic_text
+    from flightmode.datasets.make import atomic_text
 
     fig_dir = Path(out) / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)

@@ -8,7 +8,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 from typer.testing import CliRunner
 
-from flightmode.scenarios.cli import app
+from flightmode.cli.main import app
 
 
 def test_fly_runs_the_recommended_detector_and_stores_its_result(pattern_run):

@@ -10,7 +10,7 @@ import pytest
 from flightmode.detector import evaluation as ev
 from flightmode.detector.flight_mode import DetectorParams, detect
 from flightmode.errors import DetectorError
-from flightmode.scenarios.pipeline import unit_sigma2
+from flightmode.runs.pipeline import unit_sigma2
 
 P = DetectorParams()
 SIG = 2.23e-3  # seed 000 Table 1 noise, g

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 from typer.testing import CliRunner
 
-from flightmode.scenarios.cli import app
+from flightmode.cli.main import app
 from tests.eobs.conftest import REAL_MOVEBANK as ALBATROSSES
 
 

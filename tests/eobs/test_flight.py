@@ -15,7 +15,7 @@ def pattern(fly_cached):
 def test_a_simulated_flights_bursts_round_trip_through_a_movebank_file(pattern, tmp_path):
     from flightmode.eobs.flight import recording_bursts
     from flightmode.eobs.movebank import bursts_to_file, read_movebank, write_movebank
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.sim.sensor.accelerometer import eobs_burst, eobs_preset
 
     sc, track = pattern

@@ -7,7 +7,7 @@ import math
 
 from typer.testing import CliRunner
 
-from flightmode.scenarios.cli import app
+from flightmode.cli.main import app
 
 
 def test_fly_prints_the_aided_error_first_and_the_drift_laws(pattern_run):

@@ -164,7 +164,7 @@ def test_a_scenario_file_without_a_descent_angle_takes_its_types():
 def test_cli_pair_options_go_together():
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     r = CliRunner().invoke(app, ["fly", "--from", "LFPG", "--to", "LEMD"])
     assert r.exit_code == 2 and "--from, --to and --aircraft go together" in r.output
@@ -176,7 +176,7 @@ def test_cli_pair_options_go_together():
 def test_a_flight_between_two_airports_lands_on_the_runway_it_chose():
     import numpy as np
 
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.sim.flight.geodesy import RunwayFrame
 
     sc = scenario_between("LSGG", "LSZH", "A320", seed=3)

@@ -20,7 +20,7 @@ def test_builtin_library_is_complete_and_every_scenario_round_trips_exactly():
     names = set(builtin_names())
     assert REQUIRED_BUILTINS <= names
     assert DEFAULT_SCENARIO == "gva-lhr-a320"
-    from flightmode.scenarios import cli
+    from flightmode.cli import main as cli
 
     assert cli.DEFAULT_SCENARIO == DEFAULT_SCENARIO  # the CLI's copy (it imports nothing at start)
     for name in names:
@@ -178,7 +178,7 @@ def test_unknown_builtin_name_suggests_the_nearest():
 def test_cli_fly_bad_file_exits_nonzero_with_one_line_and_no_traceback(tmp_path, edit, expected):
     p = _write(tmp_path, edit(builtin_path("pattern").read_text()))
     r = subprocess.run(
-        [sys.executable, "-m", "flightmode.scenarios.cli", "fly", str(p), "--out", str(tmp_path / "out")],
+        [sys.executable, "-m", "flightmode.cli.main", "fly", str(p), "--out", str(tmp_path / "out")],
         capture_output=True,
         text=True,
         cwd=tmp_path,

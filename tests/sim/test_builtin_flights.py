@@ -13,7 +13,7 @@ import json
 import numpy as np
 import pytest
 
-from flightmode.scenarios.validate import TOUCHDOWN_CENTRELINE_FT
+from flightmode.studies.validate import TOUCHDOWN_CENTRELINE_FT
 from flightmode.units import FT_M
 
 SCENARIOS = ["gva-lhr-a320", "hel-zrh-f100", "ist-osl-737", "lhr-jfk-787"]

@@ -29,7 +29,7 @@ def _climb_gradient(track, t0_s: float, t1_s: float) -> float:
 
 def _go_around_climb_fpm(track, sc) -> float:
     """validate's go-around row: the mean rate of climb from 400 ft to the acceleration height."""
-    from flightmode.scenarios.validate import go_around_checks
+    from flightmode.studies.validate import go_around_checks
 
     (row,) = go_around_checks(track, sc.plan)
     assert row.passed, row
@@ -117,7 +117,7 @@ def test_a_flare_that_floats_over_the_runways_second_half_goes_around(monkeypatc
     localizer (the flight is cut there: 1,500 s)."""
     import dataclasses
 
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
     from flightmode.sim.flight import aircraft_profiles
     from flightmode.sim.flight.geodesy import RunwayFrame

@@ -53,7 +53,7 @@ def test_bmi270_at_rest_has_its_datasheet_noise_step_and_offset(gyro_rec):
 def test_the_rest_before_the_flight_calibrates_both_sensors(gyro_rec):
     """stream_rest("rest"): the longest run of truly static samples before the in-flight window, the
     accelerometer's and the gyroscope's rows of it (what the gyroscope detectors calibrate on)."""
-    from flightmode.scenarios.pipeline import stream_rest
+    from flightmode.runs.pipeline import stream_rest
 
     rec = gyro_rec
     cols = {
@@ -90,7 +90,7 @@ def test_compare_methods_auc_is_the_area_under_the_k_sweep():
     (0.3, 0.9), (1, 1) has the trapezoid area 0.025 + 0.14 + 0.665 = 0.83."""
     import pyarrow as pa
 
-    from flightmode.scenarios.sweep import compare_methods
+    from flightmode.studies.sweep import compare_methods
 
     base = {
         "dataset": "d",

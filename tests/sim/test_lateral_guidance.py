@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from flightmode.scenarios.validate import TOUCHDOWN_CENTRELINE_FT
+from flightmode.studies.validate import TOUCHDOWN_CENTRELINE_FT
 from flightmode.sim.flight.autopilot import LOC_LOOK_MIN_M, Autopilot
 from flightmode.units import FT_M, G0_MPS2
 

@@ -224,7 +224,7 @@ def test_the_787s_nose_is_flown_onto_the_runway(fly_cached):
     From 1 s after the mains touch (their own impact is the touchdown checks') to 8 s (validate's
     rollout roughness window starts there); the increment is validate's (quasi-static part below
     0.2 Hz removed)."""
-    from flightmode.scenarios.validate import vertical_increment_g
+    from flightmode.studies.validate import vertical_increment_g
     from flightmode.sim.flight.aircraft_profiles import get_profile
 
     sc, tr = fly_cached("lhr-jfk-787")
@@ -272,7 +272,7 @@ def test_the_787s_cockpit_stays_within_nasas_runway_bound(fly_cached):
     ISO 8608 class A runways and taxiways, the stock nose strut gave lhr-jfk-787 a cockpit peak of
     0.46 g (0.40-0.52 g, p5-p95, over 20 route flights); the softer strut gives 0.20 g here (0.17-0.29 g
     on 4 seeded pattern flights). Validate's own check (the takeoff roll, the rollout, taxiing)."""
-    from flightmode.scenarios.validate import ground_checks
+    from flightmode.studies.validate import ground_checks
 
     _, tr = fly_cached("lhr-jfk-787")
     check = next(c for c in ground_checks(tr) if c.figure.startswith("cockpit peak"))

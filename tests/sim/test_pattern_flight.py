@@ -68,7 +68,7 @@ def test_labels_follow_the_events(fly_cached):
 
 
 def test_same_seed_is_bit_identical_in_process_and_across_processes(fly_cached):
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
 
     sc, tr = fly_cached("pattern")
     again = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"))
@@ -117,7 +117,7 @@ def test_another_seed_gives_another_flight_and_air(fly_cached):
 
 def test_exceeding_a_limit_raises_flight_error_naming_phase_time_and_cause(monkeypatch):
     import flightmode.sim.flight.aircraft_profiles as ap
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
     # a pilot allowed 60 degrees of bank breaks the 45-degree limit in the first turn

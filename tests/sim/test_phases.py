@@ -49,7 +49,7 @@ def test_every_transition_fires_in_some_built_in_flight(fly_cached):
 def test_cli_prints_the_table():
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     r = CliRunner().invoke(app, ["scenarios", "--phases"], env={"COLUMNS": "200"})
     assert r.exit_code == 0, r.output

@@ -12,7 +12,7 @@ import pytest
 
 from flightmode.errors import ScenarioError
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE
-from flightmode.scenarios import pipeline
+from flightmode.runs import pipeline
 from flightmode.scenarios.scenario import DEFAULT_SCENARIO, Scenario
 from flightmode.sim.flight.cabin import cabin_figures, get_cabin_profile
 from flightmode.units import HPA_PA
@@ -202,7 +202,7 @@ def test_scenario_keys_and_bad_input():
 def test_detect_cli_nmv_plus_baro_reads_the_run_folder(baro_run, tmp_path):
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     sc, tr, _ = baro_run
     r = pipeline.run(sc, track=tr, out=tmp_path, stages=("fly", "sense", "detect", "write"), rrd=False)
@@ -216,7 +216,7 @@ def test_detect_cli_nmv_plus_baro_reads_the_run_folder(baro_run, tmp_path):
     assert f"accelerometer {fs['accelerometer']:.1f} s, pressure {fs['pressure']:.1f} s" in out.output
     assert f"transmission after {red.sources.resume_s['combined']:.1f} s" in out.output
     # the file gives the run's figures: samples.parquet's barometer is the recording's
-    from flightmode.scenarios.run_io import read_samples
+    from flightmode.runs.run_io import read_samples
 
     cols, _ = read_samples(run_dir)
     assert np.array_equal(cols["baro_pa"], r.recording.baro_pa) and np.array_equal(

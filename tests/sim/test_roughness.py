@@ -19,7 +19,7 @@ import pytest
 from scipy.signal import csd, welch
 
 from flightmode.errors import AircraftError, ScenarioError
-from flightmode.scenarios.validate import ground_roughness_g
+from flightmode.studies.validate import ground_roughness_g
 from flightmode.sim.flight import roughness as R
 from flightmode.units import FT_M, LBF_N
 

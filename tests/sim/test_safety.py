@@ -66,7 +66,7 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
     work.mkdir()
     tmp_before = set(p.name for p in Path(tempfile.gettempdir()).iterdir())
     proc = subprocess.Popen(
-        [sys.executable, "-m", "flightmode.scenarios.cli", "fly", "pattern", "--out", "out"],
+        [sys.executable, "-m", "flightmode.cli.main", "fly", "pattern", "--out", "out"],
         cwd=work,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
@@ -105,7 +105,7 @@ def test_failed_flight_leaves_nothing_behind(tmp_path, monkeypatch):
     from typer.testing import CliRunner
 
     import flightmode.sim.flight.aircraft_profiles as ap
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     monkeypatch.setitem(ap.PROFILES, "737", dataclasses.replace(ap.PROFILES["737"], turn_bank_deg=60.0))
     out = tmp_path / "out"
@@ -120,7 +120,7 @@ def test_parquet_truth_round_trip(tmp_path, fly_cached):
     import numpy as np
     import pyarrow.parquet as pq
 
-    from flightmode.scenarios import run_io
+    from flightmode.runs import run_io
 
     sc, tr = fly_cached("pattern")
     path = run_io.write_truth(tmp_path, tr)

@@ -390,7 +390,7 @@ def test_eobs_bursts_and_a_parcel_in_the_hold(fly_cached):
 
 @pytest.mark.slow
 def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
-    from flightmode.scenarios.validate import comparable_x_from_fuselage_deg, placement_text
+    from flightmode.studies.validate import comparable_x_from_fuselage_deg, placement_text
     from flightmode.sim.sensor.carrier import orientation_angles
 
     _, tr = fly_cached("gva-lhr-a320")
@@ -454,7 +454,7 @@ def test_cli_sense_writes_a_new_run_folder(tmp_path, pattern_run):
     import pyarrow.parquet as pq
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     run, _ = pattern_run
     r = CliRunner().invoke(

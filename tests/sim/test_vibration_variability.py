@@ -474,7 +474,7 @@ def _within_a_decade(ours: float, paper: float, n: int) -> bool:
 def test_table_4_and_5_cells_within_a_decade(name, run_cached):
     from flightmode.detector.evaluation import pfa_table
     from flightmode.detector.recommended import recommended_params
-    from flightmode.scenarios.validate import dynamic_part
+    from flightmode.studies.validate import dynamic_part
 
     r = run_cached(name)
     rec, det = r.recording, r.detection  # sigma^2: the bench calibration of the run's own unit

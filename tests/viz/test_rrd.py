@@ -120,7 +120,7 @@ def _serve(run):
     import psutil
 
     proc = subprocess.Popen(
-        [sys.executable, "-m", "flightmode.scenarios.cli", "view", str(run), "--web"],
+        [sys.executable, "-m", "flightmode.cli.main", "view", str(run), "--web"],
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,

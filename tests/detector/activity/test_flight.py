@@ -64,8 +64,8 @@ def test_checks_follow_the_marker_and_eq_8(name):
 def test_a_higher_threshold_never_removes_a_static_check_on_a_real_flight(pattern_run):
     """Eq. 7's comparison is monotone in the threshold and eq. 8's run length in its input: every check
     final static at k is final static at any larger k (here on the pattern flight's real recording)."""
-    from flightmode.scenarios.pipeline import stream_rest
-    from flightmode.scenarios.run_io import read_samples
+    from flightmode.runs.pipeline import stream_rest
+    from flightmode.runs.run_io import read_samples
 
     run, _ = pattern_run
     cols, info = read_samples(run)
@@ -87,7 +87,7 @@ def test_a_higher_threshold_never_removes_a_static_check_on_a_real_flight(patter
 def test_detect_cli_runs_every_accelerometer_detector_and_refuses_in_one_line(pattern_run):
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     run, _ = pattern_run
     r = CliRunner().invoke(app, ["detect", str(run), "--method", "frd"])

@@ -216,7 +216,7 @@ def test_the_cli_runs_the_study_and_prints_the_paper_beside_it(tmp_path):
     the files written; a run count of 0 is refused in one line."""
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     r = CliRunner().invoke(
         app, ["activity", "synth", "--n", "1", "--workers", "1", "--out", str(tmp_path / "mc")]

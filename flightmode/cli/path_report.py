@@ -22,7 +22,7 @@ def checks_of(streams):
     own sensor gets exactly the detector ``flightmode fly`` ran)."""
     from flightmode.detector.flight_mode import detect
     from flightmode.detector.recommended import recommended_params
-    from flightmode.scenarios.pipeline import unit_sigma2
+    from flightmode.runs.pipeline import unit_sigma2
 
     def run(rec):
         p = recommended_params(rec.odr_hz)

@@ -110,7 +110,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
     import pyarrow as pa
 
     from flightmode.labels import PHASES
-    from flightmode.scenarios import pipeline, run_io
+    from flightmode.runs import pipeline, run_io
     from flightmode.scenarios.family import Family
 
     t0 = time.perf_counter()
@@ -633,7 +633,7 @@ def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) 
             )
         if on_flight is not None:
             on_flight(row | timing)
-    from flightmode.scenarios.dataset_card import write_card
+    from flightmode.datasets.card import write_card
 
     write_card(out, fam, rows, options)
     return rows

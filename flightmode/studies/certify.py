@@ -1,6 +1,6 @@
 """Certify detector parameters on datasets: ``flightmode certify DATASET... --target-fa-per-h 1e-4``.
 
-From a sweep (:mod:`flightmode.scenarios.sweep`; run here, or reused from ``OUT/sweep`` when it
+From a sweep (:mod:`flightmode.studies.sweep`; run here, or reused from ``OUT/sweep`` when it
 covers the same datasets, grid and sigma^2 source):
 
 - every grid point's false-static rate per in-window flight-hour with its exact upper bound
@@ -85,7 +85,7 @@ class Certification:
 
 
 def _point(row: dict) -> dict:
-    from flightmode.scenarios.sweep import POINT_KEYS
+    from flightmode.studies.sweep import POINT_KEYS
 
     return {k: row[k] for k in POINT_KEYS + (("sensor_preset",) if "sensor_preset" in row else ())}
 
@@ -115,7 +115,7 @@ def pareto_front(rows: Sequence[dict]) -> list[int]:
 # ---------------------------------------------------------------------- the recommendation
 def _hours_per_flight(points, point: dict) -> dict[str, float]:
     """Mean in-window flight-hours of one flight, per family, at a point's rows."""
-    from flightmode.scenarios.sweep import at_point
+    from flightmode.studies.sweep import at_point
 
     by: dict[str, list[float]] = {}
     for r in at_point(points, point):
@@ -268,7 +268,7 @@ def threshold_from_static(
 
     from flightmode.detector.confidence import proportion_upper_bound
     from flightmode.detector.statistics import nmv_moments
-    from flightmode.scenarios.sweep import AXES, STATIC_EDGES
+    from flightmode.studies.sweep import AXES, STATIC_EDGES
 
     sel = static.filter(
         pc.and_(
@@ -342,7 +342,7 @@ def threshold_from_static(
 def worst_flight(points, phases, point: dict) -> dict | None:
     """The flight closest to trouble at ``point``: the most false-static seconds; on a tie (none),
     the most in-window checks under ``k sigma^2`` on all axes (eq. 7's temporary statics)."""
-    from flightmode.scenarios.sweep import at_point, where
+    from flightmode.studies.sweep import at_point, where
 
     rows = at_point(points, point)
     if not rows:
@@ -376,7 +376,7 @@ def worst_flight(points, phases, point: dict) -> dict | None:
 
 # ---------------------------------------------------------------------- the whole job
 def _sweep_matches(meta: dict, datasets: list[Path], grid, sigma2_from: str, sensors) -> bool:
-    from flightmode.scenarios.sweep import manifest_digest
+    from flightmode.studies.sweep import manifest_digest
 
     have = [(d["path"], d["manifest_sha256"]) for d in meta.get("datasets", [])]
     want = [(str(p), manifest_digest(p)) for p in datasets]
@@ -441,8 +441,8 @@ def certify(
     log: Callable[[str], None] = lambda s: None,
 ) -> Certification:
     """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``."""
-    from flightmode.scenarios.dataset import atomic_text
-    from flightmode.scenarios.sweep import breakdown, read_sweep, summarise, sweep
+    from flightmode.datasets.make import atomic_text
+    from flightmode.studies.sweep import breakdown, read_sweep, summarise, sweep
 
     target.validate()
     paths = [Path(d) for d in datasets]
@@ -522,7 +522,7 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
     """Seed 000 section 5.1.1's last step: the P_FA at the grid's k nearest below the threshold found,
     as the in-window fraction of checks under it on all axes (P_FA^t, joint) and the false-static rate
     bound at T_th 4 s (seed 000's) or the nearest."""
-    from flightmode.scenarios.sweep import where
+    from flightmode.studies.sweep import where
 
     ks = sorted({r["k"] for r in summary if (r["method"], r["weight"], r["window_s"]) == (*method, window_s)})
     if not math.isfinite(k):

@@ -1136,8 +1136,8 @@ def sensor_noise_psd(preset: str, odr_hz: float) -> Callable[[np.ndarray], np.nd
 
 def validate_run(run_dir: Path, paper_flight: int = 1) -> list[Check]:
     """Every check of a run folder (module docstring), in the order printed."""
-    from flightmode.scenarios.pipeline import stream_sigma2
-    from flightmode.scenarios.run_io import read_samples, read_track, run_scenario
+    from flightmode.runs.pipeline import stream_sigma2
+    from flightmode.runs.run_io import read_samples, read_track, run_scenario
 
     if paper_flight not in PAPER_TABLES:
         raise InputDataError(f"paper flight {paper_flight}: seed 000 has flights 1 (Table 4) and 2 (Table 5)")

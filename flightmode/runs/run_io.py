@@ -1,5 +1,5 @@
 """Run folders: ``OUT/<scenario>-s<seed>/`` with ``truth.parquet``, ``samples.parquet``,
-``run.json`` and ``recording.rrd`` (written by :func:`flightmode.scenarios.pipeline.write`).
+``run.json`` and ``recording.rrd`` (written by :func:`flightmode.runs.pipeline.write`).
 
 The dataset edge: arrays become Parquet here and nowhere else. A run folder is built in a hidden
 staging folder beside it and renamed into place only when complete, so a failed or interrupted run
@@ -383,7 +383,7 @@ def _json_default(o):
 
 
 def run_info(result, *, track_sha256: str | None = None) -> dict:
-    """run.json of a :class:`~flightmode.scenarios.pipeline.RunResult`: the scenario (as TOML text,
+    """run.json of a :class:`~flightmode.runs.pipeline.RunResult`: the scenario (as TOML text,
     reads back with ``Scenario.from_toml_text``), seed, versions, plan, events, the flight's figures,
     the track's SHA-256 (computed here unless given), and each later stage's summary."""
     sc, track = result.scenario, result.track

@@ -5,13 +5,13 @@ from __future__ import annotations
 
 
 def open(path, part: str = "samples"):
-    from flightmode.scenarios.dataset import open_dataset
+    from flightmode.datasets.make import open_dataset
 
     return open_dataset(path, part)
 
 
 def windows(path, length_s: float, step_s: float | None = None, label: str = "in_flight_window"):
-    from flightmode.scenarios.dataset import windows as _windows
+    from flightmode.datasets.make import windows as _windows
 
     return _windows(path, length_s, step_s, label)
 

@@ -2,19 +2,19 @@
 
 A single run says little about a distribution: a touchdown's sink speed is one draw, a taxi's yaw rate
 one airport. Every flight of a dataset made by ``flightmode dataset ... --truth full`` is checked here
-exactly as a run folder is (:func:`flightmode.scenarios.validate.track_checks` on the track rebuilt
+exactly as a run folder is (:func:`flightmode.studies.validate.track_checks` on the track rebuilt
 from its full-rate truth and the plan of the scenario in its manifest row;
-:func:`~flightmode.scenarios.validate.seed000_checks` on its samples, sigma^2 the bench calibration of
+:func:`~flightmode.studies.validate.seed000_checks` on its samples, sigma^2 the bench calibration of
 the unit its sensing drew, as its own detector had it). Flights run in this process or one Dask task
 per flight (``workers`` > 1: a LocalCluster on 127.0.0.1, as the sweep's).
 
 The summary (:func:`summarise`) gives, per aircraft type and figure, the anchor, the flights' values
 (p5, median, p95 over the flights that show the figure) and how many of the flights that judge it
 pass, with the 95 % Clopper-Pearson interval of the pass fraction
-(:func:`~flightmode.scenarios.validate.fraction_interval`): 20 flights that all pass still allow a
+(:func:`~flightmode.studies.validate.fraction_interval`): 20 flights that all pass still allow a
 true failure rate up to 17 %. A flight shows a figure without judging it when the anchor does not
 apply to it (seed 000's Tables 4 / 5 for a bag whose sensor lay unlike the paper's:
-:func:`~flightmode.scenarios.validate.placement_text`). A flight that cannot be checked
+:func:`~flightmode.studies.validate.placement_text`). A flight that cannot be checked
 is reported with its error, never dropped silently; nothing is written (``--checks-out`` writes the
 per-flight rows as Parquet, atomically).
 """
@@ -69,8 +69,8 @@ def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict
     """The dataset's flights (ok, failed), checked before any work: a folder that is not a dataset,
     one without a successful flight or without full-rate truth raises an InputDataError saying how
     to make one that can be validated."""
-    from flightmode.scenarios.dataset import ok_flights
-    from flightmode.scenarios.validate import PAPER_TABLES
+    from flightmode.datasets.make import ok_flights
+    from flightmode.studies.validate import PAPER_TABLES
 
     if paper_flight not in PAPER_TABLES:
         raise InputDataError(
@@ -83,12 +83,12 @@ def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict
 def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
     """One dataset flight's checks: ``{"flight_id", "aircraft", "checks": [Check, ...]}``, or with
     ``"error"`` (the exception's type and message) instead of checks if it cannot be validated."""
-    from flightmode.scenarios import pipeline
-    from flightmode.scenarios.dataset import stowage_of_row
-    from flightmode.scenarios.run_io import read_samples
+    from flightmode.runs import pipeline
+    from flightmode.datasets.make import stowage_of_row
+    from flightmode.runs.run_io import read_samples
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.scenarios.sweep import full_truth_track, sigma2_of_flight
-    from flightmode.scenarios.validate import seed000_checks, sensor_noise_psd, track_checks
+    from flightmode.studies.sweep import full_truth_track, sigma2_of_flight
+    from flightmode.studies.validate import seed000_checks, sensor_noise_psd, track_checks
 
     head = {"flight_id": row["flight_id"], "aircraft": row["aircraft"]}
     try:
@@ -115,7 +115,7 @@ def validate_dataset(
 ) -> tuple[list[dict], list[dict]]:
     """Every successful flight of the dataset validated: (per-flight results of :func:`validate_flight`
     in manifest order, the manifest rows of the flights that failed to fly)."""
-    from flightmode.scenarios.sweep import map_flights
+    from flightmode.studies.sweep import map_flights
 
     ok, failed = check_request(dataset, paper_flight)
     results = map_flights(validate_flight, [(str(dataset), r, paper_flight) for r in ok], workers, on_done)
@@ -125,7 +125,7 @@ def validate_dataset(
 def summarise(results: Sequence[dict]) -> list[FigureSummary]:
     """Per aircraft type (in order of appearance) and figure (in the order a run prints them), the
     flights' values and passes (module docstring)."""
-    from flightmode.scenarios.validate import fraction_interval
+    from flightmode.studies.validate import fraction_interval
 
     cells: dict[tuple[str, str, str], list] = {}
     for r in results:

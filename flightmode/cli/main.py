@@ -1,5 +1,5 @@
 """The ``flightmode`` command line (Typer + Rich): a thin shell over the library
-(:mod:`flightmode.scenarios.pipeline` and the rooms); anything it does, ``import flightmode`` can do.
+(:mod:`flightmode.runs.pipeline` and the rooms); anything it does, ``import flightmode`` can do.
 
     flightmode scenarios [--spec | --phases]      the built-in scenarios, the file format, the pilot's phases
     flightmode fly [SCENARIO] [--seed N] [--out DIR] [--sensor P] [--gyro] [--no-rrd]
@@ -161,7 +161,7 @@ def fly_cmd(
     --aircraft, fly between any two airports with paved runways (OurAirports data)."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
     try:
@@ -359,9 +359,9 @@ def detect_cmd(
     from flightmode.detector.evaluation import evaluate
     from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.recommended import labels_of
-    from flightmode.scenarios import detector_report as dr
-    from flightmode.scenarios import run_io
-    from flightmode.scenarios.pipeline import stream_sigma2
+    from flightmode.cli import detector_report as dr
+    from flightmode.runs import run_io
+    from flightmode.runs.pipeline import stream_sigma2
 
     try:
         if Path(source).suffix.lower() == ".csv":
@@ -468,8 +468,8 @@ def _pressure_params(
     if hold_s is not None:
         changes["hold_s"] = hold_s
     if info is not None and "scenario_toml" in info:  # the destination known (the run's scenario)
-        from flightmode.scenarios.pipeline import pressure_params
-        from flightmode.scenarios.run_io import run_scenario
+        from flightmode.runs.pipeline import pressure_params
+        from flightmode.runs.run_io import run_scenario
 
         return pressure_params(run_scenario(info, str(source)), fs, **changes)
     pp = PressureParams(fs_hz=fs, **changes)
@@ -531,7 +531,7 @@ def _detect_activity(
     from flightmode.detector.activity import registry
     from flightmode.detector.activity.flight import ActivityParams, evaluate_activity, rest_figures
     from flightmode.errors import DetectorError, did_you_mean
-    from flightmode.scenarios.pipeline import stream_rest
+    from flightmode.runs.pipeline import stream_rest
 
     if name not in registry.NAMES:
         raise DetectorError(
@@ -554,7 +554,7 @@ def _detect_activity(
         )
     rest = rest_figures(p, bench, bench_gyr)
     e = evaluate_activity(cols["t_s"], cols["acc_g"], cols.get("gyro_dps"), labels, p, rest)
-    from flightmode.scenarios import detector_report as dr
+    from flightmode.cli import detector_report as dr
 
     d = registry.get(name)
     console.print(Text(f"{source}", style="bold"), highlight=False)
@@ -724,7 +724,7 @@ def eobs_tradeoff_cmd(
         if out is not None:
             import pyarrow as pa
 
-            from flightmode.scenarios.dataset import atomic_parquet
+            from flightmode.datasets.make import atomic_parquet
 
             atomic_parquet(pa.Table.from_pylist(rows), out)
             console.print(Text.assemble("wrote ", (str(out), "bold")), highlight=False)
@@ -788,8 +788,8 @@ def path_cmd(
     ] = False,
 ) -> None:
     """Rebuild the bag's path from acceleration (seed 002 cubic splines) and print its errors."""
-    from flightmode.scenarios import pipeline, run_io
-    from flightmode.scenarios.path_report import path_rows, print_rows
+    from flightmode.runs import pipeline, run_io
+    from flightmode.cli.path_report import path_rows, print_rows
 
     try:
         track, info = run_io.read_track(run_dir)
@@ -827,7 +827,7 @@ def cabin_cmd(
 ) -> None:
     """The flight's cabin pressure: cruise cabin altitude and pressure, cabin climb and descent rates
     and differential, beside the type's pressurisation schedule."""
-    from flightmode.scenarios import run_io
+    from flightmode.runs import run_io
     from flightmode.sim.flight.cabin import cabin_figures, get_cabin_profile
 
     try:
@@ -978,7 +978,7 @@ def dataset_cmd(
         bool, typer.Option("--rrd", help="Also write each flight's Rerun recording (DIR/rrd/).")
     ] = False,
 ) -> None:
-    """Generate a labelled dataset of a family's first N flights on Dask (see flightmode.scenarios.dataset)."""
+    """Generate a labelled dataset of a family's first N flights on Dask (see flightmode.datasets.make)."""
     from rich.progress import (
         BarColumn,
         MofNCompleteColumn,
@@ -988,7 +988,7 @@ def dataset_cmd(
         TimeRemainingColumn,
     )
 
-    from flightmode.scenarios.dataset import check_request, make_dataset
+    from flightmode.datasets.make import check_request, make_dataset
 
     try:
         # checked before the progress bar (an error prints alone); make_dataset takes the resolved family
@@ -1168,7 +1168,7 @@ def sweep_cmd(
 ) -> None:
     """Evaluate a grid of detector parameters over every flight of one or more datasets (each moving
     variance computed once); print the best points with exact upper bounds on the false-static rate."""
-    from flightmode.scenarios.sweep import breakdown, check_request, summarise, sweep
+    from flightmode.studies.sweep import breakdown, check_request, summarise, sweep
 
     try:
         grid = _grid(method, weight, window_s, k, time_threshold_s)
@@ -1267,7 +1267,7 @@ def sweep_cmd(
             )
         console.print(b)
         if len({m for m, _ in grid.methods}) > 1:  # the detectors side by side, each at its best point
-            from flightmode.scenarios.sweep import compare_methods
+            from flightmode.studies.sweep import compare_methods
 
             c = Table(
                 "method",
@@ -1353,8 +1353,8 @@ def certify_cmd(
     """Find the Pareto front of (false-static bound, response, availability), recommend the parameters
     that meet the target with the best response (or say how many flight-hours the dataset lacks), set
     seed 000 section 5.1.1's threshold from the static data, and write report.html with its figures."""
-    from flightmode.scenarios.certify import Target, certify
-    from flightmode.scenarios.sweep import check_request
+    from flightmode.studies.certify import Target, certify
+    from flightmode.studies.sweep import check_request
 
     try:
         grid = _grid(method, weight, window_s, k, time_threshold_s)
@@ -1499,12 +1499,12 @@ def validate_cmd(
 ) -> None:
     """Set a run's figures beside their public anchors (WRAP, ADS-B taxi tracks, ICAO, NASA, seed 000);
     for a dataset, each figure's distribution over its flights, per aircraft type."""
-    from flightmode.scenarios.dataset import is_dataset
+    from flightmode.datasets.make import is_dataset
 
     if is_dataset(run_dir):
         _validate_dataset(run_dir, paper_flight, as_json, strict, workers, checks_out)
         return
-    from flightmode.scenarios.validate import validate_run
+    from flightmode.studies.validate import validate_run
 
     try:
         checks = validate_run(run_dir, paper_flight)
@@ -1566,7 +1566,7 @@ def _validate_dataset(
     """`flightmode validate DATASET`: every flight's checks, one table per aircraft type."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from flightmode.scenarios import validate_population as vp
+    from flightmode.studies import validate_population as vp
 
     try:
         ok, _ = vp.check_request(dataset, paper_flight)
@@ -1583,7 +1583,7 @@ def _validate_dataset(
                 dataset, paper_flight, workers, on_done=lambda _: bar.update(task, advance=1)
             )
         if checks_out is not None:
-            from flightmode.scenarios.dataset import atomic_parquet
+            from flightmode.datasets.make import atomic_parquet
 
             atomic_parquet(vp.checks_table(results), Path(checks_out))
     except FlightmodeError as e:
@@ -1727,7 +1727,7 @@ def sense_cmd(
     ] = False,
 ) -> None:
     """Re-sense an existing flight with another sensor or carrier into a new run folder."""
-    from flightmode.scenarios import pipeline, run_io
+    from flightmode.runs import pipeline, run_io
     from flightmode.sim.sensor.gyroscope import get_preset as gyro_preset
 
     try:

@@ -11,7 +11,7 @@ import pytest
 
 import flightmode
 from flightmode.errors import FlightmodeError, SensorError
-from flightmode.scenarios import pipeline, run_io
+from flightmode.runs import pipeline, run_io
 
 
 def test_the_api_reproduces_the_cli_run(pattern_run, run_cached):

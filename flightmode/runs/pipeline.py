@@ -342,7 +342,7 @@ class RunWriter:
     def __enter__(self) -> RunWriter:
         from concurrent.futures import ThreadPoolExecutor
 
-        from flightmode.scenarios import run_io
+        from flightmode.runs import run_io
 
         self._staging = run_io.staged_run_dir(self.out_dir, self.run_id)
         self.stage = self._staging.__enter__()
@@ -402,7 +402,7 @@ class _Rrd:
         writer.on_failure(self.abort)
 
     def open(self, stage: Path, result: RunResult) -> None:
-        from flightmode.scenarios.run_view import run_view
+        from flightmode.runs.run_view import run_view
         from flightmode.viz.rrd import RrdWriter
 
         self.w = RrdWriter(stage / "recording.rrd", result.run_id)
@@ -413,7 +413,7 @@ class _Rrd:
         )
 
     def close(self, stage: Path, result: RunResult) -> None:
-        from flightmode.scenarios.run_view import path_lines
+        from flightmode.runs.run_view import path_lines
 
         if result.path is not None:
             self.w.send_paths(path_lines(result.path.estimates, result.recording.odr_hz))
@@ -431,7 +431,7 @@ def _track_digest(writer: RunWriter, track: FlightTrack):
 
 
 def _write_run_json(stage: Path, result: RunResult, track_sha256) -> Path:
-    from flightmode.scenarios import run_io
+    from flightmode.runs import run_io
 
     sha = None if track_sha256 is None else track_sha256.result()
     return run_io.write_run_json(stage, run_io.run_info(result, track_sha256=sha))
@@ -459,7 +459,7 @@ def _rrd_after_detect(writer: RunWriter, result: RunResult, rrd: bool) -> _Rrd |
 def write(out_dir: Path, result: RunResult, *, rrd: bool = True) -> dict[str, Path]:
     """Write the run folder ``out_dir/<run_id>/`` (truth.parquet, samples.parquet, run.json and, with
     ``rrd``, recording.rrd) atomically (:class:`RunWriter`). Returns {role: path}."""
-    from flightmode.scenarios import run_io
+    from flightmode.runs import run_io
 
     with RunWriter(out_dir, result.run_id) as w:
         sha = None
@@ -498,7 +498,7 @@ def run(
     called as each stage starts; ``track``: the scenario's flight flown before (by :func:`fly` with
     this run's ``flight`` streams), to skip flying it again.
     """
-    from flightmode.scenarios import run_io
+    from flightmode.runs import run_io
     from flightmode.sim.flight.flight_metrics import flight_metrics
     from flightmode.sim.sensor.gyroscope import GyroSpec, get_preset
 

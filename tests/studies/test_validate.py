@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from flightmode.scenarios.validate import Check, adsb_taxi_ranges, wrap_time_to_altitude_s
+from flightmode.studies.validate import Check, adsb_taxi_ranges, wrap_time_to_altitude_s
 
 
 def test_a_check_passes_inside_its_closed_range_only():
@@ -45,7 +45,7 @@ def test_the_taxi_anchors_span_the_real_segments():
 
 
 def test_a_population_summary_keeps_types_and_figures_apart_and_bounds_its_pass_rate():
-    from flightmode.scenarios.validate_population import summarise
+    from flightmode.studies.validate_population import summarise
 
     c = lambda fig, v: Check("touchdown", fig, "ft/s", v, 0.0, 5.5, "src")  # noqa: E731
     sinks = [0.5 + 0.25 * i for i in range(20)]  # 0.5 .. 5.25 ft/s: every one inside 0 .. 5.5
@@ -97,7 +97,7 @@ def test_a_population_summary_keeps_types_and_figures_apart_and_bounds_its_pass_
 
 def _run_folder(tmp_path_factory, run_cached, name: str):
     """The built-in's run folder (truth, samples, run.json), written from the session's run."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
 
     written = pipeline.write(tmp_path_factory.mktemp(name), run_cached(name), rrd=False)
     return written["run_json"].parent
@@ -110,7 +110,7 @@ MUST_PASS = ("takeoff", "climb", "cruise", "descent", "landing", "ground")
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["gva-lhr-a320", "ist-osl-737", "hel-zrh-f100"])
 def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name):
-    from flightmode.scenarios.validate import COMPARABLE_SHARE, comparable_x_from_fuselage_deg, validate_run
+    from flightmode.studies.validate import COMPARABLE_SHARE, comparable_x_from_fuselage_deg, validate_run
 
     folder = _run_folder(tmp_path_factory, run_cached, name)
     checks = validate_run(folder)
@@ -161,7 +161,7 @@ def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name
 def test_cli_prints_one_table_and_json(pattern_run):
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     run, _ = pattern_run
     r = CliRunner().invoke(app, ["validate", str(run)], env={"COLUMNS": "220"})
@@ -185,7 +185,7 @@ def test_cli_prints_one_table_and_json(pattern_run):
 def test_cli_names_a_folder_that_is_not_a_run(tmp_path):
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     r = CliRunner().invoke(app, ["validate", str(tmp_path)])
     assert r.exit_code == 2 and "not a flight run folder" in r.output
@@ -199,7 +199,7 @@ def test_a_long_haul_climb_is_measured_to_its_first_level(fly_cached):
     altitude lies above the climb's top; the climb bands end 1,000 ft below that top (measured to the
     median, the constant-Mach band was never crossed: NaN, a failed check). Every kinematic figure of
     the long haul lies inside WRAP B788's range."""
-    from flightmode.scenarios.validate import kinematic_checks
+    from flightmode.studies.validate import kinematic_checks
     from flightmode.sim.flight.aircraft_profiles import get_profile
     from flightmode.sim.flight.flight_metrics import flight_metrics
 
@@ -280,7 +280,7 @@ def test_go_around_rows_measure_the_climb_from_400_ft_to_the_acceleration_height
     import dataclasses
 
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.scenarios.validate import go_around_checks
+    from flightmode.studies.validate import go_around_checks
     from flightmode.units import FPM_MPS
 
     plan = Scenario.builtin("pattern").plan
@@ -308,7 +308,7 @@ def test_a_fig6_line_stands_over_the_noise_and_noise_alone_never_makes_one():
     frequency; a spectrum falling through the band has no local maximum there."""
     from scipy.signal import welch
 
-    from flightmode.scenarios.validate import FIG6_LINE_MIN_DB, vibration_line_db
+    from flightmode.studies.validate import FIG6_LINE_MIN_DB, vibration_line_db
 
     fs, sigma = 100.0, 2.23e-3
     rng = np.random.default_rng(11)
@@ -335,7 +335,7 @@ def test_a_coarse_step_makes_no_fig6_line_over_the_quantisation_floor():
     ``naive`` shows (the floor is what keeps the check from passing on rounding)."""
     from scipy.signal import welch
 
-    from flightmode.scenarios.validate import FIG6_LINE_MIN_DB, sensor_noise_psd, vibration_line_db
+    from flightmode.studies.validate import FIG6_LINE_MIN_DB, sensor_noise_psd, vibration_line_db
     from flightmode.sim.sensor.accelerometer import get_preset, noise_psd_g2_per_hz
 
     pr = get_preset("lis302dl")
@@ -358,7 +358,7 @@ def test_the_boundary_layer_row_is_judged_where_the_drawn_air_is_rougher_low():
     a track without the draws, or with none aloft, is judged as before."""
     from types import SimpleNamespace
 
-    from flightmode.scenarios.validate import boundary_layer_anchor
+    from flightmode.studies.validate import boundary_layer_anchor
     from flightmode.sim.flight.turbulence import MID_TOP_M
 
     def track(w20, w_star, mid, upper):
@@ -390,7 +390,7 @@ def test_tables_4_and_5_are_judged_while_the_sensor_x_sees_more_fore_aft_than_la
     lateral times sin(psi) (sim.sensor.vibration: amplitudes in the ratio of axis_share): the judging
     angle is where the two are equal, tan(psi) = fore-aft / lateral share; a bag lying just inside it is
     judged, just outside it shown only."""
-    from flightmode.scenarios.validate import comparable_x_from_fuselage_deg, placement_text
+    from flightmode.studies.validate import comparable_x_from_fuselage_deg, placement_text
     from flightmode.sim.sensor.vibration import VibrationModel
 
     fore_aft, lateral, _ = VibrationModel().axis_share
@@ -412,7 +412,7 @@ def test_the_papers_dynamic_part_is_the_in_flight_window_while_the_engines_run()
     """Seed 000 sec. 5.1.2 (i) counts the part of the series where the sensor moves: the in-flight
     window (pushback to every N2 under 5 %) less the run-down after fuel cut-off (phase "shutdown"),
     the vibration's decay to rest at the stand; nothing outside the window is added."""
-    from flightmode.scenarios.validate import dynamic_part
+    from flightmode.studies.validate import dynamic_part
 
     phase = np.array(["gate", "pushback", "taxi_out", "cruise", "taxi_in", "shutdown", "shutdown", "parked"])
     window = np.array([False, True, True, True, True, True, True, False])

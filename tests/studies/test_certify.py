@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from flightmode.errors import InputDataError
-from flightmode.scenarios.certify import Target, pareto_front, recommend, threshold_from_static
+from flightmode.studies.certify import Target, pareto_front, recommend, threshold_from_static
 
 
 def _row(i, events, hours, rate_up, p95, avail, k=4.0):
@@ -116,7 +116,7 @@ def _static_table(rng, n_checks: int, n: int = 100, colour: float = 1.0, keep: l
     Gaussian noise: N MV / sigma^2 ~ chi-square(N - 1) per axis (``colour`` > 1 widens the spread)."""
     import pyarrow as pa
 
-    from flightmode.scenarios.sweep import _static_stats
+    from flightmode.studies.sweep import _static_stats
 
     rows = []
     for f in range(4):
@@ -185,7 +185,7 @@ def test_bad_targets_and_inputs_are_one_line_errors(tmp_path):
             t.validate()
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     cases = (
         (["certify", str(tmp_path), "--target-fa-per-h", "0"], "--target-fa-per-h 0.0: must be a rate > 0"),

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from flightmode.scenarios.dataset import DatasetError, check_request, make_dataset, read_manifest
+from flightmode.datasets.make import DatasetError, check_request, make_dataset, read_manifest
 
 # one worker runs this module (pytest-xdist --dist loadgroup): the reference dataset is made once, and
 # two clusters of its own never compete with each other for the two cores
@@ -204,7 +204,7 @@ def test_failed_flights_are_retried_once_and_recorded_without_stopping(tmp_path,
     m = read_manifest(out)
     assert [m[0]["status"]] == ["failed"]
     assert [p.name for p in out.rglob("*.parquet")] == ["flights.parquet"]  # no data file of a failed flight
-    from flightmode.scenarios.dataset import manifest_schema
+    from flightmode.datasets.make import manifest_schema
 
     assert _manifest(out).schema.equals(manifest_schema())  # every column, typed, even with no success
     assert "0 ok, 1 failed" in (out / "README.md").read_text()
@@ -217,7 +217,7 @@ def test_failed_flights_are_retried_once_and_recorded_without_stopping(tmp_path,
 
 
 def test_the_manifest_records_how_each_bag_lay_in_flight(reference):
-    from flightmode.scenarios.dataset import stowage_of_row
+    from flightmode.datasets.make import stowage_of_row
     from flightmode.scenarios.scenario import Scenario
 
     for row in read_manifest(reference).values():
@@ -300,7 +300,7 @@ def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_fil
         [
             sys.executable,
             "-m",
-            "flightmode.scenarios.cli",
+            "flightmode.cli.main",
             "dataset",
             str(family_file),
             "--n",
@@ -333,8 +333,8 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
     from flightmode.detector.evaluation import evaluate
     from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.grid import Grid
-    from flightmode.scenarios.run_io import read_samples
-    from flightmode.scenarios.sweep import at_point, read_sweep, sigma2_of_flight, summarise, sweep
+    from flightmode.runs.run_io import read_samples
+    from flightmode.studies.sweep import at_point, read_sweep, sigma2_of_flight, summarise, sweep
 
     grid = Grid(
         methods=(("nmv", 1.0), ("emv", 5.0)),
@@ -404,7 +404,7 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
             sum(r["hist_x"]) == sum(r["hist_max"]) == r["static_checks"] > 1000
         )  # > 15 min at rest, W_s <= 2 s
     # the breakdown at that point: each condition's values partition the flights and their events
-    from flightmode.scenarios.sweep import CONDITIONS, breakdown
+    from flightmode.studies.sweep import CONDITIONS, breakdown
 
     b = breakdown(table, {"method": "nmv", "weight": 1.0, "window_s": 1.0, "k": 4.0, "time_threshold_s": 4.0})
     for cond in CONDITIONS:
@@ -443,7 +443,7 @@ def test_sweep_reproduces_each_flights_own_detector_and_writes_every_point(tmp_p
 def test_sweep_re_senses_full_truth_flights_with_other_presets(tmp_path, family_file, reference):
     from flightmode.detector.grid import Grid
     from flightmode.errors import InputDataError, SensorError
-    from flightmode.scenarios.sweep import at_point, sweep
+    from flightmode.studies.sweep import at_point, sweep
 
     grid = Grid(methods=(("nmv", 1.0),), windows_s=(1.0,), ks=(4.0,), time_thresholds_s=(4.0,))
     # a 10 Hz truth cannot be re-sensed (the floor vibration is 10-30 Hz): said before any work
@@ -486,7 +486,7 @@ def _validate_a_population(ten_hz, full, row):
     import pyarrow.parquet as pq
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
     from flightmode.units import FPS_MPS
 
     out = full.parent / "checks.parquet"
@@ -519,7 +519,7 @@ def _eobs_tradeoff_on_a_population(ten_hz, full):
     from flightmode.eobs.flight import tradeoff_on_track
     from flightmode.eobs.population import summarise, tradeoff_population
     from flightmode.errors import InputDataError
-    from flightmode.scenarios import run_io
+    from flightmode.runs import run_io
 
     with pytest.raises(InputDataError, match="--truth full"):
         tradeoff_population([ten_hz], (30.0,), 216, (1,))
@@ -563,8 +563,8 @@ def certified(tmp_path_factory, reference):
     import shutil
 
     from flightmode.detector.grid import Grid
-    from flightmode.scenarios.certify import Target, certify
-    from flightmode.scenarios.dataset import _write_manifest
+    from flightmode.studies.certify import Target, certify
+    from flightmode.datasets.make import _write_manifest
 
     root = tmp_path_factory.mktemp("certify")
     broken = root / "broken"
@@ -588,8 +588,8 @@ def certified(tmp_path_factory, reference):
 def test_certify_recommends_from_the_sweep_and_excludes_failed_flights(certified, reference):
     from flightmode.detector.confidence import hours_needed
     from flightmode.detector.grid import Grid
-    from flightmode.scenarios.certify import SEED000_POINT, Target, certify
-    from flightmode.scenarios.sweep import POINT_KEYS
+    from flightmode.studies.certify import SEED000_POINT, Target, certify
+    from flightmode.studies.sweep import POINT_KEYS
 
     cert, out, msgs = certified
     assert [x["flight_id"] for x in cert.meta["excluded"]] == [
@@ -709,13 +709,13 @@ def test_certify_report_renders_every_figure_in_headless_chromium(certified, tmp
 def test_sweep_refuses_what_is_not_a_dataset(tmp_path):
     from flightmode.detector.grid import Grid
     from flightmode.errors import InputDataError
-    from flightmode.scenarios.sweep import sweep
+    from flightmode.studies.sweep import sweep
 
     with pytest.raises(InputDataError, match="no flights.parquet: not a dataset"):
         sweep(tmp_path, Grid())
     from typer.testing import CliRunner
 
-    from flightmode.scenarios.cli import app
+    from flightmode.cli.main import app
 
     r = CliRunner().invoke(app, ["sweep", str(tmp_path), "--k", "2:x"])
     assert r.exit_code == 2 and "--k '2:x': give values as 2,3,4 or a range start:stop:step" in r.output

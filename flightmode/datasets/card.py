@@ -1,4 +1,4 @@
-"""The dataset card (``DIR/README.md``) of a dataset made by :mod:`flightmode.scenarios.dataset`: the
+"""The dataset card (``DIR/README.md``) of a dataset made by :mod:`flightmode.datasets.make`: the
 family, the schema with units, the label definitions, the versions, the counts, how to load it in
 four tools (each example is run by the test suite), and the licence."""
 
@@ -60,8 +60,8 @@ def _schema_lines(out: Path, rows: dict) -> list[str]:
 
 
 def write_card(out: Path, fam, rows: dict, options) -> Path:
-    from flightmode.scenarios.dataset import atomic_text
-    from flightmode.scenarios.run_io import package_versions
+    from flightmode.datasets.make import atomic_text
+    from flightmode.runs.run_io import package_versions
 
     ok = [r for r in rows.values() if r["status"] == "ok"]
     failed = [r for r in rows.values() if r["status"] != "ok"]

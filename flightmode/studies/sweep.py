@@ -7,7 +7,7 @@ LocalCluster on 127.0.0.1). Failed flights are excluded and counted, never silen
 
 sigma^2: ``preset`` (default) is the bench calibration of the flight's own sensor unit, exactly as the
 dataset's own detector run did it (the unit and the bench stream regenerated from the flight's
-scenario and seed: :func:`flightmode.scenarios.pipeline.unit_sigma2`); ``rest`` the truly static
+scenario and seed: :func:`flightmode.runs.pipeline.unit_sigma2`); ``rest`` the truly static
 samples the tracker saw before the flight.
 
 The sweep folder (written file by file, atomically; ``sweep.json`` last):
@@ -73,7 +73,7 @@ class SweepResult:
 def manifest_digest(dataset: str | Path) -> str:
     """SHA-256 over each flight's id, status and samples digest, in flight order: equal digests mean
     the same flights with bit-identical samples."""
-    from flightmode.scenarios.dataset import read_manifest
+    from flightmode.datasets.make import read_manifest
 
     rows = read_manifest(Path(dataset))
     h = hashlib.sha256()
@@ -88,7 +88,7 @@ def sigma2_of_flight(source: str, row: dict, columns: dict) -> Callable[[int], n
     ``preset``, the bench calibration of the unit its sensing drew (what its own detector used);
     ``rest``, its truly static samples before the flight."""
     from flightmode.detector.recommended import sigma2_from_rest
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
     from flightmode.sim.sensor.accelerometer import draw_unit
 
@@ -124,13 +124,13 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
     """(sensor preset, columns, scenario TOML) of each stream to sweep on one flight: the dataset's
     own samples, or the flight re-sensed from its full-rate truth with each preset of ``sensors``
     (the flight's own sensor streams, its carrier and floor: only the sensor differs)."""
-    from flightmode.scenarios.run_io import read_samples
+    from flightmode.runs.run_io import read_samples
 
     if not sensors:
         cols, _ = read_samples(Path(dataset) / row["samples_file"])
         yield row.get("sensor_preset"), cols, row["scenario_toml"]
         return
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
     track = full_truth_track(dataset, row)
@@ -154,10 +154,10 @@ def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
 
 def full_truth_track(dataset: str | Path, row: dict):
     """A dataset flight's FlightTrack, rebuilt from its full-rate truth (``--truth full``; the Parquet
-    metadata carries what run.json would: :data:`flightmode.scenarios.run_io.TRACK_INFO_KEY`)."""
+    metadata carries what run.json would: :data:`flightmode.runs.run_io.TRACK_INFO_KEY`)."""
     import pyarrow.parquet as pq
 
-    from flightmode.scenarios import run_io
+    from flightmode.runs import run_io
 
     t = pq.read_table(Path(dataset) / row["truth_file"])
     if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
@@ -260,7 +260,7 @@ def _gyro_rest(row: dict, cols: dict) -> tuple[np.ndarray, np.ndarray]:
     """The rest recording of the detectors that read the gyroscope: the truly static samples before the
     flight, both sensors (the bench recording models no gyroscope; a tracker zeroes its gyroscope at
     rest after power-on)."""
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
 
     if cols.get("gyro_dps") is None:
         raise InputDataError(
@@ -273,9 +273,9 @@ def _gyro_rest(row: dict, cols: dict) -> tuple[np.ndarray, np.ndarray]:
 
 def _pressure_gate(row: dict, cols: dict):
     """The pressure source's "at rest" as of any time, from the flight's barometer (its default
-    thresholds, the destination known: :func:`flightmode.scenarios.pipeline.pressure_params`)."""
+    thresholds, the destination known: :func:`flightmode.runs.pipeline.pressure_params`)."""
     from flightmode.detector.pressure import detect_pressure, static_at
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
     if "baro_pa" not in cols or "baro_new" not in cols:
@@ -299,7 +299,7 @@ def _rest_of(source: str, row: dict, cols: dict, fs: float) -> np.ndarray:
     that gives sigma^2 for ``preset``), or the truly static samples before the flight (``rest``)."""
     import dataclasses
 
-    from flightmode.scenarios import pipeline
+    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
     from flightmode.sim.sensor.accelerometer import bench_static, draw_unit
 
@@ -437,7 +437,7 @@ def check_request(
             raise InputDataError(f"--sensor {','.join(sensors)!r}: name each preset once, at least one")
         for name in sensors:
             get_preset(name)  # a SensorError with the presets to choose from
-    from flightmode.scenarios.dataset import ok_flights
+    from flightmode.datasets.make import ok_flights
 
     seen: dict[str, str] = {}
     for d in paths:
@@ -470,7 +470,7 @@ def sweep(
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from flightmode.scenarios.dataset import ok_flights
+    from flightmode.datasets.make import ok_flights
 
     paths = check_request(datasets, grid, sigma2_from, sensors)
     sensors = tuple(sensors) if sensors else None
@@ -567,7 +567,7 @@ def map_flights(
 
 def write_sweep(result: SweepResult, out: str | Path) -> None:
     """The sweep folder (module docstring); ``sweep.json`` last, so a folder without it is incomplete."""
-    from flightmode.scenarios.dataset import atomic_parquet, atomic_text
+    from flightmode.datasets.make import atomic_parquet, atomic_text
 
     out = Path(out)
     if out.exists() and not out.is_dir():

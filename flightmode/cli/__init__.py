@@ -1,0 +1,1 @@
+"""The ``flightmode`` command line: a thin shell over the library."""
