@@ -227,11 +227,9 @@ def calibration_to_toml(cal: Calibration) -> str:
 
 
 def write_calibration(cal: Calibration, path: str | os.PathLike) -> Path:
-    path = Path(path)
-    tmp = path.with_name(path.name + f".tmp-{os.getpid()}")
-    tmp.write_text(calibration_to_toml(cal), encoding="utf-8")
-    os.replace(tmp, path)
-    return path
+    from flightmode.atomic import write_text
+
+    return write_text(calibration_to_toml(cal), Path(path), mkdir=False)
 
 
 def read_calibration(path: str | os.PathLike) -> Calibration:

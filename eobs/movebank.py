@@ -285,12 +285,9 @@ def format_movebank(f: MovebankFile) -> bytes:
 
 def write_movebank(f: MovebankFile, path: str | os.PathLike) -> Path:
     """Write ``f`` to ``path`` (through a temporary name, renamed into place)."""
-    path = Path(path)
-    data = format_movebank(f)
-    tmp = path.with_name(path.name + f".tmp-{os.getpid()}")
-    tmp.write_bytes(data)
-    os.replace(tmp, path)
-    return path
+    from flightmode.atomic import write_bytes
+
+    return write_bytes(format_movebank(f), Path(path), mkdir=False)
 
 
 # ----------------------------------------------------------------------------------------------- read

@@ -53,11 +53,9 @@ def cabin_png(track, figures: dict, limits: dict, path: Path, title: str) -> Pat
     a2.set_ylabel("hPa")
     a2.set_xlabel("time since the gate (min)")
     a2.legend(loc="lower right", fontsize=8)
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.partial")
+    from flightmode.atomic import write_with
+
     try:
-        fig.savefig(tmp, dpi=110, format="png")
+        return write_with(Path(path), lambda tmp: fig.savefig(tmp, dpi=110, format="png"), mkdir=False)
     finally:
         plt.close(fig)
-    tmp.replace(path)
-    return path

@@ -49,12 +49,12 @@ def _plt():
 
 
 def _save(fig, path: Path) -> None:
-    from flightmode.datasets.make import _tmp_name
+    from flightmode.atomic import write_with
 
-    tmp = _tmp_name(path)
-    fig.savefig(tmp, dpi=110, format="png")
-    _plt().close(fig)
-    tmp.replace(path)
+    try:
+        write_with(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"), mkdir=False)
+    finally:
+        _plt().close(fig)
 
 
 def _methods(summary) -> list[tuple[str, float]]:
@@ -294,8 +294,8 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
     """Seed 000 Figs. 14 and 15 in form, for the worst flight (module docstring)."""
     import dataclasses
 
-    from flightmode.detector.flight_mode import DetectorParams, detect, final_static
     from flightmode.datasets.make import read_manifest
+    from flightmode.detector.flight_mode import DetectorParams, detect, final_static
     from flightmode.studies.sweep import _streams, sigma2_of_flight
 
     plt = _plt()
@@ -550,7 +550,7 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
 
 def write_report(cert, result, out: Path) -> dict[str, Path]:
     """The figures (``out/figures``) and ``out/report.html``; the paths written."""
-    from flightmode.datasets.make import atomic_text
+    from flightmode.atomic import write_text as atomic_text
 
     fig_dir = Path(out) / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)

@@ -26,7 +26,6 @@ Entities:
 from __future__ import annotations
 
 import os
-import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -174,9 +173,11 @@ class RrdWriter:
     def __init__(self, path: Path, run_id: str):
         import rerun as rr
 
+        from flightmode.atomic import tmp_name
+
         self._rr = rr
         self.path = Path(path)
-        self._tmp = self.path.with_name(f".{self.path.name}.{uuid.uuid4().hex[:8]}.partial")
+        self._tmp = tmp_name(self.path)
         self._rec = rr.RecordingStream("flightmode", recording_id=run_id)
         try:
             self._rec.save(self._tmp, default_blueprint=blueprint())

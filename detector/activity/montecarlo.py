@@ -851,17 +851,6 @@ def format_tables(result_or_rows) -> str:
 
 
 # ---------------------------------------------------------------- writing
-def _atomic(path: str, write) -> None:
-    """``write(tmp_path)`` then rename onto ``path`` (a reader never sees half a file)."""
-    tmp = f"{path}.tmp-{os.getpid()}"
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
-
 def _config_dict(cfg: MonteCarloConfig) -> dict:
     return asdict(cfg)
 
@@ -877,6 +866,8 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
 
     import pyarrow as pa
     import pyarrow.parquet as pq
+
+    from flightmode.atomic import write_with
 
     out = os.fspath(out_dir)
     os.makedirs(out, exist_ok=True)
@@ -909,7 +900,7 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
     }
     for name, table in tables.items():
         p = os.path.join(out, f"{name}.parquet")
-        _atomic(p, lambda tmp, t=table: pq.write_table(t, tmp))
+        write_with(p, lambda tmp, t=table: pq.write_table(t, tmp), mkdir=False)
         paths[name] = p
     best8 = [(r["detector"], r["signal"]) for r in sorted(rows, key=lambda r: r["auc_rank"])[:8]]
     figures = {"roc_best8": (best8, "The eight best by mean AUC (cf. seed 001, Figure 9)")}
@@ -920,7 +911,7 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
         )
     for name, (cases, title) in figures.items():
         p = os.path.join(out, f"{name}.png")
-        _atomic(p, lambda tmp, c=cases, ti=title: _roc_figure(results, c, ti, tmp))
+        write_with(p, lambda tmp, c=cases, ti=title: _roc_figure(results, c, ti, tmp), mkdir=False)
         paths[name] = p
     meta = {
         "seed": results.seed,
@@ -928,7 +919,7 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
         "config": _config_dict(results.config),
         "source": "seed 001 section 3.1 (flightmode.detector.activity.montecarlo)",
     }
-    _atomic(meta_path, lambda tmp: _write_text(tmp, json.dumps(meta, indent=2, default=list)))
+    write_with(meta_path, lambda tmp: _write_text(tmp, json.dumps(meta, indent=2, default=list)), mkdir=False)
     paths["results"] = meta_path
     return paths
 

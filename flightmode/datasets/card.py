@@ -60,7 +60,7 @@ def _schema_lines(out: Path, rows: dict) -> list[str]:
 
 
 def write_card(out: Path, fam, rows: dict, options) -> Path:
-    from flightmode.datasets.make import atomic_text
+    from flightmode.atomic import write_text as atomic_text
     from flightmode.runs.run_io import package_versions
 
     ok = [r for r in rows.values() if r["status"] == "ok"]

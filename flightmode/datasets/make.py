@@ -28,13 +28,15 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
-import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from flightmode.atomic import TMP_GLOB
+from flightmode.atomic import write_parquet as atomic_parquet  # the names the CLI and tests use
+from flightmode.atomic import write_text as atomic_text
 from flightmode.errors import FlightmodeError, InputDataError
 
 TRUTH_RATES = ("full", "10hz", "none")
@@ -71,29 +73,6 @@ def _sha256(path: Path) -> str:
         for block in iter(lambda: f.read(1 << 20), b""):
             h.update(block)
     return h.hexdigest()
-
-
-def _tmp_name(path: Path) -> Path:
-    import uuid
-
-    return path.with_name(f".{path.name}.tmp-{os.getpid()}-{uuid.uuid4().hex[:8]}")
-
-
-def atomic_parquet(table, path: Path) -> None:
-    """Write a Parquet file (zstd) to a temporary name beside ``path`` and rename it into place."""
-    import pyarrow.parquet as pq
-
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = _tmp_name(path)
-    pq.write_table(table, tmp, compression="zstd")
-    os.replace(tmp, path)
-
-
-def atomic_text(text: str, path: Path) -> None:
-    """Write a UTF-8 text file to a temporary name beside ``path`` and rename it into place."""
-    tmp = _tmp_name(path)
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
 
 
 def flight_id(i: int) -> str:
@@ -418,7 +397,7 @@ def _claim_folder(out: Path, fam, options: Options) -> None:
     out.mkdir(parents=True, exist_ok=True)
     import shutil
 
-    for tmp in out.rglob(".*.tmp-*"):  # a killed run's half-written files and scratch folders
+    for tmp in out.rglob(TMP_GLOB):  # a killed run's half-written files and scratch folders
         if tmp.is_dir():
             shutil.rmtree(tmp, ignore_errors=True)
         else:

@@ -9,10 +9,7 @@ leaves nothing half-written (the staging folder is removed on failure).
 from __future__ import annotations
 
 import json
-import os
 import platform
-import shutil
-import uuid
 from contextlib import contextmanager
 from dataclasses import asdict
 from importlib import metadata
@@ -20,30 +17,17 @@ from pathlib import Path
 
 import numpy as np
 
+from flightmode.atomic import staged_folder
 from flightmode.labels import PHASES, SEVERITIES
 from flightmode.sim.flight.track import FlightTrack
 
 
 @contextmanager
 def staged_run_dir(out_dir: Path, rid: str):
-    """Yield a fresh staging folder in ``out_dir``; on success rename it to ``out_dir/rid``."""
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    stage = out_dir / f".{rid}.partial-{uuid.uuid4().hex[:8]}"
-    stage.mkdir()
-    try:
+    """Yield a fresh staging folder in ``out_dir``; on success rename it to ``out_dir/rid``
+    (:func:`flightmode.atomic.staged_folder`)."""
+    with staged_folder(Path(out_dir) / rid) as stage:
         yield stage
-    except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
-        raise
-    final = out_dir / rid
-    if final.exists():
-        trash = out_dir / f".{rid}.old-{uuid.uuid4().hex[:8]}"
-        os.replace(final, trash)
-        os.replace(stage, final)
-        shutil.rmtree(trash, ignore_errors=True)
-    else:
-        os.replace(stage, final)
 
 
 def _dict_column(codes: np.ndarray, vocabulary: tuple[str, ...]):

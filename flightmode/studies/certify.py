@@ -441,7 +441,7 @@ def certify(
     log: Callable[[str], None] = lambda s: None,
 ) -> Certification:
     """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``."""
-    from flightmode.datasets.make import atomic_text
+    from flightmode.atomic import write_text as atomic_text
     from flightmode.studies.sweep import breakdown, read_sweep, summarise, sweep
 
     target.validate()

@@ -567,7 +567,8 @@ def map_flights(
 
 def write_sweep(result: SweepResult, out: str | Path) -> None:
     """The sweep folder (module docstring); ``sweep.json`` last, so a folder without it is incomplete."""
-    from flightmode.datasets.make import atomic_parquet, atomic_text
+    from flightmode.atomic import write_parquet as atomic_parquet
+    from flightmode.atomic import write_text as atomic_text
 
     out = Path(out)
     if out.exists() and not out.is_dir():
