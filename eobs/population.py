@@ -4,7 +4,7 @@ detector (:mod:`flightmode.eobs.duty_cycle`) at each ``m``, and per (interval, m
 hour (the battery's cost: the ADC and the radio-off time are proportional to them, seed 003
 section 10) against the false statics per in-window flight-hour (with Garwood's upper bound) and
 the response at the gate. One flight per task on the sweep's executor
-(:func:`flightmode.studies.sweep.map_flights`)."""
+(:func:`flightmode.cluster.map_flights`)."""
 
 from __future__ import annotations
 
@@ -61,8 +61,8 @@ def check_request(
     datasets, intervals_s, byte_count: int, ms, k: float, odr_per_axis_hz: float
 ) -> list[tuple]:
     """(dataset, row) of every successful flight, after checking the request (one-line errors)."""
-    from flightmode.errors import DetectorError
     from flightmode.datasets.make import ok_flights
+    from flightmode.errors import DetectorError
     from flightmode.sim.sensor.accelerometer import eobs_preset
 
     paths = [Path(d) for d in datasets]
@@ -98,7 +98,7 @@ def tradeoff_population(
     on_flight: Callable[[int], None] | None = None,
 ) -> list[dict]:
     """Every flight's rows (:func:`tradeoff_flight`), in dataset and flight order."""
-    from flightmode.studies.sweep import map_flights
+    from flightmode.cluster import map_flights
 
     jobs = check_request(datasets, intervals_s, byte_count, ms, k, odr_per_axis_hz)
     if on_start:

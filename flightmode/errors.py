@@ -13,6 +13,9 @@ misspelling (:func:`did_you_mean`). The command line prints one on one line and 
     +-- DetectorError        detector parameters or an input stream the detector cannot use
     +-- NavError             a path estimate that cannot be made from the input given
     +-- InputDataError       a file or folder that is not what flightmode wrote (run folder, Parquet)
+    +-- DatasetError         a dataset that cannot be made as asked (its folder, its options, its cluster)
+    +-- FlightTimeoutError   a flight that exceeded a dataset's per-flight wall-time limit
+    +-- ClusterError         a Dask scheduler that does not answer or has no worker
 """
 
 from __future__ import annotations
@@ -71,6 +74,18 @@ class NavError(FlightmodeError):
 
 class InputDataError(FlightmodeError):
     """A file or folder that is not what flightmode wrote, or is damaged."""
+
+
+class DatasetError(FlightmodeError):
+    """A dataset that cannot be made as asked (its folder, its options, its cluster)."""
+
+
+class FlightTimeoutError(FlightmodeError):
+    """A flight that took longer than the dataset's per-flight wall-time limit."""
+
+
+class ClusterError(FlightmodeError):
+    """A Dask cluster that cannot be used: a scheduler that does not answer, or has no worker."""
 
 
 def did_you_mean(name: str, allowed: Iterable[str]) -> str:

@@ -412,9 +412,12 @@ def run_montecarlo(
     client=None,
     order=None,
     on_run=None,
+    workers: int = 1,
 ) -> MonteCarloResult:
-    """The study over runs 0 .. n_runs - 1. ``client``: a ``dask.distributed.Client`` (one task per
-    run), or None to run in this process. ``order``: the order to run them in (a permutation of
+    """The study over runs 0 .. n_runs - 1, one task per run (:func:`flightmode.cluster.map_flights`):
+    on ``client`` (a ``dask.distributed.Client``) when given, else on a local cluster of ``workers``
+    processes (:func:`flightmode.cluster.open_client`) when ``workers`` > 1, else in this process.
+    ``order``: the order to run them in (a permutation of
     0 .. n_runs - 1; the result does not depend on it). ``on_run(index)`` after each run."""
     cfg = MonteCarloConfig() if config is None else config
     if isinstance(n_runs, bool) or not isinstance(n_runs, (int, np.integer)) or n_runs < 1:
@@ -425,26 +428,23 @@ def run_montecarlo(
     idx = list(range(n_runs)) if order is None else [int(i) for i in order]
     if sorted(idx) != list(range(n_runs)):
         raise DetectorError(f"order must be a permutation of 0 .. {n_runs - 1}")
-    done: dict[int, dict] = {}
-    if client is None:
-        for i in idx:
-            done[i] = evaluate_run(i, seed, cfg)
-            if on_run:
-                on_run(i)
-    else:
-        import hashlib
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise DetectorError(f"workers = {workers!r}: must be a positive integer")
+    import hashlib
 
-        from dask.distributed import as_completed
+    from flightmode.cluster import map_flights
 
-        token = hashlib.sha256(repr((seed, n_runs, cfg)).encode()).hexdigest()[:12]
-        futures = [
-            client.submit(evaluate_run, i, seed, cfg, key=f"activity-mc-{token}-{i}", pure=False) for i in idx
-        ]
-        for f in as_completed(futures):
-            r = f.result()
-            done[r["index"]] = r
-            if on_run:
-                on_run(r["index"])
+    # task keys unique to this study: two studies on one scheduler never share a task
+    token = hashlib.sha256(repr((seed, n_runs, cfg)).encode()).hexdigest()[:12]
+    results = map_flights(
+        evaluate_run,
+        [(i, seed, cfg) for i in idx],
+        int(workers),
+        (lambda n: on_run(idx[n])) if on_run else None,
+        client=client,
+        keys=[f"activity-mc-{token}-{i}" for i in idx],
+    )
+    done = {r["index"]: r for r in results}
     runs = [done[i] for i in range(n_runs)]  # run order, whatever the completion order
     rows = tuple(row for r in runs for row in r["rows"])
     roc = {k: np.stack([r["roc"][k] for r in runs]) for k in runs[0]["roc"]}

@@ -37,19 +37,12 @@ from typing import Any
 from flightmode.atomic import TMP_GLOB
 from flightmode.atomic import write_parquet as atomic_parquet  # the names the CLI and tests use
 from flightmode.atomic import write_text as atomic_text
-from flightmode.errors import FlightmodeError, InputDataError
+from flightmode.cluster import open_client
+from flightmode.errors import ClusterError, DatasetError, FlightmodeError, FlightTimeoutError, InputDataError
 
 TRUTH_RATES = ("full", "10hz", "none")
 ATTEMPTS = 2  # a failed flight is retried once
 MANIFEST = "flights.parquet"
-
-
-class DatasetError(FlightmodeError):
-    """A dataset that cannot be made as asked (its folder, its options, its cluster)."""
-
-
-class FlightTimeoutError(FlightmodeError):
-    """A flight that took longer than the dataset's per-flight wall-time limit."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -413,55 +406,6 @@ def _claim_folder(out: Path, fam, options: Options) -> None:
     )
 
 
-# ---------------------------------------------------------------------- the cluster
-def _client(workers: int, scheduler: str | None):
-    import logging
-
-    import dask
-    from dask.distributed import Client, LocalCluster
-
-    if scheduler is not None:
-        try:
-            client = Client(scheduler, timeout="5s")
-        except Exception as e:
-            raise DatasetError(
-                f"the Dask scheduler at {scheduler} does not answer ({type(e).__name__}): start it "
-                "with `dask scheduler` (address tcp://HOST:PORT), or drop --scheduler to run on "
-                "this machine"
-            ) from None
-        try:
-            client.wait_for_workers(1, timeout=30)
-        except Exception:
-            client.close()
-            raise DatasetError(
-                f"the Dask scheduler at {scheduler} has no worker: start some with `dask worker {scheduler}`"
-            ) from None
-        return client, None
-    # a failed flight is retried once by make_dataset itself: Dask must not re-run a task whose worker
-    # died (its default allows 3); the workers' own tracebacks are silenced (the manifest records them);
-    # two Dask defaults slow a flight (measured on one flight in a worker: 13.6-14.3 s with them,
-    # 11.2-11.9 s without; 9.1-10.1 s in a plain process): the workers' statistical profiler (it
-    # samples the task thread's stack every 10 ms) and MALLOC_TRIM_THRESHOLD_=65536 (memory handed back
-    # to the system at once, so every large array of a flight is fresh pages again)
-    with dask.config.set(
-        {
-            "distributed.scheduler.allowed-failures": 0,
-            "distributed.worker.profile.enabled": False,
-            "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 2**30,
-        }
-    ):
-        cluster = LocalCluster(
-            n_workers=workers,
-            threads_per_worker=1,
-            processes=True,
-            host="127.0.0.1",
-            dashboard_address="127.0.0.1:0",
-            memory_limit=0,
-            silence_logs=logging.CRITICAL,
-        )
-    return Client(cluster), cluster
-
-
 def check_request(
     family,
     n: int,
@@ -519,15 +463,16 @@ def make_dataset(
         flight_timeout_s=flight_timeout_s,
         rrd=rrd,
     )
-    client, cluster = _client(workers, scheduler)  # before writing: a dead scheduler leaves nothing behind
-    try:
+    # the cluster before writing: a dead scheduler leaves nothing behind. A failed flight is retried
+    # once by _run itself: Dask must not re-run a task whose worker died (allowed_failures 0)
+    with contextlib.ExitStack() as stack:
+        try:
+            client = stack.enter_context(open_client(workers, scheduler, allowed_failures=0))
+        except ClusterError as e:
+            raise DatasetError(str(e)) from None
         with _folder_lock(out):
             _claim_folder(out, fam, options)
             return _run(client, fam, n, out, options, on_start, on_flight)
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
 
 
 @contextlib.contextmanager

@@ -41,6 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flightmode.cluster import map_flights
 from flightmode.errors import InputDataError
 
 CONDITIONS = (
@@ -528,43 +529,6 @@ def sweep(
     return result
 
 
-def map_flights(
-    fn: Callable, args: Sequence[tuple], workers: int = 1, on_done: Callable[[int], None] | None = None
-) -> list:
-    """``[fn(*a) for a in args]``, one flight per call: in this process (``workers`` <= 1) or on a Dask
-    LocalCluster of ``workers`` processes (127.0.0.1, dashboard on a free local port), results in the
-    order of ``args`` whatever the completion order; ``on_done(n)`` as call n finishes."""
-    if workers <= 1:
-        out = []
-        for n, a in enumerate(args):
-            out.append(fn(*a))
-            if on_done:
-                on_done(n)
-        return out
-    import logging
-
-    from dask.distributed import Client, LocalCluster, as_completed
-
-    with (
-        LocalCluster(
-            n_workers=workers,
-            threads_per_worker=1,
-            processes=True,
-            host="127.0.0.1",
-            dashboard_address="127.0.0.1:0",
-            silence_logs=logging.CRITICAL,
-        ) as cluster,
-        Client(cluster) as client,
-    ):
-        futs = {client.submit(fn, *a, pure=False): n for n, a in enumerate(args)}
-        done: dict[int, object] = {}
-        for f in as_completed(futs):
-            done[futs[f]] = f.result()
-            if on_done:
-                on_done(futs[f])
-        return [done[n] for n in range(len(args))]
-
-
 def write_sweep(result: SweepResult, out: str | Path) -> None:
     """The sweep folder (module docstring); ``sweep.json`` last, so a folder without it is incomplete."""
     from flightmode.atomic import write_parquet as atomic_parquet
@@ -680,6 +644,29 @@ def summarise(
             row["hours_short"] = max(0.0, row["hours_needed"] - hours)
         out.append(row)
     return out
+
+
+def rank_points(rows: list[dict]) -> list[dict]:
+    """:func:`summarise`'s rows best first: the lowest upper bound on false statics per flight-hour,
+    then the fastest response p95, then the highest availability; a point nothing could measure (NaN)
+    last, ties in a fixed order of the grid's keys."""
+
+    def fin(v, sign=1.0):
+        return sign * v if v == v else math.inf
+
+    return sorted(
+        rows,
+        key=lambda r: (
+            fin(r["rate_upper_per_h"]),
+            fin(r["response_p95_s"]),
+            fin(r["availability"], -1.0),
+            r["method"],
+            r["weight"],
+            r["window_s"],
+            r["k"],
+            r["time_threshold_s"],
+        ),
+    )
 
 
 def compare_methods(table, confidence: float = 0.95) -> list[dict]:
@@ -826,6 +813,7 @@ def breakdown(table, point: dict, phases=None) -> list[dict]:
 
 
 __all__ = [
+    "rank_points",
     "sweep",
     "check_request",
     "where",

@@ -6,7 +6,7 @@ exactly as a run folder is (:func:`flightmode.studies.validate.track_checks` on 
 from its full-rate truth and the plan of the scenario in its manifest row;
 :func:`~flightmode.studies.validate.seed000_checks` on its samples, sigma^2 the bench calibration of
 the unit its sensing drew, as its own detector had it). Flights run in this process or one Dask task
-per flight (``workers`` > 1: a LocalCluster on 127.0.0.1, as the sweep's).
+per flight (``workers`` > 1: :func:`flightmode.cluster.map_flights`).
 
 The summary (:func:`summarise`) gives, per aircraft type and figure, the anchor, the flights' values
 (p5, median, p95 over the flights that show the figure) and how many of the flights that judge it
@@ -83,8 +83,8 @@ def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict
 def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
     """One dataset flight's checks: ``{"flight_id", "aircraft", "checks": [Check, ...]}``, or with
     ``"error"`` (the exception's type and message) instead of checks if it cannot be validated."""
-    from flightmode.runs import pipeline
     from flightmode.datasets.make import stowage_of_row
+    from flightmode.runs import pipeline
     from flightmode.runs.run_io import read_samples
     from flightmode.scenarios.scenario import Scenario
     from flightmode.studies.sweep import full_truth_track, sigma2_of_flight
@@ -115,7 +115,7 @@ def validate_dataset(
 ) -> tuple[list[dict], list[dict]]:
     """Every successful flight of the dataset validated: (per-flight results of :func:`validate_flight`
     in manifest order, the manifest rows of the flights that failed to fly)."""
-    from flightmode.studies.sweep import map_flights
+    from flightmode.cluster import map_flights
 
     ok, failed = check_request(dataset, paper_flight)
     results = map_flights(validate_flight, [(str(dataset), r, paper_flight) for r in ok], workers, on_done)
