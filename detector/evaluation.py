@@ -34,7 +34,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from flightmode.detector.flight_mode import Checks, DetectorParams, detect, final_static
-from flightmode.detector.moving_variance import DetectorError, moving_variance
+from flightmode.detector.moving_variance import moving_variance
+from flightmode.errors import DetectorError
+from flightmode.intervals import true_runs
 
 
 @dataclass(frozen=True, slots=True)
@@ -77,7 +79,9 @@ class Evaluation:
         }
 
 
-def _check_labels(t_s, acc_g, labels: dict) -> None:
+def check_labels(t_s, acc_g, labels: dict) -> None:
+    """A DetectorError unless ``labels`` holds in_flight_window, sensor_static and phase, one row per
+    sample of ``t_s``."""
     n = np.asarray(t_s).shape[0]
     for name in ("in_flight_window", "sensor_static", "phase"):
         if name not in labels:
@@ -90,18 +94,11 @@ def _check_labels(t_s, acc_g, labels: dict) -> None:
             )
 
 
-def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
-    """[start, end) of each run of True."""
-    m = np.concatenate([[False], np.asarray(mask, bool), [False]])
-    d = np.flatnonzero(np.diff(m.astype(np.int8)))
-    return list(zip(d[::2].tolist(), d[1::2].tolist()))
-
-
 def evaluate(
     t_s: np.ndarray, acc_g: np.ndarray, labels: dict, params: DetectorParams, sigma2: np.ndarray
 ) -> Evaluation:
     """Run the detector over a labelled stream and score it (module docstring)."""
-    _check_labels(t_s, acc_g, labels)
+    check_labels(t_s, acc_g, labels)
     return score(detect(t_s, acc_g, params, sigma2), t_s, labels, params, sigma2)
 
 
@@ -114,7 +111,7 @@ def score(c: Checks, t_s: np.ndarray, labels: dict, params: DetectorParams, sigm
     in_w, truth = window[k], static[k]
     fin = c.final_static
     events = []
-    for s, e in _runs(fin & in_w):
+    for s, e in true_runs(fin & in_w):
         events.append(
             {"t_s": float(c.t_s[s]), "duration_s": (e - s) * params.window_s, "phase": str(phase[k[s]])}
         )
@@ -155,7 +152,7 @@ def pfa_table(
     """Rows in the form of seed 000 Tables 4-5 (module docstring), one per (T_sigma, T_th). ``checks``:
     the detector already run over this stream with these parameters (``detect``), to count another
     window of the same stream without running it again."""
-    _check_labels(t_s, acc_g, labels)
+    check_labels(t_s, acc_g, labels)
     window = np.asarray(labels["in_flight_window"], bool)
     # the moving variance does not depend on T_sigma or T_th: one pass, then eq. 7-8 per row
     c = detect(t_s, acc_g, params, sigma2) if checks is None else checks
@@ -241,7 +238,7 @@ def turn_on_response(t_s, acc_g, params: DetectorParams, sigma2, weights=(1.0, 5
 
 def longest_static_run(static: np.ndarray) -> tuple[int, int]:
     """[start, end) of the longest run of truly static samples (for Table 3 and turn-on response)."""
-    runs = _runs(static)
+    runs = true_runs(static)
     if not runs:
         raise DetectorError("the stream has no truly static sample: calibrate or test on static data")
     return max(runs, key=lambda r: r[1] - r[0])

@@ -651,10 +651,11 @@ def evaluate_redundant(
     truly static sample after the window."""
     import dataclasses
 
-    from flightmode.detector.evaluation import _check_labels, _runs, score
+    from flightmode.detector.evaluation import check_labels, score
     from flightmode.detector.flight_mode import detect
+    from flightmode.intervals import true_runs
 
-    _check_labels(t_s, acc_g, labels)
+    check_labels(t_s, acc_g, labels)
     tb = np.asarray(t_baro_s, float)
     if pressure_params is None:
         if tb.shape[0] < 3:
@@ -675,7 +676,7 @@ def evaluate_redundant(
         t_pushback_s if t_pushback_s is not None else (float(t[win_idx[0]]) if win_idx.size else float(t[0]))
     )
     cruise = np.asarray(labels["phase"], dtype=object) == "cruise"
-    cruise_windows = [(float(t[a]), float(t[b - 1])) for a, b in _runs(cruise)]
+    cruise_windows = [(float(t[a]), float(t[b - 1])) for a, b in true_runs(cruise)]
     t_end = None
     if win_idx.size:
         after = np.flatnonzero(np.asarray(labels["sensor_static"], bool)[win_idx[-1] :])

@@ -24,6 +24,7 @@ import math
 
 import numpy as np
 
+from flightmode.intervals import change_points
 from flightmode.nav import frames
 from flightmode.nav.spline_path import NavError, RecurrencePath, recurrence_path, tridiagonal_path
 
@@ -47,7 +48,7 @@ def zupt_path(t_s, acc, pos0, static_mask) -> np.ndarray:
     a = np.asarray(acc, float)
     st = np.asarray(static_mask, bool)
     r = RecurrencePath(pos0, np.zeros_like(np.asarray(pos0, float)))
-    edges = np.flatnonzero(np.diff(st.astype(np.int8))) + 1
+    edges = change_points(st)
     bounds = [0, *edges.tolist(), t.shape[0]]
     for s, e in itertools.pairwise(bounds):
         if st[s]:

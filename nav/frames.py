@@ -37,6 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from flightmode.errors import NavError
+from flightmode.intervals import true_runs_array
 from flightmode.sim.flight.geodesy import ecef_to_ned_matrix, geodetic_to_ecef, ned_to_ecef
 from flightmode.units import G0_MPS2  # the g in which accelerometer samples are expressed
 
@@ -204,8 +205,8 @@ def tilt_only_acceleration(acc_g, static_mask) -> tuple[np.ndarray, np.ndarray]:
     if not st.any():
         raise NavError("tilt-only frames need at least one static period (none was detected)")
     # the mean specific force over each static run; carried forward to the next run
-    runs_start = np.flatnonzero(np.diff(np.concatenate([[0], st.astype(np.int8)])) == 1)
-    runs_end = np.flatnonzero(np.diff(np.concatenate([st.astype(np.int8), [0]])) == -1) + 1
+    runs = true_runs_array(st)
+    runs_start, runs_end = runs[:, 0], runs[:, 1]
     up = np.full(a.shape, np.nan)  # unit vector of the specific force at rest: "up", sensor axes
     mag = np.full(a.shape[0], np.nan)
     for s, e in zip(runs_start, runs_end):

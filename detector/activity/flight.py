@@ -222,10 +222,10 @@ def evaluate_activity(t_s, acc_g, gyr_dps, labels: dict, p: ActivityParams, rest
     scores the moving variance (false statics in the window, response, missed static, accuracy)."""
     import dataclasses
 
-    from flightmode.detector.evaluation import _check_labels, score
+    from flightmode.detector.evaluation import check_labels, score
     from flightmode.detector.flight_mode import DetectorParams
 
-    _check_labels(t_s, acc_g, labels)
+    check_labels(t_s, acc_g, labels)
     c = activity_checks(t_s, acc_g, gyr_dps, p, rest)
     dp = dataclasses.replace(
         DetectorParams(fs_hz=p.fs_hz),

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flightmode.intervals import segment_starts
 from flightmode.labels import CARRIER_PHASES
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.units import G0_MPS2
@@ -14,7 +15,7 @@ NED_TO_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 
 
 def _changes(t: np.ndarray, labels: np.ndarray) -> tuple[np.ndarray, list[str]]:
-    i = np.flatnonzero(np.r_[True, labels[1:] != labels[:-1]])
+    i = segment_starts(labels)
     return t[i], [str(x) for x in labels[i]]
 
 
