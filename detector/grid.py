@@ -97,6 +97,50 @@ class Grid:
             yield DetectorParams(fs_hz=fs_hz, window_s=w, k_sigma=k, time_threshold_s=t, method=m, weight=wt)
 
 
+def parse_axis(text: str, option: str) -> tuple[float, ...]:
+    """One grid axis written as ``2,3,4`` or ``start:stop:step`` (stop included) as floats; a
+    DetectorError naming ``option`` (the command-line option, e.g. ``--k``) for anything else."""
+    try:
+        if ":" in text:
+            a, b, c = (float(x) for x in text.split(":"))
+            if not c > 0 or b < a:
+                raise ValueError
+            return tuple(round(float(v), 10) for v in np.arange(a, b + c / 2, c))
+        return tuple(float(x) for x in text.split(",") if x.strip())
+    except ValueError:
+        raise DetectorError(f"{option} {text!r}: give values as 2,3,4 or a range start:stop:step") from None
+
+
+def grid_of(
+    methods: str | tuple[str, ...],
+    weights: tuple[float, ...] = (1.0,),
+    windows_s: tuple[float, ...] = (1.0,),
+    ks: tuple[float, ...] = (4.0,),
+    time_thresholds_s: tuple[float, ...] = (4.0,),
+) -> Grid:
+    """The grid of a sweep request: every EMV method (``emv``, ``emv+baro``) paired with each weight
+    of ``weights``, every other method with weight 1 (its weight is unused); ``methods`` a tuple or a
+    comma list (``nmv,emv``). Checks the axes (:meth:`Grid.check_axes`)."""
+    if isinstance(methods, str):
+        methods = tuple(m.strip() for m in methods.split(",") if m.strip())
+    pairs = tuple((m, w) for m in methods for w in (weights if m in ("emv", "emv+baro") else (1.0,)))
+    grid = Grid(pairs, tuple(windows_s), tuple(ks), tuple(time_thresholds_s))
+    grid.check_axes()
+    return grid
+
+
+def grid_from_text(method: str, weight: str, window_s: str, k: str, time_threshold_s: str) -> Grid:
+    """:func:`grid_of` from the command line's text axes (:func:`parse_axis`), e.g.
+    ``grid_from_text("nmv,emv", "5", "0.5,1,2", "2:8:0.5", "1:8:1")``, the default 624-point grid."""
+    return grid_of(
+        method,
+        parse_axis(weight, "--weight"),
+        parse_axis(window_s, "--window-s"),
+        parse_axis(k, "--k"),
+        parse_axis(time_threshold_s, "--time-threshold-s"),
+    )
+
+
 def evaluate_grid(
     t_s: np.ndarray,
     acc_g: np.ndarray,
@@ -137,4 +181,4 @@ def evaluate_grid(
                 yield p, score(c, t_s, labels, p, sigma2)
 
 
-__all__ = ["Grid", "evaluate_grid", "METHODS", "REDUNDANT"]
+__all__ = ["Grid", "evaluate_grid", "grid_of", "grid_from_text", "parse_axis", "METHODS", "REDUNDANT"]

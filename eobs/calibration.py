@@ -226,6 +226,21 @@ def calibration_to_toml(cal: Calibration) -> str:
     return tomli_w.dumps(doc)
 
 
+def calibrate_movebank(files: dict[str, str | os.PathLike], tag_number: int | None = None) -> Calibration:
+    """:func:`calibrate` on six Movebank e-obs files (``flightmode eobs calibrate``): ``files`` maps
+    '+x', '-x', '+y', '-y', '+z', '-z' to a file whose bursts all hold the tag still in that
+    orientation, each burst of all three axes (XYZ); an InputDataError names a file that is not."""
+    from flightmode.eobs.movebank import read_movebank
+
+    recs = {}
+    for key, path in files.items():
+        bursts = [r.burst for r in read_movebank(path).rows if r.burst is not None]
+        if not bursts or any(b.axes != "XYZ" for b in bursts):
+            raise InputDataError(f"{path}: the {key} recording needs bursts of all three axes (XYZ)")
+        recs[key] = np.concatenate([b.raw for b in bursts])
+    return calibrate(recs, tag_number)
+
+
 def write_calibration(cal: Calibration, path: str | os.PathLike) -> Path:
     from flightmode.atomic import write_text
 

@@ -200,8 +200,11 @@ def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarr
     """A static recording of the unit at the stream's rate for the detectors that calibrate on one
     (seed 001's, :mod:`flightmode.detector.activity.flight`): (acc in g, the gyroscope in deg/s or
     None, where it came from). ``preset``: the same 60 s bench recording as :func:`stream_sigma2`
-    (needs run.json; the bench models no gyroscope); ``rest``: the longest run of truly static
-    samples before the flight (with the recording's gyroscope, if it has one)."""
+    (needs run.json); a stream with a gyroscope has it on the bench too: the bench models no
+    gyroscope, so its part is what the tracker's gyroscope recorded at rest before the flight (a
+    tracker zeroes its gyroscope at rest after power-on), both cut to the shorter; ``rest``: the
+    longest run of truly static samples before the flight (with the recording's gyroscope, if it
+    has one)."""
     import numpy as np
 
     from flightmode.detector.evaluation import longest_static_run
@@ -213,7 +216,12 @@ def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarr
         m = bench_static(
             p, UnitDraw.from_dict(s.get("unit")), streams_of(int(info["seed"])).rng("detector/bench")
         )
-        return m.acc_g, None, f"bench recording of this {s['preset']} unit (60 s static)"
+        where = f"bench recording of this {s['preset']} unit (60 s static)"
+        if columns.get("gyro_dps") is None:
+            return m.acc_g, None, where
+        _, gyr, _ = stream_rest("rest", columns, info)
+        n = min(m.acc_g.shape[0], gyr.shape[0])
+        return m.acc_g[:n], gyr[:n], f"{where}; the gyroscope's {n} samples at rest before the flight"
     static = np.asarray(columns["sensor_static"], bool).copy()
     window = np.asarray(columns["in_flight_window"], bool)
     if window.any():
