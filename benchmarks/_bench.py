@@ -50,8 +50,8 @@ def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
     ``fdm.run()`` ``steps`` times, no property reads, no pilot; loading is not timed. Best of
     ``repeats``."""
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
-    from flightmode.sim.flight.model_edits import edits_for
+    from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
+    from flightmode.sim.flight.jsbsim.model_edits import edits_for
 
     plan = scenario.plan
     prof = get_profile(plan.aircraft)
@@ -76,7 +76,7 @@ def in_flight_stepping_s(scenario) -> tuple[float, int]:
     own (the timer's calls are outside the sum), so the flight this measures is slower than an untimed
     one; what it sums is not."""
     from flightmode.runs import pipeline
-    from flightmode.sim.flight import jsbsim_adapter
+    from flightmode.sim.flight.jsbsim import adapter as jsbsim_adapter
 
     total = [0.0, 0]
     clock = time.perf_counter

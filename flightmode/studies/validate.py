@@ -361,7 +361,7 @@ def kinematic_checks(track, plan, wrap_type: str, m: dict) -> list[Check]:
 
 
 # --------------------------------------------------------------------------------------- touchdown
-# peak load factor at the CG by landing quality (module docstring; gear sizing in sim.flight.gear)
+# peak load factor at the CG by landing quality (module docstring; gear sizing in sim.flight.jsbsim.gear)
 TOUCHDOWN_PEAK_G = {
     "normal": (1.0, 1.5, "normal landings peak well under 1.5 g at the CG (FAA/UDRI statistical loads data)"),
     "firm": (1.2, 2.1, "firm: below the Boeing 737 AMM hard-landing inspection, 2.1 g"),

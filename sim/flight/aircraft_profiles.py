@@ -362,15 +362,15 @@ class AircraftProfile:
 
     taxi_turn_kt: float = 10.0  # about 10 kt in turns (Airbus A319 FCOM)
     rotate_elevator: float = 0.3  # nose-up elevator bias during rotation (fraction of full travel)
-    elevator_nose_up_deg: float | None = None  # extends the model's elevator travel (sim.flight.model_edits)
+    elevator_nose_up_deg: float | None = None  # extends the model's elevator travel (sim.flight.jsbsim.model_edits)
     spread_spoiler_lift: bool = (
-        False  # the ground spoilers' lift loss over their whole travel (sim.flight.model_edits)
+        False  # the ground spoilers' lift loss over their whole travel (sim.flight.jsbsim.model_edits)
     )
-    add_ground_spoilers: bool = False  # ground spoilers for a model without them (sim.flight.model_edits)
-    nose_side_friction: float | None = None  # sets the nose tyre's side-force peak (sim.flight.model_edits)
+    add_ground_spoilers: bool = False  # ground spoilers for a model without them (sim.flight.jsbsim.model_edits)
+    nose_side_friction: float | None = None  # sets the nose tyre's side-force peak (sim.flight.jsbsim.model_edits)
     vr_ref_mass_kg: float | None = None  # the mass vr_kt holds at (None: vr_kt at any mass)
     nose_static_deflection_m: float | None = (
-        None  # a softer nose strut at the same stance (sim.flight.gear.set_nose_strut)
+        None  # a softer nose strut at the same stance (sim.flight.jsbsim.gear.set_nose_strut)
     )
     tuning: PilotTuning = field(default_factory=PilotTuning)
 
@@ -387,7 +387,7 @@ PROFILES: dict[str, AircraftProfile] = {
         # the two real 737 taxi-outs (N899DN, a 737-900, MSP: speed p50 6.3 and 7.3 m/s, p90 7.8 and
         # 10.2) against 7.9 m/s p50 over 19 seeded ist-osl flights at the default straight speeds
         tuning=PilotTuning(taxi_speed_out_mps=(6.5, 9.0)),
-        spread_spoiler_lift=True,  # the stock table's lift loss is all in 10 % of the travel (sim.flight.model_edits)
+        spread_spoiler_lift=True,  # the stock table's lift loss is all in 10 % of the travel (sim.flight.jsbsim.model_edits)
         wrap_type="B737",
         n_engines=2,
         length_m=33.4,
@@ -481,9 +481,9 @@ PROFILES: dict[str, AircraftProfile] = {
         min_runway_m=2100.0,  # Airbus A320 Aircraft Characteristics, Airport and Maintenance Planning
         wrap_type="A320",
         tuning=PilotTuning(taxi_brake_mps2=4.2),
-        nose_side_friction=0.8,  # the stock 0.5 let the nose wheel turn it at 1.7-2.1 deg/s^2 (sim.flight.model_edits)
+        nose_side_friction=0.8,  # the stock 0.5 let the nose wheel turn it at 1.7-2.1 deg/s^2 (sim.flight.jsbsim.model_edits)
         rotate_elevator=0.6,
-        elevator_nose_up_deg=35.0,  # no trimmable stabiliser in the model (sim.flight.model_edits)
+        elevator_nose_up_deg=35.0,  # no trimmable stabiliser in the model (sim.flight.jsbsim.model_edits)
         n_engines=2,
         length_m=37.57,
         wingspan_m=34.1,
@@ -543,14 +543,14 @@ PROFILES: dict[str, AircraftProfile] = {
         # no additive landed 1.51 ft/s above the drawn touchdown sink on average (p90 3.28) and 2 of 20
         # failed in the flare at 10.6 and 12.2 ft/s: the thrust, idle seconds before the wheels met
         # the runway, let the speed and then the sink run away while the elevator was at its stop (the
-        # model has no trimmable stabiliser: sim.flight.model_edits); one of the two was flown in a
+        # model has no trimmable stabiliser: sim.flight.jsbsim.model_edits); one of the two was flown in a
         # 27 kt wind. Retarding at 10 ft alone: 0.77 ft/s above (p90 1.87), 1 of 20 failed (the windy one);
         # with the additive too (4 kt in that wind): 0.78 ft/s above (p90 2.53), 0 of 20 failed
         retard_height_ft=10.0,
         vapp_wind_fraction=1.0 / 3.0,
         vapp_wind_included_kt=5.0,
         vapp_wind_max_kt=15.0,
-        # the stock model has no ground spoilers (sim.flight.model_edits gives it the 737's). With them the
+        # the stock model has no ground spoilers (sim.flight.jsbsim.model_edits gives it the 737's). With them the
         # wing lets go of the weight at touchdown and half the flare's elevator can be kept: on 30 seeded
         # pattern landings the fastest nose-down rate went from 4.9-6.4 deg/s to 2.7-4.5 deg/s (nose on
         # the runway 4.3-4.9 s after the mains, 0 bounces); keeping it all (1.0) left the elevator's

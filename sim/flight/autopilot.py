@@ -9,7 +9,7 @@ nose-wheel steering by pure pursuit on the ground, with yaw-rate feedback and di
 come from the aircraft profile (:class:`~flightmode.sim.flight.aircraft_profiles.PilotTuning`).
 
 Each control tick the pilot hands the loops ``x``, the SI state row of
-:class:`~flightmode.sim.flight.jsbsim_adapter.JSBSimAircraft` (``x[ix["alt_m"]]``...). Plain scalar
+:class:`~flightmode.sim.flight.jsbsim.adapter.JSBSimAircraft` (``x[ix["alt_m"]]``...). Plain scalar
 Python: the loops run at 4-40 Hz and NumPy scalars would be slower.
 """
 

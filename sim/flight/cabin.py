@@ -199,7 +199,7 @@ def ambient_pressure_pa(alt_m, qnh_hpa=QNH_MEAN_HPA, isa_dev_k=0.0, datum_m=0.0)
     dt = np.asarray(isa_dev_k, float)
     zd = np.asarray(datum_m, float)
     # station pressure at the datum from QNH under the ISA law: p = QNH (T(zd) / T0)^exp
-    p_d = q * (np.maximum(isa.T0_K + isa.LAPSE_KPM * zd, 1.0) / isa.T0_K) ** isa._EXP
+    p_d = q * (np.maximum(isa.T0_K + isa.LAPSE_KPM * zd, 1.0) / isa.T0_K) ** isa.BAROMETRIC_EXPONENT
     h_d = isa.pressure_altitude_m(p_d)
     target = z - zd
     g_d = _g_integral(h_d)

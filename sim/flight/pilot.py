@@ -1,7 +1,7 @@
 """The gate-to-gate pilot: the phase state machine that flies a JSBSim airliner.
 
 Every control tick the pilot reads the SI state row of
-:class:`~flightmode.sim.flight.jsbsim_adapter.JSBSimAircraft`, checks the flight's limits, and runs
+:class:`~flightmode.sim.flight.jsbsim.adapter.JSBSimAircraft`, checks the flight's limits, and runs
 the current phase's controller (:mod:`flightmode.sim.flight.controllers`). A controller ends its phase
 by reporting a condition (:meth:`Pilot.fire`); the next phase is the transition table's
 (:data:`flightmode.sim.flight.phases.TRANSITIONS`). Each phase event records the condition that
@@ -67,7 +67,7 @@ class Pilot:
 
     def set_cg_height(self, cg_height_m: float) -> None:
         """The CG's height above ground with the aircraft settled on its gear (measured: it depends
-        on the gear, :mod:`flightmode.sim.flight.gear`)."""
+        on the gear, :mod:`flightmode.sim.flight.jsbsim.gear`)."""
         import dataclasses
 
         self.prof = dataclasses.replace(self.prof, cg_height_m=cg_height_m)

@@ -29,8 +29,8 @@ from flightmode.sim.flight import geodesy
 from flightmode.sim.flight.aircraft_profiles import get_profile
 from flightmode.sim.flight.draws import draw_flight
 from flightmode.sim.flight.geodesy import RunwayFrame
-from flightmode.sim.flight.jsbsim_adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft
-from flightmode.sim.flight.model_edits import edits_for
+from flightmode.sim.flight.jsbsim.adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft
+from flightmode.sim.flight.jsbsim.model_edits import edits_for
 from flightmode.sim.flight.pilot import Pilot
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import draw_taxi
@@ -82,7 +82,7 @@ def planned_fuel_kg(plan: FlightPlan, prof) -> float:
 def _fuel_lbs(ac: JSBSimAircraft) -> float:
     """The fuel in every tank (``propulsion/total-fuel-lbs`` is only summed when the FDM runs)."""
     total, i = 0.0, 0
-    while ac._pm.hasNode(f"propulsion/tank[{i}]/contents-lbs"):
+    while ac.has(f"propulsion/tank[{i}]/contents-lbs"):
         total += ac.get(f"propulsion/tank[{i}]/contents-lbs")
         i += 1
     return total
@@ -92,7 +92,7 @@ def _load_fuel(ac: JSBSimAircraft, fuel_kg: float) -> None:
     """Fill the model's (initially non-empty) tanks with ``fuel_kg`` in proportion to capacity."""
     caps = []
     i = 0
-    while ac._pm.hasNode(f"propulsion/tank[{i}]/contents-lbs"):
+    while ac.has(f"propulsion/tank[{i}]/contents-lbs"):
         pct = ac.get(f"propulsion/tank[{i}]/pct-full")
         caps.append(ac.get(f"propulsion/tank[{i}]/contents-lbs") * 100.0 / pct if pct > 0 else 0.0)
         i += 1
@@ -124,7 +124,7 @@ def fly(
     streams = as_streams(streams)
     fdm_hz = float(plan.fdm_hz)
     prof = get_profile(plan.aircraft)
-    # flightmode's changes to the stock model, each with its reason (sim.flight.model_edits)
+    # flightmode's changes to the stock model, each with its reason (sim.flight.jsbsim.model_edits)
     ac = JSBSimAircraft(plan.aircraft, 1.0 / fdm_hz, prof.n_engines, workdir=workdir, edits=edits_for(prof))
     origin = RunwayFrame(plan.origin)
     taxi = draw_taxi(plan, prof, streams.rng("taxi"))  # the taxi routes and the departure stand
@@ -158,7 +158,7 @@ def fly(
         ac.step()
     # the CG's height on the settled gear (the pilot's flare and liftoff heights refer to it)
     pilot.set_cg_height(ac.get("position/h-agl-ft") * FT_M)
-    from flightmode.sim.flight.roughness import GearRoughness
+    from flightmode.sim.flight.jsbsim.roughness import GearRoughness
 
     # runway and taxiway roughness felt through the gear (made at rest: the static loads set the tyres)
     rough_tick = GearRoughness(ac, streams, fdm_hz).tick

@@ -274,7 +274,7 @@ class GustFeed:
     PROPS = ("atmosphere/gust-north-fps", "atmosphere/gust-east-fps", "atmosphere/gust-down-fps")
 
     def __init__(self, ac, field: GustField, atmosphere: Atmosphere, ix: dict):
-        self.nodes = [ac._node(p) for p in self.PROPS]
+        self.nodes = [ac.node(p) for p in self.PROPS]
         self.set = type(self.nodes[0]).set_double_value
         self.field, self.atmosphere, self.ix = field, atmosphere, ix
         self.buffer: tuple[list[float], list[float], list[float]] = ([], [], [])  # ft/s, north, east, down

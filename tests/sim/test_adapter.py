@@ -3,7 +3,7 @@ angular acceleration = the rates' forward difference."""
 
 import pytest
 
-from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
 from flightmode.units import FT_M
 
 

@@ -77,7 +77,7 @@ def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_
     # than the main gear's touchdown (the first second) plus the runway's own roughness (the largest
     # deviation from 1 g 5-15 s into the rollout: 0.10-0.16 g measured on the built-ins). The stock
     # nose struts' linear dampers (force c v at contact) made it 2.2 g on the 787-8, where the mains
-    # gave 1.3 g (sim.flight.gear.soften_nose_gear)
+    # gave 1.3 g (sim.flight.jsbsim.gear.soften_nose_gear)
     since = tr.t_s - t_td
     main_g = nz[(since >= -0.5) & (since <= 1.0)].max()
     nose_g = nz[(since > 1.0) & (since <= 3.0)].max()

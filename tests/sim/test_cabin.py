@@ -188,7 +188,7 @@ def test_ground_is_ambient_with_the_doors_open_and_on_the_ground():
 
     # the ambient at the fields is the QNH's station pressure (ISA law from QNH to the elevation)
     def station(qnh, e):
-        return qnh * HPA_PA * ((isa.T0_K + isa.LAPSE_KPM * e) / isa.T0_K) ** isa._EXP
+        return qnh * HPA_PA * ((isa.T0_K + isa.LAPSE_KPM * e) / isa.T0_K) ** isa.BAROMETRIC_EXPONENT
 
     assert c.ambient_pressure_pa[0] == pytest.approx(station(1002.0, 430.0), rel=1e-12)
     assert c.ambient_pressure_pa[-1] == pytest.approx(station(1021.0, 1230.0), rel=1e-12)

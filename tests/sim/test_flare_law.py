@@ -269,7 +269,7 @@ def test_a_touchdown_over_the_design_sink_is_a_hard_landing_not_a_failed_flight(
     absorb without failing. That is a landing to inspect, so the flight goes on to the stand (at a 10 ft/s
     limit it failed in the flare). The bounds are the two regulations' sinks. The gear absorbs it: 2.97 g
     at the CG, under 2.6 g x 12 / 10 = 3.12 g (the struts are sized to the A320 AMM's 2.6 g at 10 ft/s,
-    sim.flight.gear, and the peak grows about as the sink, so the reserve-energy sink's is about 3.1 g).
+    sim.flight.jsbsim.gear, and the peak grows about as the sink, so the reserve-energy sink's is about 3.1 g).
     (Seed 16, this test's flight before the short-final pitch floor moved to the approach's mean
     attitude, now lands at 9.1 ft/s; 3 of the 28 hard landings of seeds 12-39 land over 10 ft/s, 4 before.)"""
     _, tr = fly_cached(

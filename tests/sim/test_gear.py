@@ -1,4 +1,4 @@
-"""The oleo struts flightmode gives the stock JSBSim models (sim.flight.gear)."""
+"""The oleo struts flightmode gives the stock JSBSim models (sim.flight.jsbsim.gear)."""
 
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from flightmode.sim.flight.gear import MAIN_SHARE, main_strut, nose_gear, soften_nose_gear
-from flightmode.sim.flight.jsbsim_adapter import stock_model_xml
+from flightmode.sim.flight.jsbsim.gear import MAIN_SHARE, main_strut, nose_gear, soften_nose_gear
+from flightmode.sim.flight.jsbsim.model_copy import stock_model_xml
 
 
 def _model(name: str) -> ET.Element:
@@ -28,7 +28,7 @@ def test_the_nose_strut_damps_like_the_mains_scaled_to_its_weight_and_keeps_its_
     the weights they carry (1 - MAIN_SHARE against MAIN_SHARE / n_main); its spring and its rebound
     damping stay the stock model's (the stance and the taxiway response are the model's)."""
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.gear import main_gear
+    from flightmode.sim.flight.jsbsim.gear import main_gear
 
     stock, root = _model(model), _model(model)
     mass_kg = get_profile(model).ref_landing_mass_kg

@@ -1,4 +1,4 @@
-"""flightmode's edits to the stock JSBSim models (sim.flight.model_edits), other than the gear's."""
+"""flightmode's edits to the stock JSBSim models (sim.flight.jsbsim.model_edits), other than the gear's."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from flightmode.errors import AircraftError
-from flightmode.sim.flight.jsbsim_adapter import stock_model_xml
-from flightmode.sim.flight.model_edits import spread_spoiler_lift_loss
+from flightmode.sim.flight.jsbsim.model_copy import stock_model_xml
+from flightmode.sim.flight.jsbsim.model_edits import spread_spoiler_lift_loss
 
 
 def _model(name: str) -> ET.Element:
@@ -72,8 +72,8 @@ def test_the_a320_gets_ground_spoilers_that_take_the_737s_share_of_its_wing_lift
     from scipy.interpolate import RegularGridInterpolator
 
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
-    from flightmode.sim.flight.model_edits import add_ground_spoilers, edits_for
+    from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
+    from flightmode.sim.flight.jsbsim.model_edits import add_ground_spoilers, edits_for
 
     root = _model("A320")
     add_ground_spoilers(root)
@@ -119,7 +119,7 @@ def test_the_a320_gets_ground_spoilers_that_take_the_737s_share_of_its_wing_lift
 
 
 def test_a_model_that_has_spoilers_is_not_given_a_second_set():
-    from flightmode.sim.flight.model_edits import add_ground_spoilers
+    from flightmode.sim.flight.jsbsim.model_edits import add_ground_spoilers
 
     with pytest.raises(AircraftError, match="already has spoilers"):
         add_ground_spoilers(_model("737"))
@@ -174,8 +174,8 @@ def test_the_a320s_nose_tyre_gets_the_other_models_side_force_peak():
     A320's nose tyre to 0.8, the stock 737's and Fokker 100's, and leaves the other contacts as they
     were (0.5: the mains' grip is not what turns the aircraft)."""
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.gear import nose_gear
-    from flightmode.sim.flight.model_edits import edits_for
+    from flightmode.sim.flight.jsbsim.gear import nose_gear
+    from flightmode.sim.flight.jsbsim.model_edits import edits_for
 
     root = _model("A320")
     before = {
@@ -209,7 +209,7 @@ def test_the_first_ground_contact_is_the_nose_gear(model):
     """The rollout reads the nose wheels' weight-on-wheels as JSBSim's gear/unit[0] (controllers.NOSE_WOW):
     JSBSim numbers the contacts in the order of the model file, so the first must be the nose gear (the
     model's one steerable contact, gear.nose_gear) in every profiled model."""
-    from flightmode.sim.flight.gear import nose_gear
+    from flightmode.sim.flight.jsbsim.gear import nose_gear
 
     root = _model(model)
     assert root.find("ground_reactions/contact") is nose_gear(root)
@@ -224,8 +224,8 @@ def test_the_787s_nose_is_flown_onto_the_runway(fly_cached):
     From 1 s after the mains touch (their own impact is the touchdown checks') to 8 s (validate's
     rollout roughness window starts there); the increment is validate's (quasi-static part below
     0.2 Hz removed)."""
-    from flightmode.studies.validate import vertical_increment_g
     from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.studies.validate import vertical_increment_g
 
     sc, tr = fly_cached("lhr-jfk-787")
     t_td = tr.event_time("touchdown")
@@ -240,8 +240,8 @@ def test_the_787s_nose_strut_is_softened_at_its_stock_stance():
     that weight the nose stands where the stock strut held it (the stock 160,000 lbf/ft sits 5 cm
     down under it)."""
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.gear import MAIN_SHARE, nose_gear
-    from flightmode.sim.flight.model_edits import edits_for
+    from flightmode.sim.flight.jsbsim.gear import MAIN_SHARE, nose_gear
+    from flightmode.sim.flight.jsbsim.model_edits import edits_for
     from flightmode.units import FT_M, G0_MPS2, LBF_N
 
     prof = get_profile("787-8")
@@ -287,7 +287,7 @@ def test_wing_tip_contacts_sit_at_the_wing_tips(model):
     0.01 in, the value's printed precision). The 787-8's sit at 1,173.5 in against its 1,152 in half span
     (2 % outside, its model's rounded 192 ft span): left as they are."""
     from flightmode.sim.flight.aircraft_profiles import get_profile
-    from flightmode.sim.flight.model_edits import edits_for
+    from flightmode.sim.flight.jsbsim.model_edits import edits_for
 
     root = _model(model)
     before = {

@@ -1,4 +1,5 @@
-"""Runway roughness (flightmode.sim.flight.roughness): the ISO 8608 profile, the isotropic track
+"""Runway roughness (flightmode.sim.flight.runway_roughness, flightmode.sim.flight.jsbsim.roughness and
+roughness_model): the ISO 8608 profile, the isotropic track
 coherence, determinism, JSBSim's external-force conventions, and what a flight feels.
 
 Welch spread: with Hann windows overlapping by half, each bin of a Welch estimate from K segments is
@@ -19,8 +20,10 @@ import pytest
 from scipy.signal import csd, welch
 
 from flightmode.errors import AircraftError, ScenarioError
+from flightmode.sim.flight import runway_roughness as P
+from flightmode.sim.flight.jsbsim import roughness as R
+from flightmode.sim.flight.jsbsim import roughness_model as M
 from flightmode.studies.validate import ground_roughness_g
-from flightmode.sim.flight import roughness as R
 from flightmode.units import FT_M, LBF_N
 
 N_LONG = 2**18  # 26 km of profile: 127 Welch segments of 410 m
@@ -35,15 +38,15 @@ def _welch_sigma(n_bins: int, n_samples: int = N_LONG, nperseg: int = NPERSEG) -
 
 
 def test_classes_follow_iso_8608_table_c2():
-    assert R.ISO_8608_GD_N0_M3["A"] == pytest.approx(16e-6, rel=1e-12)
-    assert R.ISO_8608_GD_N0_M3["B"] == pytest.approx(64e-6, rel=1e-12)
-    assert R.ISO_8608_GD_N0_M3["H"] == pytest.approx(262144e-6, rel=1e-12)
+    assert P.ISO_8608_GD_N0_M3["A"] == pytest.approx(16e-6, rel=1e-12)
+    assert P.ISO_8608_GD_N0_M3["B"] == pytest.approx(64e-6, rel=1e-12)
+    assert P.ISO_8608_GD_N0_M3["H"] == pytest.approx(262144e-6, rel=1e-12)
     # Gd(n0) at n0 = 0.1 cycle/m, falling as n^-2 (w = 2)
-    assert R.displacement_psd_m3(0.1, 16e-6) == pytest.approx(16e-6)
-    assert R.displacement_psd_m3(0.2, 16e-6) == pytest.approx(4e-6)
-    assert R.RunwayRoughness("A", "roughness/x").gd_n0_m3 == 16e-6
+    assert P.displacement_psd_m3(0.1, 16e-6) == pytest.approx(16e-6)
+    assert P.displacement_psd_m3(0.2, 16e-6) == pytest.approx(4e-6)
+    assert P.RunwayRoughness("A", "roughness/x").gd_n0_m3 == 16e-6
     with pytest.raises(ScenarioError, match="ISO 8608 classes are A, B"):
-        R.RunwayRoughness("Z", "roughness/x")
+        P.RunwayRoughness("Z", "roughness/x")
 
 
 def test_track_coherence_is_z_k1_z():
@@ -52,56 +55,56 @@ def test_track_coherence_is_z_k1_z():
     n = np.logspace(-4, 1, 400)
     for d in (0.5, 3.7, 7.3):
         z = 2 * math.pi * n * d
-        assert np.allclose(R.track_coherence(n, d), z * k1(z), atol=1e-7, rtol=0)
-    assert R.track_coherence(np.array([0.0, 0.3]), 0.0).tolist() == [1.0, 1.0]
+        assert np.allclose(P.track_coherence(n, d), z * k1(z), atol=1e-7, rtol=0)
+    assert P.track_coherence(np.array([0.0, 0.3]), 0.0).tolist() == [1.0, 1.0]
 
 
 @pytest.mark.parametrize("iso_class", ["A", "C"])
 def test_profile_psd_matches_the_class(iso_class):
-    gd = R.ISO_8608_GD_N0_M3[iso_class]
-    tracks = R.synthesize_tracks(gd, np.random.default_rng(11), 7.3, n_samples=N_LONG)
-    f, p = welch(tracks, fs=1 / R.DX_M, nperseg=NPERSEG, axis=-1)
+    gd = P.ISO_8608_GD_N0_M3[iso_class]
+    tracks = P.synthesize_tracks(gd, np.random.default_rng(11), 7.3, n_samples=N_LONG)
+    f, p = welch(tracks, fs=1 / P.DX_M, nperseg=NPERSEG, axis=-1)
     for lo, hi in pairwise(OCTAVES):
         sel = (f >= lo) & (f < hi)
-        ratio = (p[:, sel] / R.displacement_psd_m3(f[sel], gd)).mean(axis=1)  # nose, left, right
+        ratio = (p[:, sel] / P.displacement_psd_m3(f[sel], gd)).mean(axis=1)  # nose, left, right
         tol = 5 * _welch_sigma(int(sel.sum()))
         assert np.all(np.abs(ratio - 1) < tol), (lo, hi, ratio, tol)
     # nothing outside the band: below 1/120 and above 2 cycle/m the estimate is leakage only
-    assert p[:, (f > 3.0)].max() < 1e-3 * R.displacement_psd_m3(2.0, gd)
+    assert p[:, (f > 3.0)].max() < 1e-3 * P.displacement_psd_m3(2.0, gd)
     # zero mean, and the variance of the band: Gd(n0) n0^2 (1/n_lo - 1/n_hi)
     assert np.abs(tracks.mean(axis=1)).max() < 1e-12
-    var = gd * R.ISO_8608_N0**2 * (R.BAND_M[1] - R.BAND_M[0])
+    var = gd * P.ISO_8608_N0**2 * (P.BAND_M[1] - P.BAND_M[0])
     assert np.allclose(tracks.var(axis=1), var, rtol=0.25)
 
 
 def test_tracks_are_lines_of_one_isotropic_surface():
     track = 2.0  # narrow, so that the coherence spans several octaves
-    tracks = R.synthesize_tracks(16e-6, np.random.default_rng(5), track, n_samples=N_LONG)
+    tracks = P.synthesize_tracks(16e-6, np.random.default_rng(5), track, n_samples=N_LONG)
     k = 2 * N_LONG // NPERSEG - 1
     for a, b, d in ((1, 2, track), (0, 1, track / 2), (0, 2, track / 2)):
-        f, pab = csd(tracks[a], tracks[b], fs=1 / R.DX_M, nperseg=NPERSEG)
-        _, paa = welch(tracks[a], fs=1 / R.DX_M, nperseg=NPERSEG)
-        _, pbb = welch(tracks[b], fs=1 / R.DX_M, nperseg=NPERSEG)
+        f, pab = csd(tracks[a], tracks[b], fs=1 / P.DX_M, nperseg=NPERSEG)
+        _, paa = welch(tracks[a], fs=1 / P.DX_M, nperseg=NPERSEG)
+        _, pbb = welch(tracks[b], fs=1 / P.DX_M, nperseg=NPERSEG)
         for lo, hi in pairwise(OCTAVES):
             sel = (f >= lo) & (f < hi)
             rho_hat = (pab.real[sel] / np.sqrt(paa[sel] * pbb[sel])).mean()
-            rho = R.track_coherence(f[sel], d).mean()
+            rho = P.track_coherence(f[sel], d).mean()
             # coherency estimate: standard deviation about (1 - rho^2) / sqrt(K) per bin
             tol = 4 * (1 - rho**2) / math.sqrt(k * sel.sum() / 2) + 1e-3
             assert abs(rho_hat - rho) < tol, (a, b, lo, rho_hat, rho, tol)
 
 
 def test_same_generator_same_profile():
-    a = R.synthesize_tracks(16e-6, np.random.default_rng(3), 7.3)
-    b = R.synthesize_tracks(16e-6, np.random.default_rng(3), 7.3)
-    c = R.synthesize_tracks(16e-6, np.random.default_rng(4), 7.3)
+    a = P.synthesize_tracks(16e-6, np.random.default_rng(3), 7.3)
+    b = P.synthesize_tracks(16e-6, np.random.default_rng(3), 7.3)
+    c = P.synthesize_tracks(16e-6, np.random.default_rng(4), 7.3)
     assert np.array_equal(a, b)
     assert not np.allclose(a, c)
-    assert a.shape == (3, R.PERIOD_SAMPLES)
+    assert a.shape == (3, P.PERIOD_SAMPLES)
 
 
 def _parked(model: str = "737"):
-    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
 
     ac = JSBSimAircraft(model, 1 / 120, 2)
     ac.init_on_ground(46.0, 6.0, 400.0, 0.0)
@@ -114,10 +117,10 @@ def _parked(model: str = "737"):
 def test_gear_groups_of_the_stock_models(model):
     import xml.etree.ElementTree as ET
 
-    from flightmode.sim.flight.jsbsim_adapter import stock_model_xml
+    from flightmode.sim.flight.jsbsim.model_copy import stock_model_xml
 
     root = ET.parse(stock_model_xml(model)).getroot()
-    g = R.gear_groups(root)
+    g = M.gear_groups(root)
     assert g["nose"]["x"] < g["left"]["x"] - 10.0  # structural x runs aft: the nose wheel is metres ahead
     assert g["left"]["y"] < 0 < g["right"]["y"]
     assert g["left"]["spring"] == g["right"]["spring"] > 0
@@ -131,7 +134,7 @@ def test_gear_groups_need_a_gear():
     import xml.etree.ElementTree as ET
 
     with pytest.raises(AircraftError, match="no BOGEY"):
-        R.gear_groups(ET.fromstring("<fdm_config><ground_reactions/></fdm_config>"))
+        M.gear_groups(ET.fromstring("<fdm_config><ground_reactions/></fdm_config>"))
 
 
 def test_a_constant_force_moves_the_gear_reaction_by_that_much():
@@ -147,7 +150,7 @@ def test_a_constant_force_moves_the_gear_reaction_by_that_much():
     force_lbf = 5000.0
     ac.set("roughness/knot-sec", 1e6)  # u stays ~0 for the test
     ac.set("roughness/t0-sec", ac.get("simulation/sim-time-sec") + dt)
-    for j in range(R.RING):
+    for j in range(M.RING):
         ac.set(f"roughness/left/f{j}-lbf", force_lbf)
     ac.set("roughness/active", 1.0)
     for _ in range(1200):
@@ -168,22 +171,22 @@ def test_knots_are_interpolated_at_every_step_round_the_ring():
     ring's last slot round to its first."""
     ac = _parked()
     dt = 1 / 120
-    for j in range(R.RING):
+    for j in range(M.RING):
         ac.set(f"roughness/nose/f{j}-lbf", 100.0 * j)
     ac.set("roughness/knot-sec", 2 * dt)
     ac.set("roughness/t0-sec", ac.get("simulation/sim-time-sec") + dt)
     ac.set("roughness/active", 1.0)
     seen = []
-    for _ in range(2 * R.RING + 4):
+    for _ in range(2 * M.RING + 4):
         ac.step()
         seen.append(ac.get("roughness/nose/force-lbf"))
-    ramp = [50.0 * i for i in range(2 * R.RING - 2)]  # 0 .. 100 (RING - 1) in half-knot steps
-    last = 100.0 * (R.RING - 1)
+    ramp = [50.0 * i for i in range(2 * M.RING - 2)]  # 0 .. 100 (RING - 1) in half-knot steps
+    last = 100.0 * (M.RING - 1)
     assert seen == pytest.approx(ramp + [last, last / 2, 0.0, 50.0, 100.0, 150.0], abs=1e-6)
 
 
 def test_no_force_off_the_ground():
-    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
 
     ac = JSBSimAircraft("737", 1 / 120, 2)
     fdm = ac.fdm
@@ -230,16 +233,16 @@ def test_a_stopped_aircraft_rocking_on_its_struts_comes_to_rest_on_its_own_gear(
         for k in range(n):
             x[ac.index["v_north_mps"]] = v_mps if v_mps >= 1.0 else v_mps * (-1.0) ** k  # rolling, or rocking
             rough.tick(x, "parked", 3)
-            out.append([ac.get(f"roughness/{g}/f{j}-lbf") for g in R.GROUPS for j in range(R.RING)])
+            out.append([ac.get(f"roughness/{g}/f{j}-lbf") for g in R.GROUPS for j in range(M.RING)])
         return np.array(out)
 
     rolling = ticks(1.0, 160)  # 4 m of taxiway: 40 profile samples under each wheel
-    assert np.ptp(rolling[:, R.RING :], axis=0).min() > 1.0  # lbf: the mains feel it
+    assert np.ptp(rolling[:, M.RING :], axis=0).min() > 1.0  # lbf: the mains feel it
     rocking = ticks(0.005, 1200)  # 30 s at +-5 mm/s
     assert np.abs(rocking[-1]).max() < 0.01
     # no bump felt while rocking: once the tyre's lag has settled (1 s, > 5 of its tau < 0.2 s), each
     # group's force only decays towards 0, never a step away from it
-    last = rocking[40 :: R.RING, R.RING - 1 :: R.RING]  # one slot per group, rewritten every RING ticks
+    last = rocking[40 :: M.RING, M.RING - 1 :: M.RING]  # one slot per group, rewritten every RING ticks
     assert np.all(np.diff(np.abs(last), axis=0) <= 1e-9)
 
 
@@ -249,7 +252,7 @@ def test_a_stopped_aircraft_rocking_on_its_struts_comes_to_rest_on_its_own_gear(
 def test_the_runway_roll_is_the_roughest_ground_phase(fly_cached):
     """RMS vertical load factor at the CG: the takeoff roll and the rollout (40-80 m/s) shake more
     than taxiing (5-10 m/s) on the same class of surface, and stay at a few hundredths of g, as on a
-    good runway (module docstring of flightmode.sim.flight.roughness)."""
+    good runway (module docstring of flightmode.sim.flight.jsbsim.roughness)."""
     _, tr = fly_cached("pattern")
     rms = {name: float(np.sqrt(np.mean(dn**2))) for name, dn in ground_roughness_g(tr).items()}
     assert rms["takeoff_roll"] > 1.5 * rms["taxi"] and rms["rollout"] > 1.5 * rms["taxi"], rms

@@ -20,14 +20,14 @@ def _inet_sockets(proc: psutil.Process):
     return [c for c in proc.net_connections(kind="inet")]
 
 
-def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
-    from flightmode.sim.flight.jsbsim_adapter import _private_model_copy, stock_model_xml
+def testprivate_model_copy_has_no_io_sections_and_a_tug(tmp_path):
+    from flightmode.sim.flight.jsbsim.model_copy import private_model_copy, stock_model_xml
 
-    path = _private_model_copy("737", tmp_path)
+    path = private_model_copy("737", tmp_path)
     root = ET.parse(path / "737" / "737.xml").getroot()
     assert root.findall("input") == [] and root.findall("output") == []
     forces = root.findall("external_reactions/force")
-    # the tug, and the runway roughness felt through each gear group (sim.flight.roughness)
+    # the tug, and the runway roughness felt through each gear group (sim.flight.jsbsim.roughness)
     assert [f.get("name") for f in forces] == [
         "pushback",
         "roughness-nose",
@@ -40,7 +40,7 @@ def test_private_model_copy_has_no_io_sections_and_a_tug(tmp_path):
 
 
 def test_loading_and_stepping_the_737_opens_no_socket(tmp_path):
-    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
 
     me = psutil.Process()
     before = {(c.laddr, c.type) for c in _inet_sockets(me)}
@@ -55,7 +55,7 @@ def test_loading_and_stepping_the_737_opens_no_socket(tmp_path):
 
 def test_unknown_model_suggests_the_nearest():
     from flightmode.errors import AircraftError
-    from flightmode.sim.flight.jsbsim_adapter import JSBSimAircraft
+    from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
 
     with pytest.raises(AircraftError, match=r"unknown JSBSim aircraft model 'A3200'.*did you mean \"A320\""):
         JSBSimAircraft("A3200", 1 / 120, 2)

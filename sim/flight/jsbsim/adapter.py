@@ -1,33 +1,26 @@
-"""The one JSBSim adapter: the only ``import jsbsim`` in flightmode.
+"""The one JSBSim adapter: with the rest of :mod:`flightmode.sim.flight.jsbsim`, the only ``import jsbsim``
+in flightmode.
 
 JSBSim speaks imperial units; this module converts them to SI exactly once, in the
 :data:`CHANNELS` table, and the rest of flightmode only sees SI arrays.
 
-Safety (checked on jsbsim 1.3.3's stock models): the stock 737 opens a telnet server and a UDP socket from its
-``<input>`` sections and some models write CSV files from ``<output>``. The model is therefore
-loaded from a *private copy* of its main XML in a temporary directory, with every top-level
-``<input>`` and ``<output>`` element removed, ``disable_input()``/``disable_output()`` called
-as well, and the temporary copy deleted as soon as JSBSim has parsed it. The copy also gives
-every model the same tug: a body-axis ``external_reactions`` force named ``pushback`` at the
-nose gear (the 787-8 and fokker100 already define one; the fokker100's own FlightGear-driven
-``pushback`` system is removed so that one tug controller, :class:`~flightmode.sim.flight.controllers.Pushback`,
-drives all).
+Safety: the model is loaded from a sanitised private copy of its main XML
+(:mod:`~flightmode.sim.flight.jsbsim.model_copy`), ``disable_input()``/``disable_output()`` called as well.
 """
 
 from __future__ import annotations
 
 import math
-import os
 import shutil
 import tempfile
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from flightmode.errors import AircraftError, did_you_mean
-from flightmode.units import FT_M, G0_MPS2, IN_M, KT_MPS, LBF_N
+from flightmode.errors import AircraftError
+from flightmode.sim.flight.jsbsim.model_copy import private_model_copy
+from flightmode.units import FT_M, G0_MPS2, KT_MPS, LBF_N
 
 
 @dataclass(frozen=True, slots=True)
@@ -98,98 +91,6 @@ def _channels(n_engines: int) -> tuple[Channel, ...]:
     return tuple(base)  # the every-step channels first, then the slow ones
 
 
-def available_models() -> list[str]:
-    """JSBSim aircraft directories shipped in the installed wheel."""
-    import jsbsim
-
-    root = Path(jsbsim.get_default_root_dir()) / "aircraft"
-    return sorted(p.name for p in root.iterdir() if (p / f"{p.name}.xml").is_file())
-
-
-LENGTH_UNITS_M = {"IN": IN_M, "FT": FT_M, "M": 1.0}  # the length units of a JSBSim model file, in metres
-
-
-def xml_sub(parent: ET.Element, tag: str, text: str | None = None, **attrib) -> ET.Element:
-    """A new child ``tag`` of ``parent`` with ``attrib`` and, if given, ``text``: one way for the model
-    edits (the adapter's pushback force, :mod:`~flightmode.sim.flight.roughness`,
-    :mod:`~flightmode.sim.flight.model_edits`) to write JSBSim XML."""
-    el = ET.SubElement(parent, tag, attrib)
-    if text is not None:
-        el.text = text
-    return el
-
-
-def stock_model_xml(model: str) -> Path:
-    """The main XML file of the stock JSBSim ``model`` shipped in the installed wheel (an
-    :class:`AircraftError` naming the installed models if there is none)."""
-    import jsbsim
-
-    path = Path(jsbsim.get_default_root_dir()) / "aircraft" / model / f"{model}.xml"
-    if not path.is_file():
-        raise AircraftError(
-            f"unknown JSBSim aircraft model '{model}'{did_you_mean(model, available_models())}; "
-            f"installed models: {', '.join(available_models())}"
-        )
-    return path
-
-
-def _private_model_copy(model: str, workdir: Path, edits=()) -> Path:
-    """Write the sanitised copy of ``model``'s main XML below ``workdir``; return the aircraft path.
-    ``edits``: functions applied to the XML root before it is written (e.g. the gear's damping,
-    :mod:`flightmode.sim.flight.gear`)."""
-    src = stock_model_xml(model)
-    src_dir = src.parent
-    dst_dir = workdir / "aircraft" / model
-    dst_dir.mkdir(parents=True)
-    for entry in src_dir.iterdir():
-        if entry.name != f"{model}.xml":
-            os.symlink(entry, dst_dir / entry.name)
-    tree = ET.parse(src)
-    root = tree.getroot()
-    for tag in ("input", "output"):
-        for el in root.findall(tag):
-            root.remove(el)
-    for el in root.findall("system"):
-        if el.get("file") == "pushback":
-            root.remove(el)
-    if root.find("external_reactions") is None:
-        nose_x_in = _nose_gear_x_in(root)
-        ext = ET.Element("external_reactions")
-        force = xml_sub(ext, "force", name="pushback", frame="BODY")
-        loc = xml_sub(force, "location", unit="IN")
-        for axis, val in (("x", nose_x_in), ("y", 0.0), ("z", -60.0)):
-            xml_sub(loc, axis, f"{val:.3f}")
-        direc = xml_sub(force, "direction")
-        for axis, val in (("x", 1.0), ("y", 0.0), ("z", 0.0)):
-            xml_sub(direc, axis, f"{val:.1f}")
-        # external_reactions must come after ground_reactions in the document
-        children = list(root)
-        idx = next((i + 1 for i, c in enumerate(children) if c.tag == "ground_reactions"), len(children))
-        root.insert(idx, ext)
-    for edit in edits:
-        edit(root)
-    from flightmode.sim.flight.roughness import add_gear_roughness
-
-    add_gear_roughness(root)  # runway roughness through the gear, from the gear as edited (roughness.py)
-    tree.write(dst_dir / f"{model}.xml", encoding="utf-8", xml_declaration=True)
-    return workdir / "aircraft"
-
-
-def _nose_gear_x_in(root: ET.Element) -> float:
-    """Structural x of the most forward BOGEY contact (the nose gear), inches."""
-    xs = []
-    gr = root.find("ground_reactions")
-    if gr is not None:
-        for contact in gr.findall("contact"):
-            if contact.get("type") == "BOGEY":
-                x = contact.find("location/x")
-                if x is not None and x.text:
-                    xs.append(float(x.text))
-    if not xs:
-        raise AircraftError("model has no BOGEY gear contact to attach the pushback tug to")
-    return min(xs)
-
-
 class JSBSimAircraft:
     """A JSBSim FDM with flightmode's safety settings, SI channels and fast property access.
 
@@ -200,7 +101,7 @@ class JSBSimAircraft:
     n_engines : number of engines whose N1/N2/thrust are read every step.
     workdir : where the temporary private model copy is made (a fresh subdirectory, deleted
         after loading); the system temporary directory when ``None``.
-    edits : functions of the model's XML root applied to the private copy (:func:`_private_model_copy`).
+    edits : functions of the model's XML root applied to the private copy (:func:`~flightmode.sim.flight.jsbsim.model_copy.private_model_copy`).
     """
 
     def __init__(self, model: str, dt_s: float, n_engines: int, workdir: Path | None = None, edits=()):
@@ -215,7 +116,7 @@ class JSBSimAircraft:
             tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir)
         ).resolve()  # JSBSim needs absolute paths
         try:
-            aircraft_path = _private_model_copy(model, tmp, edits)
+            aircraft_path = private_model_copy(model, tmp, edits)
             jsbsim.FGJSBBase().debug_lvl = 0  # no start-up banner on stdout
             fdm = jsbsim.FGFDMExec(None)
             fdm.set_debug_level(0)
@@ -230,28 +131,33 @@ class JSBSimAircraft:
         fdm.set_dt(dt_s)
         self.fdm = fdm
         self._pm = fdm.get_property_manager()
-        self._read_nodes = [self._node(c.prop) for c in self.channels]
+        self._read_nodes = [self.node(c.prop) for c in self.channels]
         self._scales = np.array([c.scale for c in self.channels])
         self._nodes: dict[str, object] = {}
 
-    def _node(self, prop: str):
+    def node(self, prop: str):
+        """The property node of ``prop`` (JSBSim's name; an :class:`AircraftError` if the model has none)."""
         node = self._pm.get_node(prop, False)
         if node is None:
             raise AircraftError(f"aircraft model '{self.model}' has no property '{prop}'")
         return node
+
+    def has(self, prop: str) -> bool:
+        """Whether the model has the property ``prop`` (JSBSim's name)."""
+        return self._pm.hasNode(prop)
 
     # ----------------------------------------------------------------------------------------
     def set(self, prop: str, value: float) -> None:
         """Write a JSBSim property (imperial, as JSBSim names it); cached node lookup."""
         node = self._nodes.get(prop)
         if node is None:
-            node = self._nodes[prop] = self._node(prop)
+            node = self._nodes[prop] = self.node(prop)
         node.set_double_value(float(value))
 
     def get(self, prop: str) -> float:
         node = self._nodes.get(prop)
         if node is None:
-            node = self._nodes[prop] = self._node(prop)
+            node = self._nodes[prop] = self.node(prop)
         return node.get_double_value()
 
     @property

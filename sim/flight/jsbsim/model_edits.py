@@ -1,10 +1,10 @@
 """flightmode's changes to the stock JSBSim models, each applied to the private copy of the model's
-XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each with its reason:
+XML (:func:`flightmode.sim.flight.jsbsim.model_copy.private_model_copy`) and each with its reason:
 
-- every type: the main gear's strut (:func:`flightmode.sim.flight.gear.soften_main_gear`): the stock
+- every type: the main gear's strut (:func:`flightmode.sim.flight.jsbsim.gear.soften_main_gear`): the stock
   stiff springs and linear dampers made touchdowns 2-5 times too hard; and the nose gear's damper,
   quadratic like the mains', scaled to its share of the weight, its stock spring kept
-  (:func:`flightmode.sim.flight.gear.soften_nose_gear`): the stock linear one turned the nose wheels'
+  (:func:`flightmode.sim.flight.jsbsim.gear.soften_nose_gear`): the stock linear one turned the nose wheels'
   contact into the landing's highest load (2.2 g on the 787-8);
 - every type: wing-tip contact points inside the span (:func:`place_wing_tip_contacts`). The stock
   Fokker 100 puts its wing's STRUCTURE contacts 1,105 in (28.1 m) either side of the centreline, its
@@ -12,7 +12,7 @@ XML (:func:`flightmode.sim.flight.jsbsim_adapter._private_model_copy`) and each 
   in a gusty flare, a one-step 3.75 g spike; at the tip (14.0 m) it needs about twice the bank. The
   787-8's sit at its half span (2 % outside) and stay; the 737 model has no wing contacts and the
   A320's wing tips are BOGEY contacts, which this does not look at;
-- 787-8: a softer nose strut at the stock stance (:func:`flightmode.sim.flight.gear.set_nose_strut`,
+- 787-8: a softer nose strut at the stock stance (:func:`flightmode.sim.flight.jsbsim.gear.set_nose_strut`,
   profile ``nose_static_deflection_m``): its stiff stock spring put the cockpit, 23 m ahead of the CG,
   over NASA's 0.4 g on class A runways;
 - A320: the elevator's nose-up travel from 25 to 35 degrees. The stock model has no trimmable
@@ -55,8 +55,8 @@ import math
 import xml.etree.ElementTree as ET
 
 from flightmode.errors import AircraftError
-from flightmode.sim.flight.gear import nose_gear, set_nose_strut, soften_main_gear, soften_nose_gear
-from flightmode.sim.flight.jsbsim_adapter import LENGTH_UNITS_M, xml_sub
+from flightmode.sim.flight.jsbsim.gear import nose_gear, set_nose_strut, soften_main_gear, soften_nose_gear
+from flightmode.sim.flight.jsbsim.model_xml import LENGTH_UNITS_M, xml_sub
 
 
 def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:

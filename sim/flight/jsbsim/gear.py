@@ -35,7 +35,7 @@ import xml.etree.ElementTree as ET
 from functools import lru_cache
 
 from flightmode.errors import AircraftError
-from flightmode.sim.flight.jsbsim_adapter import LENGTH_UNITS_M
+from flightmode.sim.flight.jsbsim.model_xml import LENGTH_UNITS_M
 from flightmode.units import FT_M, G0_MPS2, LBF_N
 
 DESIGN_SINK_FPS = 10.0  # 14 CFR 25.473(a): limit descent velocity at the design landing weight
