@@ -1,5 +1,5 @@
 """The cabin pressure of one flight beside its aircraft altitude (matplotlib, Agg): the figure
-``flightmode cabin RUN --png FILE`` writes. Every number drawn was computed upstream
+``flightmode cabin RUN --out DIR`` writes (DIR/cabin.png). Every number drawn was computed upstream
 (:mod:`flightmode.sim.flight.cabin`); this module only draws."""
 
 from __future__ import annotations

@@ -15,8 +15,8 @@ pass, with the 95 % Clopper-Pearson interval of the pass fraction
 true failure rate up to 17 %. A flight shows a figure without judging it when the anchor does not
 apply to it (seed 000's Tables 4 / 5 for a bag whose sensor lay unlike the paper's:
 :func:`~flightmode.studies.validate.placement_text`). A flight that cannot be checked
-is reported with its error, never dropped silently; nothing is written (``--checks-out`` writes the
-per-flight rows as Parquet, atomically).
+is reported with its error, never dropped silently; nothing is written (``--out DIR`` writes the
+per-flight rows to DIR/checks.parquet, atomically).
 """
 
 from __future__ import annotations

@@ -489,8 +489,8 @@ def _validate_a_population(ten_hz, full, row):
     from flightmode.cli.main import app
     from flightmode.units import FPS_MPS
 
-    out = full.parent / "checks.parquet"
-    r = CliRunner().invoke(app, ["validate", str(full), "--json", "--checks-out", str(out)])
+    out = full.parent / "checks.parquet"  # `validate --out DIR` writes DIR/checks.parquet
+    r = CliRunner().invoke(app, ["validate", str(full), "--json", "--out", str(full.parent)])
     assert r.exit_code == 0, r.output
     doc = json.loads(r.output)
     assert doc["flights_validated"] == 1 and not doc["not_validated"] and doc["failed_to_fly"] == 0

@@ -1,5 +1,5 @@
 """The e-obs toolkit through the CLI: `flightmode eobs calibrate` on six simulated Movebank files
-recovers the drawn constants, and `flightmode detect FILE.csv` runs the duty-cycled detector on the
+recovers the drawn constants, and `flightmode eobs detect FILE.csv` runs the duty-cycled detector on the
 real albatross file."""
 
 from __future__ import annotations
@@ -40,10 +40,10 @@ def test_eobs_calibrate_recovers_a_simulated_tag_from_six_movebank_files(tmp_pat
         write_movebank(bursts_to_file(bursts), path)
         args += [f"--{'plus' if key[0] == '+' else 'minus'}-{key[1]}", str(path)]
     r = CliRunner().invoke(
-        app, ["eobs", "calibrate", *args, "--tag-number", "2242", "--out", str(tmp_path / "cal.toml")]
+        app, ["eobs", "calibrate", *args, "--tag-number", "2242", "--out", str(tmp_path / "cal")]
     )
     assert r.exit_code == 0, r.output
-    cal = read_calibration(tmp_path / "cal.toml")
+    cal = read_calibration(tmp_path / "cal" / "calibration.toml")  # --out is a folder
     # 240 samples per orientation at 1 mg noise (0.45 count) and 1-count rounding: the mean of a
     # recording has sigma_m = sqrt(0.45^2 + 1/12) / sqrt(240) = 0.038 count, the zero sigma_m / sqrt(2)
     # = 0.027 count: 0.15 count is over 5 sigma; the slope's relative sigma is sigma_m * c / sqrt(2)
@@ -61,7 +61,7 @@ def test_eobs_calibrate_recovers_a_simulated_tag_from_six_movebank_files(tmp_pat
 def test_detect_runs_the_duty_cycled_detector_on_the_real_albatross_file(real_movebank):
     r = CliRunner().invoke(
         app,
-        ["detect", str(ALBATROSSES), "--tag-number", "2242", "--k", "4", "--bursts", "1"],
+        ["eobs", "detect", str(ALBATROSSES), "--tag-number", "2242", "--k", "4", "--bursts", "1"],
         env={"COLUMNS": "160"},
     )
     assert r.exit_code == 0, r.output
@@ -76,5 +76,5 @@ def test_detect_runs_the_duty_cycled_detector_on_the_real_albatross_file(real_mo
     # the birds seen flying by their GPS fixes (9-11 m/s) never hold still for a 12 s burst
     for bird in ("2131-2131", "1163-1163", "unbanded-159"):
         assert rows[bird][7] == "0"
-    r = CliRunner().invoke(app, ["detect", str(ALBATROSSES)])
+    r = CliRunner().invoke(app, ["eobs", "detect", str(ALBATROSSES)])
     assert r.exit_code == 2 and "give --tag-number" in r.output

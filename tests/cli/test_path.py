@@ -42,7 +42,7 @@ def test_fly_prints_the_aided_error_first_and_the_drift_laws(pattern_run):
 
 def test_path_table_agrees_with_the_run_and_sensor_error_dominates(pattern_run):
     run, _ = pattern_run
-    r = CliRunner().invoke(app, ["path", str(run), "--sensors", "run,ideal", "--json"])
+    r = CliRunner().invoke(app, ["path", str(run), "--sensor", "run,ideal", "--json"])
     assert r.exit_code == 0, r.output
     rows = {(x["source"], x["method"]): x["max_m"] for x in json.loads(r.output)}
     info = json.loads((run / "run.json").read_text())
@@ -63,5 +63,5 @@ def test_path_table_agrees_with_the_run_and_sensor_error_dominates(pattern_run):
     assert rows[("truth acceleration", "tridiagonal (gate positions)")] < 1.0
     r = CliRunner().invoke(app, ["path", str(run)], env={"COLUMNS": "200"})  # the table, for people
     assert r.exit_code == 0 and "recurrence + ZUPT" in r.output and "tilt-only (vertical only)" in r.output
-    r = CliRunner().invoke(app, ["path", str(run), "--sensors", "lis303"], env={"COLUMNS": "200"})
+    r = CliRunner().invoke(app, ["path", str(run), "--sensor", "lis303"], env={"COLUMNS": "200"})
     assert r.exit_code == 2 and "unknown sensor preset 'lis303'" in r.output
