@@ -18,19 +18,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flightmode.detector.moving_variance import DetectorError, MovingVariance
+from flightmode.detector.moving_variance import MovingVariance
+from flightmode.detector.recommended_point import POINT
+from flightmode.errors import DetectorError
 
 
 @dataclass(frozen=True, slots=True)
 class DetectorParams:
-    """Seed 000's recommended values (Table 9): NMV, W_s 1 s, T_sigma 4 sigma^2, T_th 4 s."""
+    """The detector's parameters; the defaults are seed 000's recommended point (Table 9:
+    :data:`flightmode.detector.recommended_point.POINT`)."""
 
     fs_hz: float = 100.0
-    window_s: float = 1.0
-    k_sigma: float = 4.0
-    time_threshold_s: float = 4.0
-    method: str = "nmv"
-    weight: float = 1.0  # EMV weighting factor
+    window_s: float = POINT.window_s
+    k_sigma: float = POINT.k_sigma
+    time_threshold_s: float = POINT.time_threshold_s
+    method: str = POINT.method
+    weight: float = POINT.weight  # EMV weighting factor
     emv_initial_k: float = 10.0  # EMV starts from 10 sigma^2 (Fig. 18)
 
     @property

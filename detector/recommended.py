@@ -14,10 +14,17 @@ import numpy as np
 
 from flightmode.detector.evaluation import Evaluation, evaluate
 from flightmode.detector.flight_mode import DetectorParams, calibrate_sigma2
+from flightmode.detector.recommended_point import POINT
 from flightmode.errors import DetectorError
 
-# seed 000, Table 9 and section 7: NMV, W_s 1 s, T_sigma 4 sigma^2, T_th 4 s
-RECOMMENDED = DetectorParams(window_s=1.0, k_sigma=4.0, time_threshold_s=4.0, method="nmv")
+# seed 000, Table 9 and section 7 (the numbers: recommended_point.POINT)
+RECOMMENDED = DetectorParams(
+    window_s=POINT.window_s,
+    k_sigma=POINT.k_sigma,
+    time_threshold_s=POINT.time_threshold_s,
+    method=POINT.method,
+    weight=POINT.weight,
+)
 LABELS = ("in_flight_window", "sensor_static", "phase")
 
 

@@ -24,6 +24,7 @@ from __future__ import annotations
 import base64
 import html
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -37,6 +38,36 @@ FIGURES = (
     "static_survival",
     "worst_flight",
 )
+
+
+@dataclass(frozen=True, slots=True)
+class WorstFlightData:
+    """Seed 000 Figs. 14 and 15 in form, for one flight: per detector check (K checks), computed by
+    :mod:`flightmode.studies.certify`."""
+
+    t_min: np.ndarray  # (K,) check times, minutes since the tracker started
+    mv_over_sigma2: np.ndarray  # (K, 3) moving variance per axis / sigma^2
+    ylabel: str  # what mv_over_sigma2 is (method and window)
+    in_window: np.ndarray  # (K,) bool: the check lies in the in-flight window (pushback to engines off)
+    fig14: list  # [(label, temporary (K,) bool, final (K,) bool)] per amplitude threshold at T_th below
+    fig15: list  # the same per time threshold at k below
+    time_threshold_s: float  # Fig. 14's T_th (seed 000's recommended)
+    k_sigma: float  # Fig. 15's k (seed 000's recommended)
+
+
+@dataclass(frozen=True, slots=True)
+class ReportData:
+    """What the report draws beyond the :class:`~flightmode.studies.certify.Certification` itself,
+    computed by the study (this module never reads a dataset or a sweep)."""
+
+    names: tuple  # a readable name of each row of cert.summary ("NMV, W_s 1 s, 4 sigma^2, T_th 4 s")
+    recommended_name: str  # of cert.recommendation["point"]
+    seed000_name: str  # seed 000's recommended point
+    seed000_short: str  # the same, short ("NMV 1 s, 4 sigma^2, 4 s")
+    seed000_index: int | None  # seed 000's point's row in cert.summary, None if the grid lacks it
+    response_curves: list  # [(legend, finite responses s sorted (n,), flights)] for response_cdf
+    phases: dict  # {"phase", "k", "checks", "under_all"}: lists at the recommended method and window
+    worst_flight: WorstFlightData | None
 
 
 def _plt():
@@ -106,32 +137,12 @@ def fig_vs_k(
     _save(fig, path)
 
 
-def fig_response_cdf(points, cert, path: Path) -> None:
-    from flightmode.studies.certify import SEED000_POINT, point_name
-    from flightmode.studies.sweep import POINT_KEYS, at_point
-
+def fig_response_cdf(curves, path: Path) -> None:
+    """``curves``: [(legend, finite responses s sorted, flights)] (:attr:`ReportData.response_curves`)."""
     plt = _plt()
-    rec = {k: cert.recommendation["point"][k] for k in POINT_KEYS}
-    tths = sorted({r["time_threshold_s"] for r in cert.summary})
-    shown = [
-        ("recommended", rec),
-        ("seed 000", SEED000_POINT),
-        (f"T_th {tths[0]:g} s", rec | {"time_threshold_s": tths[0]}),
-        (f"T_th {tths[-1]:g} s", rec | {"time_threshold_s": tths[-1]}),
-    ]
     fig, ax = plt.subplots(figsize=(7, 4))
-    done = set()
-    for label, p in shown:
-        key = tuple(p[k] for k in POINT_KEYS)
-        rows = at_point(points, p)
-        if key in done or not rows:
-            continue
-        done.add(key)
-        v = np.sort(np.array([r["response_s"] for r in rows], float))
-        n = v.size
-        v = v[np.isfinite(v)]
-        if v.size:
-            ax.step(v, np.arange(1, v.size + 1) / n, where="post", label=f"{label}: {point_name(p)}")
+    for label, v, n in curves:
+        ax.step(v, np.arange(1, v.size + 1) / n, where="post", label=label)
     ax.set_xscale("symlog", linthresh=10)
     ax.set_xlabel("response at the destination gate, s (truly at rest to the first final static)")
     ax.set_ylabel("share of flights")
@@ -142,17 +153,12 @@ def fig_response_cdf(points, cert, path: Path) -> None:
     _save(fig, path)
 
 
-def fig_phase_heatmap(phases, cert, path: Path) -> None:
+def fig_phase_heatmap(d: dict, cert, path: Path) -> None:
+    """``d``: the sweep's phase rows at the recommended method and window (:attr:`ReportData.phases`)."""
     from flightmode.labels import PHASES
-    from flightmode.studies.sweep import where
 
     plt = _plt()
     p = cert.recommendation["point"]
-    d = (
-        where(phases, {k: p[k] for k in ("method", "weight", "window_s")})
-        .select(["phase", "k", "checks", "under_all"])
-        .to_pydict()
-    )
     ks = sorted(set(d["k"]))
     names = [ph for ph in PHASES if ph in set(d["phase"])] + sorted(set(d["phase"]) - set(PHASES))
     checks = np.zeros((len(names), len(ks)))
@@ -191,9 +197,7 @@ def fig_phase_heatmap(phases, cert, path: Path) -> None:
     _save(fig, path)
 
 
-def fig_pareto(cert, path: Path) -> None:
-    from flightmode.studies.certify import _point
-
+def fig_pareto(cert, path: Path, seed000_index: int | None = None, seed000_short: str = "") -> None:
     plt = _plt()
     s = cert.summary
     x = np.array([r["response_p95_s"] for r in s], float)
@@ -218,7 +222,7 @@ def fig_pareto(cert, path: Path) -> None:
     )
     seed = cert.seed000
     if seed:
-        i_s = next(i for i, r in enumerate(s) if _point(r) == _point(seed))
+        i_s = seed000_index
         ax.scatter(
             [x[i_s]],
             [seed["rate_upper_per_h"]],
@@ -227,7 +231,7 @@ def fig_pareto(cert, path: Path) -> None:
             facecolors="none",
             edgecolors="tab:orange",
             lw=2,
-            label="seed 000 (NMV 1 s, 4 sigma^2, 4 s)",
+            label=f"seed 000 ({seed000_short})",
             zorder=5,
         )
     ax.axhline(cert.target.rate_per_h, color="crimson", lw=1, ls=":", label="target")
@@ -290,38 +294,21 @@ def fig_static_survival(cert, path: Path) -> None:
     _save(fig, path)
 
 
-def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
+def fig_worst_flight(cert, data: WorstFlightData, path: Path) -> None:
     """Seed 000 Figs. 14 and 15 in form, for the worst flight (module docstring)."""
-    import dataclasses
-
-    from flightmode.datasets.make import read_manifest
-    from flightmode.detector.flight_mode import DetectorParams, detect, final_static
-    from flightmode.studies.sweep import _streams, sigma2_of_flight
-
     plt = _plt()
     w = cert.worst_flight
-    ds = Path(w["dataset"])
-    row = next(r for r in read_manifest(ds).values() if r["flight_id"] == w["flight_id"])
-    resense = [w["sensor_preset"]] if w["sensor_preset"] != row["sensor_preset"] else None  # swept re-sensed
-    _, cols, text = next(_streams(str(ds), row, resense))
-    row = row | {"scenario_toml": text}
-    t, acc = cols["t_s"], cols["acc_g"]
-    fs = round(1.0 / float(np.median(np.diff(t))), 6)
-    p = DetectorParams(fs_hz=fs, window_s=1.0, k_sigma=4.0, time_threshold_s=4.0, method="nmv")
-    sigma2 = np.asarray(sigma2_of_flight(sigma2_from, row, cols)(p.window), float)
-    c = detect(t, acc, p, sigma2)
-    tm = (c.t_s - t[0]) / 60.0
-    window = np.asarray(cols["in_flight_window"], bool)[c.index]
+    tm, window = data.t_min, data.in_window
     fig, axes = plt.subplots(
         3, 1, figsize=(11, 7.5), sharex=True, gridspec_kw={"height_ratios": [3, 1.4, 1.4]}
     )
     ax = axes[0]
     for j, (a, col) in enumerate(zip("xyz", ("tab:red", "tab:green", "tab:blue"))):
-        ax.plot(tm, c.mv[:, j] / sigma2[j], lw=0.5, color=col, label=f"MV {a} / sigma^2")
+        ax.plot(tm, data.mv_over_sigma2[:, j], lw=0.5, color=col, label=f"MV {a} / sigma^2")
     for k, ls in ((3, ":"), (4, "--"), (5, "-.")):
         ax.axhline(k, color="black", lw=0.8, ls=ls, label=f"{k} sigma^2")
     ax.set_yscale("log")
-    ax.set_ylabel("NMV (W_s 1 s) / sigma^2")
+    ax.set_ylabel(data.ylabel)
     on = np.flatnonzero(window)
     for a_ in axes:
         if on.size:
@@ -342,26 +329,13 @@ def fig_worst_flight(cert, path: Path, sigma2_from: str) -> None:
         ax.set_ylim(-0.6, len(items) - 0.4)
         ax.set_title(title, fontsize=8)
 
-    fig14 = []
-    for k in (3.0, 4.0, 5.0):
-        temp = np.all(c.mv < k * sigma2[None, :], axis=1)
-        fin = final_static(temp, c.after_reset, dataclasses.replace(p, k_sigma=k).checks_needed)
-        fig14.append((f"{k:g} sigma^2", temp, fin))
     lanes(
         axes[1],
-        fig14,
-        "seed 000 Fig. 14 form: T_th 4 s; magenta temporary static (eq. 7), black final static (eq. 8)",
+        data.fig14,
+        f"seed 000 Fig. 14 form: T_th {data.time_threshold_s:g} s; magenta temporary static (eq. 7), "
+        "black final static (eq. 8)",
     )
-    temp4 = np.all(c.mv < 4.0 * sigma2[None, :], axis=1)
-    fig15 = [
-        (
-            f"T_th {tth:g} s",
-            temp4,
-            final_static(temp4, c.after_reset, dataclasses.replace(p, time_threshold_s=tth).checks_needed),
-        )
-        for tth in (2.0, 3.0, 4.0, 5.0)
-    ]
-    lanes(axes[2], fig15, "seed 000 Fig. 15 form: 4 sigma^2")
+    lanes(axes[2], data.fig15, f"seed 000 Fig. 15 form: {data.k_sigma:g} sigma^2")
     axes[2].set_xlabel("time since the tracker started, min")
     fig.tight_layout()
     _save(fig, path)
@@ -434,12 +408,8 @@ def _section_511(th: dict) -> list[str]:
     return parts
 
 
-def render_html(cert, figures: dict[str, bytes]) -> str:
-    from flightmode.studies.certify import point_name
-
-    def named(rows):
-        return [r | {"name": point_name(r)} for r in rows]
-
+def render_html(cert, figures: dict[str, bytes], data: ReportData) -> str:
+    """The self-contained report: ``figures`` {name: PNG bytes}, point names from ``data``."""
     e = html.escape
     t = cert.target
     meta = cert.meta
@@ -467,7 +437,7 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
     if cert.seed000:
         s = cert.seed000
         parts.append(
-            f"<p>Seed 000's recommended point (NMV, W_s 1 s, 4 sigma^2, T_th 4 s) "
+            f"<p>Seed 000's recommended point ({data.seed000_name}) "
             f"<b>{'meets' if s['meets'] else 'does not meet'}</b> the target: {s['false_statics']} false "
             f"statics in {s['in_window_h']:,.1f} h, bound {s['rate_upper_per_h']:.3g} /h, response p95 "
             f"{s['response_p95_s']:.1f} s, availability {s['availability']:.3f}.</p>"
@@ -505,15 +475,17 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
     parts.append(f"<p>Grid: {meta['grid']['points']} points; sigma^2 from {e(meta['sigma2_from'])}.</p>")
     rec = cert.recommendation["point"]
     front = sorted(
-        (cert.summary[i] for i in cert.pareto), key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"])
+        cert.pareto, key=lambda i: (cert.summary[i]["rate_upper_per_h"], cert.summary[i]["response_p95_s"])
     )
     parts.append("<h2>Recommendation, seed 000 and the Pareto front</h2>")
-    shown = named([rec] + ([cert.seed000] if cert.seed000 else []))
+    shown = [rec | {"name": data.recommended_name}]
+    if cert.seed000:
+        shown.append(cert.seed000 | {"name": data.seed000_name})
     parts.append(_table(shown, POINT_COLS))
     parts.append(
         f"<p>The Pareto front ({len(front)} of {len(cert.summary)} points; the first 25 by bound):</p>"
     )
-    parts.append(_table(named(front[:25]), POINT_COLS))
+    parts.append(_table([cert.summary[i] | {"name": data.names[i]} for i in front[:25]], POINT_COLS))
     th = cert.threshold
     if th:
         parts += _section_511(th)
@@ -548,14 +520,15 @@ def render_html(cert, figures: dict[str, bytes]) -> str:
     return "\n".join(parts)
 
 
-def write_report(cert, result, out: Path) -> dict[str, Path]:
-    """The figures (``out/figures``) and ``out/report.html``; the paths written."""
+def write_report(cert, data: ReportData, out: Path) -> dict[str, Path]:
+    """The figures (``out/figures``) and ``out/report.html`` of ``cert`` with the figure data ``data``
+    (:func:`flightmode.studies.certify.report_data`); the paths written."""
     from flightmode.atomic import write_text as atomic_text
 
     fig_dir = Path(out) / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
     paths = {n: fig_dir / f"{n}.png" for n in FIGURES}
-    fig_pareto(cert, paths["pareto"])
+    fig_pareto(cert, paths["pareto"], data.seed000_index, data.seed000_short)
     fig_vs_k(
         cert.summary,
         "rate_upper_per_h",
@@ -567,19 +540,19 @@ def write_report(cert, result, out: Path) -> dict[str, Path]:
     fig_vs_k(
         cert.summary, "availability", "availability (static time reported static)", paths["availability_vs_k"]
     )
-    fig_response_cdf(result.points, cert, paths["response_cdf"])
-    fig_phase_heatmap(result.phases, cert, paths["phase_heatmap"])
+    fig_response_cdf(data.response_curves, paths["response_cdf"])
+    fig_phase_heatmap(data.phases, cert, paths["phase_heatmap"])
     if cert.threshold:
         fig_static_survival(cert, paths["static_survival"])
     else:
         paths.pop("static_survival")
-    if cert.worst_flight:
-        fig_worst_flight(cert, paths["worst_flight"], result.meta["sigma2_from"])
+    if cert.worst_flight and data.worst_flight is not None:
+        fig_worst_flight(cert, data.worst_flight, paths["worst_flight"])
     else:
         paths.pop("worst_flight")
     report = Path(out) / "report.html"
-    atomic_text(render_html(cert, {n: p.read_bytes() for n, p in paths.items()}), report)
+    atomic_text(render_html(cert, {n: p.read_bytes() for n, p in paths.items()}, data), report)
     return paths | {"report": report}
 
 
-__all__ = ["write_report", "render_html", "FIGURES"]
+__all__ = ["write_report", "render_html", "FIGURES", "ReportData", "WorstFlightData"]

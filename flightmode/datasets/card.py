@@ -61,6 +61,7 @@ def _schema_lines(out: Path, rows: dict) -> list[str]:
 
 def write_card(out: Path, fam, rows: dict, options) -> Path:
     from flightmode.atomic import write_text as atomic_text
+    from flightmode.detector.recommended_point import POINT
     from flightmode.runs.run_io import package_versions
 
     ok = [r for r in rows.values() if r["status"] == "ok"]
@@ -95,7 +96,7 @@ def write_card(out: Path, fam, rows: dict, options) -> Path:
         "where and how the bag lay in flight (`inflight_placement`, `cabin_row`, `packing`, "
         "`stowed_yaw_deg`, `stowed_tilt_deg`, `sensor_x_from_fuselage_deg`: 0 with the sensor's x axis "
         "fore-aft; `stowage_json`: every stowed stretch of the in-flight window and the mounts), "
-        "the recommended detector's summary (seed 000's NMV, 1 s, 4 sigma^2, 4 s), file names and SHA-256.",
+        f"the recommended detector's summary (seed 000's {POINT.short_text}), file names and SHA-256.",
         "- `samples/aircraft=<type>/part-<flight_id>.parquet`: the accelerometer stream and its labels.",
         "- `truth/aircraft=<type>/part-<flight_id>.parquet`: the aircraft's state (positions, velocities, attitude, "
         "specific force ...; SI units in the column names), every FDM step (`full`) or every 12th (`10hz`: "

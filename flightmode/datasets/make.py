@@ -113,7 +113,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         truth = truth.append_column("flight_id", pa.array(np.full(truth.num_rows, fid)))
         if options["truth"] == "full":  # what rebuilds the FlightTrack, so that the flight can be re-sensed
             truth = truth.replace_schema_metadata(
-                {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(r.track), default=run_io._json_default)}
+                {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(r.track), default=run_io.json_default)}
             )
         files["truth"] = f"truth/{part}"
         atomic_parquet(truth, out / files["truth"])

@@ -354,11 +354,13 @@ def write_truth(stage: Path, track: FlightTrack) -> Path:
 
 def write_run_json(stage: Path, info: dict) -> Path:
     path = stage / "run.json"
-    path.write_text(json.dumps(info, indent=2, default=_json_default) + "\n", encoding="utf-8")
+    path.write_text(json.dumps(info, indent=2, default=json_default) + "\n", encoding="utf-8")
     return path
 
 
-def _json_default(o):
+def json_default(o):
+    """``json.dumps``'s ``default`` for run.json and the truth's metadata: NumPy scalars as Python
+    numbers, tuples as lists; a TypeError for anything else."""
     if isinstance(o, (np.floating, np.integer)):
         return o.item()
     if isinstance(o, tuple):

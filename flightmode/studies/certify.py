@@ -35,15 +35,10 @@ from pathlib import Path
 
 import numpy as np
 
+from flightmode.detector.recommended_point import POINT as RECOMMENDED
 from flightmode.errors import InputDataError
 
-SEED000_POINT = {
-    "method": "nmv",
-    "weight": 1.0,
-    "window_s": 1.0,
-    "k": 4.0,
-    "time_threshold_s": 4.0,
-}  # seed 000, Table 9
+SEED000_POINT = RECOMMENDED.grid_point()  # seed 000, Table 9, as a grid point of the sweep
 
 
 @dataclass(frozen=True)
@@ -84,7 +79,8 @@ class Certification:
     meta: dict = field(default_factory=dict)
 
 
-def _point(row: dict) -> dict:
+def grid_point(row: dict) -> dict:
+    """The grid point of a summary row (and its sensor preset, when the sweep re-sensed)."""
     from flightmode.studies.sweep import POINT_KEYS
 
     return {k: row[k] for k in POINT_KEYS + (("sensor_preset",) if "sensor_preset" in row else ())}
@@ -223,7 +219,7 @@ def recommend(
         return out
     need = hours_needed(target.rate_per_h, target.confidence, x)
     short = max(0.0, need - t_h)
-    per = hours_per_flight(_point(best))
+    per = hours_per_flight(grid_point(best))
     out |= {
         "hours_needed": need,
         "hours_short": short,
@@ -484,14 +480,15 @@ def certify(
                 and (target.max_response_s is None or seed000["response_p95_s"] <= target.max_response_s)
             )
         }
-    rp = _point(rec["point"])
+    rp = grid_point(rec["point"])
     # section 5.1.1 is about the moving variance: seed 000's NMV at 1 s if the grid has it, else the
     # first moving-variance method and window of the grid; none at all: no section 5.1.1
     mv_methods = [m for m in grid.methods if m[0] in ("nmv", "emv")]
     th: dict = {}
     if mv_methods:
-        method_5_1_1 = ("nmv", 1.0) if ("nmv", 1.0) in mv_methods else mv_methods[0]
-        window_5_1_1 = 1.0 if 1.0 in grid.windows_s else grid.windows_s[0]
+        seed_method = (RECOMMENDED.method, RECOMMENDED.weight)
+        method_5_1_1 = seed_method if seed_method in mv_methods else mv_methods[0]
+        window_5_1_1 = RECOMMENDED.window_s if RECOMMENDED.window_s in grid.windows_s else grid.windows_s[0]
         th = threshold_from_static(result.static, target.pm, *method_5_1_1, window_5_1_1, target.confidence)
         th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
     breakdowns = {"recommended": breakdown(result.points, rp, result.phases)}
@@ -514,8 +511,111 @@ def certify(
     if figures:
         from flightmode.viz.certify_report import write_report
 
-        write_report(cert, result, out)
+        write_report(cert, report_data(cert, result), out)
     return cert
+
+
+# ---------------------------------------------------------------------- the report's figure data
+def report_data(cert: Certification, result):
+    """What :func:`flightmode.viz.certify_report.write_report` draws beyond ``cert``, computed from
+    the sweep ``result`` (:class:`~flightmode.viz.certify_report.ReportData`)."""
+    from flightmode.studies.sweep import POINT_KEYS, at_point, where
+    from flightmode.viz.certify_report import ReportData
+
+    rec = {k: cert.recommendation["point"][k] for k in POINT_KEYS}
+    tths = sorted({r["time_threshold_s"] for r in cert.summary})
+    shown = [
+        ("recommended", rec),
+        ("seed 000", SEED000_POINT),
+        (f"T_th {tths[0]:g} s", rec | {"time_threshold_s": tths[0]}),
+        (f"T_th {tths[-1]:g} s", rec | {"time_threshold_s": tths[-1]}),
+    ]
+    curves, done = [], set()
+    for label, p in shown:
+        key = tuple(p[k] for k in POINT_KEYS)
+        rows = at_point(result.points, p)
+        if key in done or not rows:
+            continue
+        done.add(key)
+        v = np.sort(np.array([r["response_s"] for r in rows], float))
+        n = v.size
+        v = v[np.isfinite(v)]
+        if v.size:
+            curves.append((f"{label}: {point_name(p)}", v, n))
+    p = cert.recommendation["point"]
+    phases = (
+        where(result.phases, {k: p[k] for k in ("method", "weight", "window_s")})
+        .select(["phase", "k", "checks", "under_all"])
+        .to_pydict()
+    )
+    seed = cert.seed000
+    return ReportData(
+        names=tuple(point_name(row) for row in cert.summary),
+        recommended_name=point_name(cert.recommendation["point"]),
+        seed000_name=point_name(SEED000_POINT),
+        seed000_short=(  # "NMV 1 s, 4 sigma^2, 4 s"
+            f"{RECOMMENDED.method.upper()} {RECOMMENDED.window_s:g} s, {RECOMMENDED.k_sigma:g} sigma^2, "
+            f"{RECOMMENDED.time_threshold_s:g} s"
+        ),
+        seed000_index=(
+            next(i for i, row in enumerate(cert.summary) if grid_point(row) == grid_point(seed))
+            if seed
+            else None
+        ),
+        response_curves=curves,
+        phases=phases,
+        worst_flight=_worst_flight_data(cert.worst_flight, result.meta["sigma2_from"])
+        if cert.worst_flight
+        else None,
+    )
+
+
+def _worst_flight_data(w: dict, sigma2_from: str):
+    """Seed 000 Figs. 14 and 15 in form for the flight ``w`` (:func:`worst_flight`): the recommended
+    detector rerun on its stream, then k = 3, 4, 5 sigma^2 at the recommended T_th (Fig. 14) and
+    T_th = 2, 3, 4, 5 s at the recommended k (Fig. 15)."""
+    import dataclasses
+
+    from flightmode.datasets.make import read_manifest
+    from flightmode.detector.flight_mode import detect, final_static
+    from flightmode.detector.recommended import recommended_params
+    from flightmode.studies.sweep import flight_streams, sigma2_of_flight
+    from flightmode.viz.certify_report import WorstFlightData
+
+    ds = Path(w["dataset"])
+    row = next(r for r in read_manifest(ds).values() if r["flight_id"] == w["flight_id"])
+    resense = [w["sensor_preset"]] if w["sensor_preset"] != row["sensor_preset"] else None  # swept re-sensed
+    _, cols, text = next(flight_streams(str(ds), row, resense))
+    row = row | {"scenario_toml": text}
+    t, acc = cols["t_s"], cols["acc_g"]
+    fs = round(1.0 / float(np.median(np.diff(t))), 6)
+    p = recommended_params(fs)
+    sigma2 = np.asarray(sigma2_of_flight(sigma2_from, row, cols)(p.window), float)
+    c = detect(t, acc, p, sigma2)
+    fig14 = []
+    for k in (3.0, 4.0, 5.0):  # seed 000, Fig. 14
+        temp = np.all(c.mv < k * sigma2[None, :], axis=1)
+        fin = final_static(temp, c.after_reset, dataclasses.replace(p, k_sigma=k).checks_needed)
+        fig14.append((f"{k:g} sigma^2", temp, fin))
+    temp_k = np.all(c.mv < p.k_sigma * sigma2[None, :], axis=1)
+    fig15 = [
+        (
+            f"T_th {tth:g} s",
+            temp_k,
+            final_static(temp_k, c.after_reset, dataclasses.replace(p, time_threshold_s=tth).checks_needed),
+        )
+        for tth in (2.0, 3.0, 4.0, 5.0)  # seed 000, Fig. 15
+    ]
+    return WorstFlightData(
+        t_min=(c.t_s - t[0]) / 60.0,
+        mv_over_sigma2=c.mv / sigma2[None, :],
+        ylabel=f"{p.method.upper()} (W_s {p.window_s:g} s) / sigma^2",
+        in_window=np.asarray(cols["in_flight_window"], bool)[c.index],
+        fig14=fig14,
+        fig15=fig15,
+        time_threshold_s=p.time_threshold_s,
+        k_sigma=p.k_sigma,
+    )
 
 
 def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target: Target) -> dict | None:
@@ -541,7 +641,7 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
         r for r in summary if (r["method"], r["weight"], r["window_s"], r["k"]) == (*method, window_s, kg)
     ]
     tths = sorted(r["time_threshold_s"] for r in rows)
-    tth = min(tths, key=lambda t: abs(t - 4.0))
+    tth = min(tths, key=lambda t: abs(t - RECOMMENDED.time_threshold_s))
     r = next(x for x in rows if x["time_threshold_s"] == tth)
     return {
         "k": kg,
@@ -583,5 +683,7 @@ __all__ = [
     "worst_flight",
     "SEED000_POINT",
     "point_name",
+    "grid_point",
+    "report_data",
     "command_of",
 ]

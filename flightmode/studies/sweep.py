@@ -121,7 +121,7 @@ def _static_stats(mv: np.ndarray, sigma2: np.ndarray, whole_static: np.ndarray) 
     return out
 
 
-def _streams(dataset: str, row: dict, sensors: Sequence[str] | None):
+def flight_streams(dataset: str, row: dict, sensors: Sequence[str] | None):
     """(sensor preset, columns, scenario TOML) of each stream to sweep on one flight: the dataset's
     own samples, or the flight re-sensed from its full-rate truth with each preset of ``sensors``
     (the flight's own sensor streams, its carrier and floor: only the sensor differs)."""
@@ -180,7 +180,7 @@ def sweep_flight(
     """Every grid point on one flight of a dataset (on each of ``sensors``, re-sensed, if given):
     {"points", "phases", "static"} lists of rows (module docstring)."""
     out: dict = {"points": [], "phases": [], "static": []}
-    for preset, cols, text in _streams(dataset, row, sensors):
+    for preset, cols, text in flight_streams(dataset, row, sensors):
         part = _sweep_stream(
             cols,
             row | {"scenario_toml": text, "sensor_preset": preset},

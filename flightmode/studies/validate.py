@@ -189,7 +189,7 @@ def _takeoff_note(conditions: dict) -> str:
 def _initial_climb_note(aircraft: str, conditions: dict) -> str:
     """The flight's drawn initial rate of climb, for a type whose autothrottle holds it
     (AircraftProfile.initial_climb_thrust_for_rate)."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
 
     vs = conditions.get("initial_climb_vs_mps")
     if vs is None or not get_profile(aircraft).initial_climb_thrust_for_rate:
@@ -450,7 +450,7 @@ def go_around_checks(track, plan) -> list[Check]:
     (AircraftProfile.go_around_climb_fpm), go-around thrust gives at least 14 CFR 25.119's gradient.
     No rows for a flight without a go-around."""
     from flightmode.labels import PHASE_CODE
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.units import FPM_MPS, FT_M
 
     prof = get_profile(track.aircraft)
@@ -752,7 +752,7 @@ def ground_roughness_g(track, lever_arm_m=(0.0, 0.0, 0.0)) -> dict[str, np.ndarr
 
 
 def ground_checks(track) -> list[Check]:
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
 
     cg = ground_roughness_g(track)
     cockpit = ground_roughness_g(track, (0.4 * get_profile(track.aircraft).length_m, 0.0, 0.0))
@@ -966,7 +966,8 @@ def seed000_checks(
     out = []
     # Table 2: spread of the 1 s NMV over truly static windows outside the flight
     static = np.asarray(labels["sensor_static"], bool) & ~np.asarray(labels["in_flight_window"], bool)
-    mv = moving_variance(acc, params.window, "nmv", 1.0)  # every window's variance, at its closing sample
+    # every window's variance, at its closing sample
+    mv = moving_variance(acc, params.window, params.method, params.weight)
     n = params.window
     whole = np.convolve(static.astype(float), np.ones(n), mode="valid") == n  # window [i, i + n) static
     ends = np.arange(n - 1, acc.shape[0], n)
@@ -1024,12 +1025,28 @@ def seed000_checks(
     rows = {
         r["T_sigma"]: r
         for r in pfa_table(
-            t, acc, dynamic_part(labels), params, sigma2, ks=TABLE_KS, time_thresholds_s=(4.0,), checks=checks
+            t,
+            acc,
+            dynamic_part(labels),
+            params,
+            sigma2,
+            ks=TABLE_KS,
+            time_thresholds_s=(params.time_threshold_s,),
+            checks=checks,
         )
     }
     whole = {
         r["T_sigma"]: r
-        for r in pfa_table(t, acc, labels, params, sigma2, ks=(4.0,), time_thresholds_s=(4.0,), checks=checks)
+        for r in pfa_table(
+            t,
+            acc,
+            labels,
+            params,
+            sigma2,
+            ks=(params.k_sigma,),
+            time_thresholds_s=(params.time_threshold_s,),
+            checks=checks,
+        )
     }
     paper = PAPER_TABLES[paper_flight]
     table = 4 if paper_flight == 1 else 5
@@ -1060,14 +1077,14 @@ def seed000_checks(
                     )
                 )
             )
-        if k == 4.0:  # how often the recommended threshold is challenged in flight (informational)
+        if k == params.k_sigma:  # how often the recommended threshold is challenged in flight (informational)
             w, n_w = whole[k], int(whole[k]["checks"])
             joint = int(round(w["P_FA_t_joint"] * n_w))
             axes = ", ".join(f"{ax} {int(round(w[f'P_FA_{ax}'] * n_w))}" for ax in "xyz")
             out.append(
                 Check(
                     "seed 000",
-                    "in-flight checks under 4 sigma^2 on all axes at once",
+                    f"in-flight checks under {params.k_sigma:g} sigma^2 on all axes at once",
                     "checks",
                     float(joint),
                     0.0,
@@ -1099,7 +1116,7 @@ def seed000_checks(
 def track_checks(track, plan) -> list[Check]:
     """Every check of a flight's track (kinematics, touchdown, taxi, turbulence, ground), in the order
     printed; ``plan``: the flight plan it was flown to."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.flight_metrics import flight_metrics
 
     m = flight_metrics(track, plan)
