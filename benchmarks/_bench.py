@@ -49,7 +49,7 @@ def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
     adapter: the same private copy, edits and settings) placed at the origin and stepped with bare
     ``fdm.run()`` ``steps`` times, no property reads, no pilot; loading is not timed. Best of
     ``repeats``."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
     from flightmode.sim.flight.jsbsim.model_edits import edits_for
 

@@ -3,7 +3,7 @@
 The evaluation span is the time the bag sits on board and is not carried: from the first stowed
 sample (plus the settling time after the put-down) to the last one inside the FlightTrack (the bag
 is still stowed when the engines stop). Its truth is the bag's seat position, the CG plus the
-placement's lever arm (``aircraft_profiles.locations_m``) rotated by the attitude; a bag handled in
+placement's lever arm (``AircraftProfile.locations_m``) rotated by the attitude; a bag handled in
 cruise moves a few centimetres about that point, which counts as error.
 
 Rows (:func:`evaluate`), each with the maximum, RMS and final 3D position error:

@@ -166,7 +166,7 @@ class Family:
         from flightmode.labels import SEVERITIES
         from flightmode.scenarios import airports as ap
         from flightmode.scenarios.spec import SPEC
-        from flightmode.sim.flight.aircraft_profiles import PROFILES
+        from flightmode.sim.flight.aircraft.registry import PROFILES
         from flightmode.sim.sensor.barometer import PRESETS as BARO_PRESETS
         from flightmode.sim.sensor.gyroscope import PRESETS as GYRO_PRESETS
 
@@ -457,7 +457,7 @@ def _patch(sc, r, patch_s: tuple[float, float], severity: Weighted) -> dict:
 def _routes_for(fam: Family, aircraft: str) -> list[tuple[str, str]]:
     from flightmode.scenarios import airports as ap
     from flightmode.scenarios.routes import MIN_ROUTE_M
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.geodesy import gc_distance_m
 
     prof = get_profile(aircraft)

@@ -78,7 +78,7 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
     ``destination`` (ICAO codes) on ``aircraft``; ``overrides`` go to :meth:`Scenario.replace`."""
     from flightmode.scenarios import airports as ap
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.geodesy import gc_distance_m, initial_course_deg
     from flightmode.streams import Streams
 
@@ -93,7 +93,7 @@ def scenario_between(origin: str, destination: str, aircraft: str, seed: int = 1
             "an airliner route needs here; choose airports farther apart"
         )
     if dist > prof.range_km * 1000.0:
-        from flightmode.sim.flight.aircraft_profiles import PROFILES
+        from flightmode.sim.flight.aircraft.registry import PROFILES
 
         longer = [
             f"{m}: {p.range_km:,.0f} km" for m, p in sorted(PROFILES.items()) if p.range_km * 1000.0 >= dist

@@ -299,7 +299,7 @@ def _descent_angle_deg(angle_deg: float | None, aircraft: str) -> float:
     """The scenario's descent path angle, or its aircraft type's when the file gives none."""
     if angle_deg is not None:
         return float(angle_deg)
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
 
     return get_profile(aircraft).descent_angle_deg
 

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from flightmode.errors import ScenarioError, did_you_mean
-from flightmode.sim.flight.aircraft_profiles import PROFILES
+from flightmode.sim.flight.aircraft.registry import PROFILES
 from flightmode.sim.flight.cabin import HOLD_OPTIONS, ISA_DEV_RANGE_K, QNH_RANGE_HPA
 from flightmode.sim.flight.draws import LANDING_QUALITIES
 from flightmode.sim.flight.geodesy import great_circle_distance_m

@@ -9,7 +9,7 @@ from pathlib import Path
 
 def lever_arm_m(track, carrier) -> tuple[float, float, float]:
     """The bag's position in the body frame (m): its placement's location on the aircraft type."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.sensor.carrier import LOCATION_OF
 
     return get_profile(track.aircraft).locations_m[LOCATION_OF[carrier.placement]]

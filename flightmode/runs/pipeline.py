@@ -318,7 +318,7 @@ def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
     import numpy as np
 
     from flightmode.nav.evaluation import estimate_paths, path_rows, predicted_random_walk_m
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.sensor.accelerometer import get_preset, noise_random_walk_sigma_g
     from flightmode.sim.sensor.carrier import LOCATION_OF
     from flightmode.units import G0_MPS2

@@ -8,7 +8,7 @@ import numpy as np
 
 from flightmode.intervals import segment_starts
 from flightmode.labels import CARRIER_PHASES
-from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.sim.flight.aircraft.registry import get_profile
 from flightmode.units import G0_MPS2
 
 NED_TO_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])

@@ -6,7 +6,7 @@ damping; vertical speed -> flight-path angle -> pitch; speed on pitch in the cli
 aileron; IAS/Mach -> throttle (speedbrake when idle is not enough); great-circle course to each
 waypoint; localizer (on the ground track) and glideslope by geometry to the destination runway;
 nose-wheel steering by pure pursuit on the ground, with yaw-rate feedback and differential braking. Gains and procedures
-come from the aircraft profile (:class:`~flightmode.sim.flight.aircraft_profiles.PilotTuning`).
+come from the aircraft profile (:class:`~flightmode.sim.flight.aircraft.tuning.PilotTuning`).
 
 Each control tick the pilot hands the loops ``x``, the SI state row of
 :class:`~flightmode.sim.flight.jsbsim.adapter.JSBSimAircraft` (``x[ix["alt_m"]]``...). Plain scalar
@@ -19,7 +19,7 @@ import math
 from collections.abc import Callable
 
 from flightmode.sim.flight import geodesy
-from flightmode.sim.flight.aircraft_profiles import AircraftProfile
+from flightmode.sim.flight.aircraft.profile import AircraftProfile
 from flightmode.sim.flight.control import PID, clamp, rate_limit
 from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.plan import FlightPlan
@@ -300,7 +300,7 @@ class Autopilot:
 
     def climb_vs_mps(self, alt_m: float) -> float:
         """The climb's vertical-rate target at this altitude: this flight's draw for the band
-        (:class:`~flightmode.sim.flight.aircraft_profiles.ClimbSchedule`)."""
+        (:class:`~flightmode.sim.flight.aircraft.performance.ClimbSchedule`)."""
         c = self.prof.climb
         pre, cas, mach = self.draws.climb_vs_mps
         return pre if alt_m < c.cross_cas_m else cas if alt_m < c.cross_mach_m else mach

@@ -89,7 +89,7 @@ from flightmode.units import FPM_MPS, FT_M, HPA_PA, PSI_PA
 class CabinProfile:
     """One type's pressurisation system (module docstring for the sources of every figure)."""
 
-    model: str  # JSBSim model (the key of aircraft_profiles.PROFILES)
+    model: str  # JSBSim model (the key of aircraft.registry.PROFILES)
     max_cabin_alt_ft: float  # 14 CFR 25.841(a) 8,000 ft; 787 6,000 ft
     # (selected level up to which, max differential psi); () derives one band from the ceiling
     diff_bands: tuple[tuple[float, float], ...] = ()
@@ -108,7 +108,7 @@ class CabinProfile:
                 if cruise_alt_m <= upto_ft * FT_M + 1e-6:
                     return psi * PSI_PA
             return self.diff_bands[-1][1] * PSI_PA
-        from flightmode.sim.flight.aircraft_profiles import get_profile
+        from flightmode.sim.flight.aircraft.registry import get_profile
 
         ceiling_m = get_profile(self.model).ceiling_ft * FT_M
         return float(isa.pressure_pa(self.max_cabin_alt_ft * FT_M) - isa.pressure_pa(ceiling_m))

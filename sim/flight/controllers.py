@@ -3,7 +3,7 @@
 condition that ends it; the next phase comes from the transition table
 (:data:`flightmode.sim.flight.phases.TRANSITIONS`), never from here. ``enter`` runs once, on the tick
 the phase begins; ``tick`` on every control tick of the phase (from the next one). Numbers come from
-the aircraft profile and its :class:`~flightmode.sim.flight.aircraft_profiles.PilotTuning`.
+the aircraft profile and its :class:`~flightmode.sim.flight.aircraft.tuning.PilotTuning`.
 """
 
 from __future__ import annotations
@@ -379,7 +379,7 @@ class InitialClimb(Controller):
 # gusts touched down past the 914 m touchdown zone in 14 / 12 / 16 of 40 (seeds 56-95 / 96-135 /
 # 136-175), up to 1,839 m. Measured on seeds 56-95 with its flare from 70 ft, a 10 s mean: 12 of 40 at
 # 1 deg, 2 at 2 deg (the sink's p90 4.1 -> 4.5 ft/s: the flare now begins from the glideslope), 1 at
-# 3 deg (p90 5.7). At 2 deg, with the flare from 75 ft (aircraft_profiles) and a 10 s mean: 6 / 3 / 9
+# 3 deg (p90 5.7). At 2 deg, with the flare from 75 ft (aircraft.b787_8) and a 10 s mean: 6 / 3 / 9
 # of 40; a 30 s mean, which a correction just before 200 ft (a thermal's downdraft, then its updraft:
 # seed 155) lifts less: 3 / 3 / 6, touchdown sink flown minus drawn +0.74 / +0.54 / +0.78 ft/s
 # (+0.66 / +0.88 / +0.79 before). The 737's pattern landings moved less (seeds 56-95: past the
@@ -574,7 +574,7 @@ class Flare(Controller):
       A ((V_0 / V)^2 - 1) to the attitude goal for it, ahead of the sink-rate loop, whose integral is
       too slow for the last seconds; a pilot raises the nose through the flare for the same reason.
       A is at most alpha - alpha_0L = CL / CL_alpha at the flare height; the sink-rate loop does part
-      of the work, so A is chosen per type on still-air landings (aircraft_profiles).
+      of the work, so A is chosen per type on still-air landings (aircraft profiles).
       Without it the 787-8's attitude stood still over the last 3 s while it lost 8 kt, and its sink,
       arrested near the target 5 ft up, rose to about 2.9 ft/s whatever was drawn (still air).
     """

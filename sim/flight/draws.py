@@ -1,7 +1,7 @@
 """What varies from flight to flight, drawn once per flight from its ``flight`` streams: the climb's
-vertical rates (per type, :class:`~flightmode.sim.flight.aircraft_profiles.ClimbSchedule`), the
+vertical rates (per type, :class:`~flightmode.sim.flight.aircraft.performance.ClimbSchedule`), the
 takeoff acceleration (the type's real traffic, which the pilot turns into a throttle at brake release:
-:class:`~flightmode.sim.flight.aircraft_profiles.TakeoffThrust`), the touchdown sink speed the flare
+:class:`~flightmode.sim.flight.aircraft.performance.TakeoffThrust`), the touchdown sink speed the flare
 aims at, and the turbulence (:mod:`flightmode.sim.flight.turbulence`).
 Each draw has its own named stream, so adding one never moves another.
 
@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flightmode.sim.flight.aircraft_profiles import AircraftProfile
+from flightmode.sim.flight.aircraft.profile import AircraftProfile
 from flightmode.sim.flight.cabin import Weather, draw_weather
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.turbulence import Atmosphere, draw_atmosphere

@@ -19,7 +19,7 @@ import math
 
 from flightmode.errors import FlightDivergedError
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITIES, SEVERITY_CODE
-from flightmode.sim.flight.aircraft_profiles import AircraftProfile
+from flightmode.sim.flight.aircraft.profile import AircraftProfile
 from flightmode.sim.flight.autopilot import Autopilot
 from flightmode.sim.flight.controllers import CONTROLLERS
 from flightmode.sim.flight.phases import START, TABLE

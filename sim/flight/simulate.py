@@ -26,7 +26,7 @@ import numpy as np
 from flightmode.errors import AircraftError, FlightDivergedError
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.sim.flight import geodesy
-from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.sim.flight.aircraft.registry import get_profile
 from flightmode.sim.flight.draws import draw_flight
 from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.jsbsim.adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft

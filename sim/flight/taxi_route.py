@@ -381,7 +381,7 @@ def turn_count(rate_per_min: float, duration_s: float, band_per_min: tuple[float
 
 def draw_taxi(plan: FlightPlan, profile, rng: np.random.Generator) -> TaxiDraws:
     """The flight's taxi draws from its ``taxi`` stream: the crew's speeds and limits (ranges of the
-    profile's :class:`~flightmode.sim.flight.aircraft_profiles.PilotTuning`), the number of turns
+    profile's :class:`~flightmode.sim.flight.aircraft.tuning.PilotTuning`), the number of turns
     (turns per minute of the real tracks times the route's expected duration), both layouts, and
     the taxi-out route (which fixes the stand)."""
     tu = profile.tuning

@@ -45,7 +45,7 @@ from flightmode.units import G0_MPS2 as G0
 
 DEFAULT_PACKING = {"handbag": "soft", "parcel": "boxed"}
 CRUISE_MOVE_DELAY_S = (60.0, 600.0)  # moved 1-10 min into the cruise, the seat-belt sign off: assumption
-# placement -> the lever arm (aircraft_profiles.locations_m) of its rigid-body motion; the cabin row
+# placement -> the lever arm (AircraftProfile.locations_m) of its rigid-body motion; the cabin row
 # (CarrierSpec.cabin_row) sets only the floor's vibration level, not this lever arm
 LOCATION_OF = {
     "under_seat": "cabin_seat_mid",

@@ -29,7 +29,7 @@ from scipy.signal import sosfilt, sosfilt_zi
 from flightmode.errors import SensorError, first_nonfinite
 from flightmode.labels import PHASE_CODE
 from flightmode.sim.flight import atmosphere
-from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.sim.flight.aircraft.registry import get_profile
 from flightmode.sim.flight.track import FlightTrack
 from flightmode.sim.sensor import carrier as car
 from flightmode.sim.sensor import mount as mnt

@@ -9,7 +9,7 @@ import pytest
 from flightmode.errors import AircraftError, ScenarioError
 from flightmode.scenarios import airports as ap
 from flightmode.scenarios.routes import cruise_altitude_m, flight_level_ft, scenario_between
-from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.sim.flight.aircraft.registry import get_profile
 from flightmode.sim.flight.geodesy import gc_distance_m, initial_course_deg
 from flightmode.units import FT_M
 

@@ -42,7 +42,7 @@ def test_builtin_families_load_and_their_first_members_are_valid_scenarios():
     from flightmode.scenarios.scenario import Scenario
 
     assert {"airline-mix", "calm-short-haul", "rough-air", "parcel-express"} <= set(builtin_families())
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.geodesy import gc_distance_m
 
     for name in builtin_families():

@@ -28,7 +28,7 @@ def _wrap(wrap_type):
 @pytest.mark.slow
 @pytest.mark.parametrize("name", SCENARIOS)
 def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_property):
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.flight_metrics import flight_metrics
 
     sc, tr = fly_cached(name)

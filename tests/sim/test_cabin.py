@@ -13,7 +13,7 @@ import pytest
 from flightmode.errors import AircraftError, InputDataError, ScenarioError
 from flightmode.labels import AIRBORNE_PHASES
 from flightmode.sim.flight import atmosphere as isa
-from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.sim.flight.aircraft.registry import get_profile
 from flightmode.sim.flight.cabin import (
     CABIN_PROFILES,
     Weather,

@@ -47,7 +47,7 @@ def _routes(seed: int, holds_s=(30.0, 60.0)):
     import dataclasses
 
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
 
     plan = Scenario.builtin("gva-lhr-a320").plan
     plan = dataclasses.replace(
@@ -102,7 +102,7 @@ def test_taxi_speed_schedule_obeys_its_turn_and_braking_limits(seed):
 def test_every_type_turns_within_the_icao_taxiway_curve_design():
     """ICAO Doc 9157 part 2 designs taxiway curves for v^2 / R = 1.32 m/s^2 (its speed-radius table,
     16 km/h on 15 m to 96 km/h on 540 m): no crew is drawn a lateral acceleration in turns above it."""
-    from flightmode.sim.flight.aircraft_profiles import PROFILES
+    from flightmode.sim.flight.aircraft.registry import PROFILES
     from flightmode.sim.flight.taxi_route import ICAO_CURVE_LAT_ACC_MPS2
 
     assert ICAO_CURVE_LAT_ACC_MPS2 == pytest.approx((96 / 3.6) ** 2 / 540.0, rel=0.02)  # the table's far end
@@ -139,7 +139,7 @@ def test_taxi_in_routes_turn_as_often_as_the_real_tracks_statistics_count():
     import dataclasses
 
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.geodesy import RunwayFrame
     from flightmode.sim.flight.taxi_stats import taxi_statistics
 
@@ -173,7 +173,7 @@ def test_turn_count_keeps_a_short_segments_rate_inside_the_band():
     the band; a short segment whose rounded count leaves it takes the count inside it, or the nearest
     by ratio when none fits; never under ``least``. The band is the profile's (the ADS-B 0.425-0.833
     turns per minute narrowed by a tenth at each end)."""
-    from flightmode.sim.flight.aircraft_profiles import PilotTuning
+    from flightmode.sim.flight.aircraft.tuning import PilotTuning
     from flightmode.sim.flight.taxi_route import turn_count
 
     band = PilotTuning().taxi_turns_per_min

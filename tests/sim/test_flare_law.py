@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from flightmode.sim.flight.aircraft_profiles import get_profile
+from flightmode.sim.flight.aircraft.registry import get_profile
 from flightmode.sim.flight.controllers import (
     FLARE_TAU_MIN_S,
     exponential_flare_sink_cmd_mps,
@@ -92,7 +92,7 @@ def test_an_unknown_flare_law_is_refused_when_the_profile_is_made():
     import dataclasses
 
     from flightmode.errors import AircraftError
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
 
     with pytest.raises(
         AircraftError, match=r"unknown flare_law 'linear'; use one of constant_deceleration, exponential"
@@ -131,7 +131,7 @@ def test_the_737s_approach_speed_adds_boeing_wind_additive(wind_kt, extra_kt):
     """Boeing's rule: half the headwind, VREF + 5 kt at least and VREF + 20 kt at most (737 FCTM). The
     profile's vapp_kt holds the 5 kt, so the additive beyond it is half the wind less 5 kt, between 0
     (winds up to 10 kt) and 15 kt (winds of 40 kt and more). Exact arithmetic: 1e-9. The Fokker 100
-    flies the same rule (the common practice; no Fokker manual found: aircraft_profiles)."""
+    flies the same rule (the common practice; no Fokker manual found: aircraft.fokker100)."""
     from types import SimpleNamespace
 
     from flightmode.sim.flight.autopilot import Autopilot

@@ -27,7 +27,7 @@ def test_the_nose_strut_damps_like_the_mains_scaled_to_its_weight_and_keeps_its_
     """The nose gear's compression damping becomes quadratic, c2 of a main strut times the ratio of
     the weights they carry (1 - MAIN_SHARE against MAIN_SHARE / n_main); its spring and its rebound
     damping stay the stock model's (the stance and the taxiway response are the model's)."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.jsbsim.gear import main_gear
 
     stock, root = _model(model), _model(model)

@@ -119,13 +119,13 @@ def test_a_flare_that_floats_over_the_runways_second_half_goes_around(monkeypatc
 
     from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.sim.flight import aircraft_profiles
+    from flightmode.sim.flight.aircraft import registry
     from flightmode.sim.flight.geodesy import RunwayFrame
     from flightmode.units import KT_MPS
 
-    prof = aircraft_profiles.PROFILES["787-8"]
+    prof = registry.PROFILES["787-8"]
     monkeypatch.setitem(
-        aircraft_profiles.PROFILES,
+        registry.PROFILES,
         "787-8",
         dataclasses.replace(prof, vapp_wind_fraction=0.5, vapp_wind_included_kt=5.0, vapp_wind_max_kt=20.0),
     )

@@ -71,7 +71,7 @@ def test_the_a320_gets_ground_spoilers_that_take_the_737s_share_of_its_wing_lift
     independently of the edit."""
     from scipy.interpolate import RegularGridInterpolator
 
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
     from flightmode.sim.flight.jsbsim.model_edits import add_ground_spoilers, edits_for
 
@@ -156,7 +156,7 @@ def test_the_a320_rotates_smoothly(fly_cached):
     2-3 deg/s of pitch rate (Airbus A320 FCTM) builds it in about a second: 10 deg/s^2 lies between
     the two populations, and the cockpit stays inside NASA's 0.4 g (Morris and Hall 1965). Averaged
     over 0.1 s: the gear's bounce on the runway is faster."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
 
     sc, tr = fly_cached("pattern", aircraft="A320")
     t_r, t_lo = tr.event_time("rotate"), tr.event_time("liftoff")
@@ -173,7 +173,7 @@ def test_the_a320s_nose_tyre_gets_the_other_models_side_force_peak():
     """JSBSim takes a tyre's side-force peak from its contact's static_friction. The edit sets the
     A320's nose tyre to 0.8, the stock 737's and Fokker 100's, and leaves the other contacts as they
     were (0.5: the mains' grip is not what turns the aircraft)."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.jsbsim.gear import nose_gear
     from flightmode.sim.flight.jsbsim.model_edits import edits_for
 
@@ -224,7 +224,7 @@ def test_the_787s_nose_is_flown_onto_the_runway(fly_cached):
     From 1 s after the mains touch (their own impact is the touchdown checks') to 8 s (validate's
     rollout roughness window starts there); the increment is validate's (quasi-static part below
     0.2 Hz removed)."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.studies.validate import vertical_increment_g
 
     sc, tr = fly_cached("lhr-jfk-787")
@@ -239,7 +239,7 @@ def test_the_787s_nose_strut_is_softened_at_its_stock_stance():
     the reference landing weight, and the contact point moves down by the deflection added, so at
     that weight the nose stands where the stock strut held it (the stock 160,000 lbf/ft sits 5 cm
     down under it)."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.jsbsim.gear import MAIN_SHARE, nose_gear
     from flightmode.sim.flight.jsbsim.model_edits import edits_for
     from flightmode.units import FT_M, G0_MPS2, LBF_N
@@ -286,7 +286,7 @@ def test_wing_tip_contacts_sit_at_the_wing_tips(model):
     = 1,105.6 in) rather than half of it; the edit moves them to the tip, 552.78 in (exact arithmetic:
     0.01 in, the value's printed precision). The 787-8's sit at 1,173.5 in against its 1,152 in half span
     (2 % outside, its model's rounded 192 ft span): left as they are."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.jsbsim.model_edits import edits_for
 
     root = _model(model)

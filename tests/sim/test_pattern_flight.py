@@ -116,7 +116,7 @@ def test_another_seed_gives_another_flight_and_air(fly_cached):
 
 
 def test_exceeding_a_limit_raises_flight_error_naming_phase_time_and_cause(monkeypatch):
-    import flightmode.sim.flight.aircraft_profiles as ap
+    import flightmode.sim.flight.aircraft.registry as ap
     from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 

@@ -59,7 +59,7 @@ def test_weather_is_drawn_per_airport_from_its_own_streams(fly_cached):
     sc, tr = fly_cached("pattern")
     # a pattern lands where it took off: one airport, one weather
     assert tr.conditions["departure_weather"] == tr.conditions["arrival_weather"]
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.draws import draw_flight
 
     prof = get_profile(sc.aircraft)

@@ -264,7 +264,7 @@ def test_the_runway_roll_is_the_roughest_ground_phase(fly_cached):
 def test_cockpit_stays_within_the_nasa_criterion(fly_cached):
     """NASA (Morris and Hall, 1965): a runway is acceptable while the cockpit's vertical acceleration
     stays within +-0.4 g. The pilot's seat is taken 40 % of the fuselage ahead of the CG."""
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
 
     _, tr = fly_cached("pattern")
     cockpit = (0.4 * get_profile(tr.aircraft).length_m, 0.0, 0.0)

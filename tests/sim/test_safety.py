@@ -104,7 +104,7 @@ def test_cli_flight_listens_on_nothing_and_writes_only_into_out(tmp_path):
 def test_failed_flight_leaves_nothing_behind(tmp_path, monkeypatch):
     from typer.testing import CliRunner
 
-    import flightmode.sim.flight.aircraft_profiles as ap
+    import flightmode.sim.flight.aircraft.registry as ap
     from flightmode.cli.main import app
 
     monkeypatch.setitem(ap.PROFILES, "737", dataclasses.replace(ap.PROFILES["737"], turn_bank_deg=60.0))

@@ -1,4 +1,4 @@
-"""The takeoff thrust drawn per flight (sim.flight.draws, aircraft_profiles.TakeoffThrust): the drawn
+"""The takeoff thrust drawn per flight (sim.flight.draws, aircraft.performance.TakeoffThrust): the drawn
 acceleration follows OpenAP WRAP's real traffic, and the flown takeoff gives it."""
 
 from __future__ import annotations
@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from flightmode.scenarios.scenario import Scenario
-from flightmode.sim.flight.aircraft_profiles import PROFILES, TAKEOFF_DENSITY_EXP
+from flightmode.sim.flight.aircraft.performance import TAKEOFF_DENSITY_EXP
+from flightmode.sim.flight.aircraft.registry import PROFILES
 from flightmode.sim.flight.draws import draw_flight
 from flightmode.sim.flight.flight_metrics import takeoff_accel_mps2
 from flightmode.streams import Streams
@@ -82,7 +83,7 @@ def test_the_a320_lifts_off_a_few_seconds_after_rotating_at_its_mass_scaled_vr(f
 
 
 def test_the_a320_climbs_to_1500_ft_at_its_drawn_wrap_rate(fly_cached):
-    """The A320 model's drag due to lift is about twice the real one's (aircraft_profiles, the A320's
+    """The A320 model's drag due to lift is about twice the real one's (aircraft.a320, the A320's
     initial_climb_thrust_for_rate): at the throttle that gives WRAP's takeoff acceleration it climbed
     from liftoff to 1,500 ft at 4.7-11.1 m/s on 8 european-trio routes, where WRAP's initclimb_vs is
     12.6 +- 2.1 m/s. The autothrottle holds the drawn rate as WRAP measures it (the mean from liftoff,

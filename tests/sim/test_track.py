@@ -75,7 +75,7 @@ def test_euler_quaternion_matches_scipy():
 
 
 def test_named_bag_locations_exist_for_every_profile():
-    from flightmode.sim.flight.aircraft_profiles import PROFILES
+    from flightmode.sim.flight.aircraft.registry import PROFILES
 
     for prof in PROFILES.values():
         loc = prof.locations_m

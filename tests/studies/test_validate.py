@@ -199,9 +199,9 @@ def test_a_long_haul_climb_is_measured_to_its_first_level(fly_cached):
     altitude lies above the climb's top; the climb bands end 1,000 ft below that top (measured to the
     median, the constant-Mach band was never crossed: NaN, a failed check). Every kinematic figure of
     the long haul lies inside WRAP B788's range."""
-    from flightmode.studies.validate import kinematic_checks
-    from flightmode.sim.flight.aircraft_profiles import get_profile
+    from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.flight_metrics import flight_metrics
+    from flightmode.studies.validate import kinematic_checks
 
     sc, tr = fly_cached("lhr-jfk-787")
     m = flight_metrics(tr, sc.plan)
@@ -335,8 +335,8 @@ def test_a_coarse_step_makes_no_fig6_line_over_the_quantisation_floor():
     ``naive`` shows (the floor is what keeps the check from passing on rounding)."""
     from scipy.signal import welch
 
-    from flightmode.studies.validate import FIG6_LINE_MIN_DB, sensor_noise_psd, vibration_line_db
     from flightmode.sim.sensor.accelerometer import get_preset, noise_psd_g2_per_hz
+    from flightmode.studies.validate import FIG6_LINE_MIN_DB, sensor_noise_psd, vibration_line_db
 
     pr = get_preset("lis302dl")
     floor = sensor_noise_psd("lis302dl", pr.odr_hz)
@@ -358,8 +358,8 @@ def test_the_boundary_layer_row_is_judged_where_the_drawn_air_is_rougher_low():
     a track without the draws, or with none aloft, is judged as before."""
     from types import SimpleNamespace
 
-    from flightmode.studies.validate import boundary_layer_anchor
     from flightmode.sim.flight.turbulence import MID_TOP_M
+    from flightmode.studies.validate import boundary_layer_anchor
 
     def track(w20, w_star, mid, upper):
         return SimpleNamespace(
@@ -390,8 +390,8 @@ def test_tables_4_and_5_are_judged_while_the_sensor_x_sees_more_fore_aft_than_la
     lateral times sin(psi) (sim.sensor.vibration: amplitudes in the ratio of axis_share): the judging
     angle is where the two are equal, tan(psi) = fore-aft / lateral share; a bag lying just inside it is
     judged, just outside it shown only."""
-    from flightmode.studies.validate import comparable_x_from_fuselage_deg, placement_text
     from flightmode.sim.sensor.vibration import VibrationModel
+    from flightmode.studies.validate import comparable_x_from_fuselage_deg, placement_text
 
     fore_aft, lateral, _ = VibrationModel().axis_share
     psi = comparable_x_from_fuselage_deg()

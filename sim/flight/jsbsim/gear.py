@@ -152,7 +152,7 @@ def set_nose_strut(root: ET.Element, landing_mass_kg: float, static_deflection_m
     """Give the model's nose gear a spring of ``static_deflection_m`` under its share (1 - ``MAIN_SHARE``)
     of the reference landing weight, in place, and lower its contact point by the added deflection, so
     the aircraft stands at the stock model's attitude at that weight (a longer strut with a longer
-    stroke). For a model whose stock nose spring is too stiff for its length (aircraft_profiles
+    stroke). For a model whose stock nose spring is too stiff for its length (AircraftProfile
     ``nose_static_deflection_m``). Returns the spring (lbf/ft)."""
     nose = nose_gear(root)
     spring = nose.find("spring_coeff")
