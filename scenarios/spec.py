@@ -205,7 +205,7 @@ SPEC: dict[str, dict[str, Key]] = {
         ),
         "sink_mps": Key(
             float,
-            "touchdown sink speed the flare aims at (1 ft/s = 0.3048 m/s); absent: drawn by quality",
+            f"touchdown sink speed the flare aims at (1 ft/s = {FT_M:g} m/s); absent: drawn by quality",
             optional=True,
             lo=0.15,
             hi=2.9,

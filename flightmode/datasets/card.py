@@ -36,6 +36,8 @@ hf = load_dataset("parquet", data_files="{dir}/samples/*/*.parquet", split="trai
 def _schema_lines(out: Path, rows: dict) -> list[str]:
     import pyarrow.parquet as pq
 
+    from flightmode.units import G0_MPS2
+
     ok = [r for r in rows.values() if r["status"] == "ok"]
     if not ok:
         return ["(no flight succeeded: no samples to describe)"]
@@ -46,7 +48,7 @@ def _schema_lines(out: Path, rows: dict) -> list[str]:
         meaning = LABELS.get(
             f.name,
             {
-                "g": "acceleration along the sensor axis, g (9.80665 m/s^2)",
+                "g": f"acceleration along the sensor axis, g ({G0_MPS2:g} m/s^2)",
                 "s": "time since the track's start, s",
             }.get(unit, "sensor output / identifier"),
         )

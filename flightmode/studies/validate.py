@@ -57,6 +57,7 @@ from pathlib import Path
 import numpy as np
 
 from flightmode.errors import InputDataError
+from flightmode.units import FT_M
 
 
 @dataclass(frozen=True, slots=True)
@@ -126,7 +127,7 @@ def _wrap_range(w, name: str, scale: float = 1.0) -> tuple[float, float]:
     return lo, hi
 
 
-def wrap_time_to_altitude_s(w, alt_m: float, first_m: float = 1500 * 0.3048) -> tuple[float, float]:
+def wrap_time_to_altitude_s(w, alt_m: float, first_m: float = 1500 * FT_M) -> tuple[float, float]:
     """(fastest, slowest) time from liftoff to ``alt_m`` above the runway by WRAP's climb bands: the
     initial climb to 1,500 ft, the rate below the CAS crossover, at constant CAS, at constant Mach
     (crossover altitudes at WRAP's defaults), each band at its maximum then its minimum rate."""
