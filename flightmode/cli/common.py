@@ -6,8 +6,8 @@ from __future__ import annotations
 import json
 import math
 import sys
+from typing import Any
 
-import click
 import typer
 from rich.console import Console
 from rich.text import Text
@@ -54,13 +54,13 @@ class Group(TyperGroup):
     """Typer's group with the one error handler around every command, and the commands listed in the
     panels of :data:`PANELS` (Typer's own panels need its Rich help, which --help does not load)."""
 
-    def invoke(self, ctx: click.Context):
+    def invoke(self, ctx: Any) -> Any:
         try:
             return super().invoke(ctx)
         except FlightmodeError as e:
             die(e)
 
-    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+    def format_commands(self, ctx: Any, formatter: Any) -> None:
         rows: dict[str, list[tuple[str, str]]] = {}
         for name in self.list_commands(ctx):
             cmd = self.get_command(ctx, name)

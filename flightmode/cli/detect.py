@@ -101,6 +101,7 @@ def detect_cmd(
         baro_margin_hpa=baro_margin_hpa,
         baro_hold_s=baro_hold_s,
     )
+    info: dict | None
     if is_dataset(source):
         cols, info = flight_stream(source, 0 if flight is None else flight)
         label = f"{source} flight {info['run_id']}"

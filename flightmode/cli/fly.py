@@ -93,7 +93,7 @@ def fly_cmd(
         result = pipeline.run(
             sc, sensor=sensor, out=out, gyro=gyro, rrd=rrd, progress=on_progress, on_stage=on_stage
         )
-        done(result.track.duration_s)
+        done(result.track.duration_s if result.track is not None else 0.0)
     print_fly(result, out)
 
 
@@ -173,7 +173,7 @@ def scenarios_cmd(
         console().print(spec_text(), highlight=False, markup=False)
         return
     if phases:
-        from flightmode.sim.flight.phases import TRANSITIONS
+        from flightmode.sim.flight.pilot.phases import TRANSITIONS
 
         if as_json:
             emit_json(
@@ -183,7 +183,7 @@ def scenarios_cmd(
                 ]
             )
             return
-        table = Table(title="the pilot's phase transitions (sim.flight.phases.TRANSITIONS)")
+        table = Table(title="the pilot's phase transitions (sim.flight.pilot.phases.TRANSITIONS)")
         for c in ("from phase", "condition", "to phase"):
             table.add_column(c)
         for tr in TRANSITIONS:

@@ -73,7 +73,7 @@ def path_cmd(
     from flightmode.cli.path_report import print_rows
     from flightmode.runs.path import path_table
 
-    rows, run_id = path_table(run_dir, comma_list(sensor, "--sensor"))
+    rows, run_id = path_table(run_dir, comma_list(sensor, "--sensor") or ("run",))
     if as_json:
         emit_json(rows)
         return

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.table import Table
@@ -148,7 +148,7 @@ def sweep_cmd(
             on_start=progress.start,
             on_flight=progress.advance,
         )
-    table = result.points
+    table: Any = result.points
     rows = rank_points(summarise(table, confidence, target_fa_per_h, by_sensor=bool(sensors)))
     shown = rows[:top]
     paper = [r for r in rows if _is_paper_point(r)]

@@ -64,15 +64,8 @@ def validate_cmd(
         )
     else:
         table = Table(title=f"{run_dir}: the run beside its anchors", title_justify="left")
-        for col, kw in (
-            ("group", {}),
-            ("figure", {}),
-            ("anchor", {"justify": "right"}),
-            ("this run", {"justify": "right"}),
-            ("", {}),
-            ("source / note", {}),
-        ):
-            table.add_column(col, **kw)
+        for col in ("group", "figure", "anchor", "this run", "", "source / note"):
+            table.add_column(col, justify="right" if col in ("anchor", "this run") else "left")
         for c in checks:
             mark = (
                 Text("-", style="dim")
