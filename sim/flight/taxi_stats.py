@@ -44,6 +44,7 @@ traffic library's MIT licence (X. Olive).
 from __future__ import annotations
 
 import csv
+import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -67,156 +68,30 @@ TURN_EDGE_DEG = 5.0  # trimmed from each end of a window's change (above ADS-B's
 ROLL_KT = 40.0  # surely the takeoff roll: faster than any taxi
 ROLL_START_KT = 12.0  # the roll starts at the last sample at or below this before ROLL_KT
 TAXI_KT = 5.0  # faster than a tug pushes: taxiing under own power
-EXIT_KT = 20.0  # rollout over, taxi-in begins (the pilot's rollout -> taxi_in speed, sim.flight.phases)
+EXIT_KT = 20.0  # rollout over, taxi-in begins (the pilot's rollout -> taxi_in speed, sim.flight.pilot.phases)
 STOP_KT = 1.0  # at rest
 PARK_S = 60.0  # at rest (or unreported) this long after taxiing in: at the stand
 
-# Figures of the real taxi segments, recomputed from the files by tests/sim/test_taxi_stats.py
-# (same code, same data: equal to float rounding). Keys: source file stem / segment.
-ADSB_TAXI_ANCHORS: dict[str, dict[str, dict[str, float]]] = {
-    "fr24_TK1745_B738_IST-OSL_2024-09-17": {
-        "taxi_out_0755Z": {
-            "t_start_unix_s": 1726559737.0,
-            "t_end_unix_s": 1726560100.0,
-            "duration_s": 363.0,
-            "moving_s": 354.024725275,
-            "distance_m": 2005.58883646,
-            "speed_p50_mps": 5.2607450163,
-            "speed_p90_mps": 8.71615873016,
-            "speed_p99_mps": 10.2912749948,
-            "speed_max_mps": 10.3156132756,
-            "yaw_rate_p50_dps": 0.192307692308,
-            "yaw_rate_p90_dps": 2.36363636364,
-            "yaw_rate_p99_dps": 8.36685714286,
-            "yaw_rate_max_dps": 9.11111111111,
-            "speed_in_turns_p50_mps": 4.1523015873,
-            "n_turns": 3.0,
-            "turns_per_min": 0.495867768595,
-            "turns_per_moving_min": 0.508439064137,
-            "brake_max_g": 0.028977205485,
-            "accel_max_g": 0.0349724893784,
-            "sample_interval_p50_s": 7.0,
-            "sample_gap_max_s": 26.0,
-        },
-        "taxi_in_1117Z": {
-            "t_start_unix_s": 1726571858.0,
-            "t_end_unix_s": 1726572146.0,
-            "duration_s": 288.0,
-            "moving_s": 288.0,
-            "distance_m": 1331.366633,
-            "speed_p50_mps": 4.18735083259,
-            "speed_p90_mps": 7.20457651343,
-            "speed_p99_mps": 7.99878710919,
-            "speed_max_mps": 8.77673400673,
-            "yaw_rate_p50_dps": 1.30451205393e-15,
-            "yaw_rate_p90_dps": 3.53333333333,
-            "yaw_rate_p99_dps": 5.63338888889,
-            "yaw_rate_max_dps": 6.19004329004,
-            "speed_in_turns_p50_mps": 3.60724972558,
-            "n_turns": 4.0,
-            "turns_per_min": 0.833333333333,
-            "turns_per_moving_min": 0.833333333333,
-            "brake_max_g": 0.044298486546,
-            "accel_max_g": 0.016353802176,
-            "sample_interval_p50_s": 6.0,
-            "sample_gap_max_s": 22.0,
-        },
-    },
-    "readsb_N899DN_B739_DAL_2025-02-04_fullday": {
-        "taxi_in_0112Z": {
-            "t_start_unix_s": 1738717976.01,
-            "t_end_unix_s": 1738718117.23,
-            "duration_s": 141.21999979,
-            "moving_s": 109.395774485,
-            "distance_m": 370.746231747,
-            "speed_p50_mps": 2.69546183972,
-            "speed_p90_mps": 7.82958226849,
-            "speed_p99_mps": 9.75723400708,
-            "speed_max_mps": 9.99061256387,
-            "yaw_rate_p50_dps": 0.391717172196,
-            "yaw_rate_p90_dps": 3.95613339593,
-            "yaw_rate_p99_dps": 4.71852772476,
-            "yaw_rate_max_dps": 4.80927282476,
-            "speed_in_turns_p50_mps": 5.66021789365,
-            "n_turns": 1.0,
-            "turns_per_min": 0.424868999357,
-            "turns_per_moving_min": 0.548467253715,
-            "brake_max_g": 0.049852224192,
-            "accel_max_g": 0.0138208813784,
-            "sample_interval_p50_s": 2.38500010967,
-            "sample_gap_max_s": 21.3999998569,
-        },
-        "taxi_out_0337Z": {
-            "t_start_unix_s": 1738726635.19,
-            "t_end_unix_s": 1738726986.46,
-            "duration_s": 351.269999981,
-            "moving_s": 346.280369299,
-            "distance_m": 2453.73880972,
-            "speed_p50_mps": 7.28836882461,
-            "speed_p90_mps": 10.1691303597,
-            "speed_p99_mps": 12.6104109278,
-            "speed_max_mps": 12.6268726298,
-            "yaw_rate_p50_dps": 0.189633176833,
-            "yaw_rate_p90_dps": 4.41290787592,
-            "yaw_rate_p99_dps": 6.93305896615,
-            "yaw_rate_max_dps": 7.47404610104,
-            "speed_in_turns_p50_mps": 4.15285906343,
-            "n_turns": 4.0,
-            "turns_per_min": 0.683235118322,
-            "turns_per_moving_min": 0.693080004753,
-            "brake_max_g": 0.0306532084153,
-            "accel_max_g": 0.033695370468,
-            "sample_interval_p50_s": 3.30999994278,
-            "sample_gap_max_s": 13.8600001335,
-        },
-        "taxi_in_1700Z": {
-            "t_start_unix_s": 1738774840.65,
-            "t_end_unix_s": 1738774995.44,
-            "duration_s": 154.789999962,
-            "moving_s": 154.789999962,
-            "distance_m": 608.294434905,
-            "speed_p50_mps": 4.07423801413,
-            "speed_p90_mps": 5.38081834958,
-            "speed_p99_mps": 7.55662356995,
-            "speed_max_mps": 8.15471611779,
-            "yaw_rate_p50_dps": 0.400616189141,
-            "yaw_rate_p90_dps": 5.81074817774,
-            "yaw_rate_p99_dps": 6.43337557173,
-            "yaw_rate_max_dps": 6.60738815647,
-            "speed_in_turns_p50_mps": 4.42225617876,
-            "n_turns": 2.0,
-            "turns_per_min": 0.775243878995,
-            "turns_per_moving_min": 0.775243878995,
-            "brake_max_g": 0.0448306478664,
-            "accel_max_g": 0.0139803246191,
-            "sample_interval_p50_s": 1.75,
-            "sample_gap_max_s": 17.1000001431,
-        },
-        "taxi_out_1803Z": {
-            "t_start_unix_s": 1738778594.25,
-            "t_end_unix_s": 1738779257.7,
-            "duration_s": 663.449999809,
-            "moving_s": 447.628915534,
-            "distance_m": 2571.95857263,
-            "speed_p50_mps": 6.27622222222,
-            "speed_p90_mps": 7.76928597386,
-            "speed_p99_mps": 9.60650478921,
-            "speed_max_mps": 9.79847601196,
-            "yaw_rate_p50_dps": 0.515085304491,
-            "yaw_rate_p90_dps": 4.18519377422,
-            "yaw_rate_p99_dps": 7.34454003582,
-            "yaw_rate_max_dps": 7.61011153415,
-            "speed_in_turns_p50_mps": 4.3329355685,
-            "n_turns": 6.0,
-            "turns_per_min": 0.542618132645,
-            "turns_per_moving_min": 0.804237589456,
-            "brake_max_g": 0.0620131291996,
-            "accel_max_g": 0.0465311380217,
-            "sample_interval_p50_s": 3.02999997139,
-            "sample_gap_max_s": 75.3699998856,
-        },
-    },
-}
+ADSB_TAXI_FILE = "data/adsb_taxi.toml"  # package data beside this module (its sources in its header)
+
+
+@functools.cache
+def adsb_taxi_anchors() -> dict[str, dict[str, dict[str, float]]]:
+    """The figures of the real taxi segments (:data:`ADSB_TAXI_FILE`), read once: source file stem ->
+    segment -> figure (keys with units, as :func:`taxi_statistics` returns them). Recomputed from
+    the tracks by tests/sim/test_taxi_stats.py (same code, same data: equal to float rounding). The
+    cached dict is shared: do not change it."""
+    import tomllib
+    from importlib.resources import files
+
+    return tomllib.loads(files(__package__).joinpath(ADSB_TAXI_FILE).read_text(encoding="utf-8"))
+
+
+def __getattr__(name: str):
+    """``ADSB_TAXI_ANCHORS``: :func:`adsb_taxi_anchors`, read at first use (PEP 562)."""
+    if name == "ADSB_TAXI_ANCHORS":
+        return adsb_taxi_anchors()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # ---------------------------------------------------------------------------------------------------
