@@ -228,3 +228,37 @@ def violations(root: Path) -> list[str]:
     for comp in cycles(edges):
         found.append("import cycle: " + " -> ".join(comp))
     return found
+
+
+def room_graph(root: Path) -> tuple[dict[str, int], dict[tuple[str, str], int]]:
+    """Lines of code per room, and the imports between rooms (importer room, imported room) -> count."""
+    mods = modules(root)
+    lines: dict[str, int] = {}
+    for m, f in mods.items():
+        r = room_of(m)
+        lines[r] = lines.get(r, 0) + len(f.read_text(encoding="utf-8").splitlines())
+    arrows: dict[tuple[str, str], int] = {}
+    for imp in imports(root):
+        if imp.imported in mods:
+            a, b = room_of(imp.importer), room_of(imp.imported)
+            if a != b:
+                arrows[(a, b)] = arrows.get((a, b), 0) + 1
+    return lines, arrows
+
+
+if __name__ == "__main__":  # python -m tests.architecture: the house, floor by floor, and its breaches
+    root = Path(__file__).resolve().parents[1]
+    lines, arrows = room_graph(root)
+    floors = [(FACE,), *LAYERS, (BASE,)]
+    for floor in floors:
+        for room in floor:
+            down = sorted(b for (a, b) in arrows if a == room)
+            print(
+                f"{floor_of(room):2d}  {room:28s} {lines.get(room, 0):6d} lines  -> {', '.join(down) or '-'}"
+            )
+    found = violations(root)
+    print(
+        "\n".join(found)
+        if found
+        else "contract holds: no cycle, no upward or sideways import, no private name"
+    )
