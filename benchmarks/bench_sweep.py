@@ -34,10 +34,10 @@ def main(dataset: str | None = None) -> dict:
 
 
 def _measure(dataset: str) -> dict:
+    from flightmode.datasets.make import read_manifest
     from flightmode.detector.evaluation import evaluate
     from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.grid import Grid, evaluate_grid
-    from flightmode.datasets.make import read_manifest
     from flightmode.runs.run_io import read_samples
 
     row = next(r for r in read_manifest(Path(dataset)).values() if r["status"] == "ok")

@@ -562,9 +562,9 @@ def certified(tmp_path_factory, reference):
     (as `flightmode dataset` does for a flight that diverged twice)."""
     import shutil
 
+    from flightmode.datasets.make import _write_manifest
     from flightmode.detector.grid import Grid
     from flightmode.studies.certify import Target, certify
-    from flightmode.datasets.make import _write_manifest
 
     root = tmp_path_factory.mktemp("certify")
     broken = root / "broken"

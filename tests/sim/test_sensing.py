@@ -390,8 +390,8 @@ def test_eobs_bursts_and_a_parcel_in_the_hold(fly_cached):
 
 @pytest.mark.slow
 def test_the_recording_records_how_the_bag_lay_in_flight(fly_cached):
-    from flightmode.studies.validate import comparable_x_from_fuselage_deg, placement_text
     from flightmode.sim.sensor.carrier import orientation_angles
+    from flightmode.studies.validate import comparable_x_from_fuselage_deg, placement_text
 
     _, tr = fly_cached("gva-lhr-a320")
     spec = CarrierSpec(placement="under_seat", cruise_placement="seat", cabin_row="rear", handled_in_cruise=2)
