@@ -1,7 +1,7 @@
 """The one label vocabulary every sample carries (tracks, recordings, datasets).
 
 Phases are stored as small integer codes into :data:`PHASES` inside arrays and as strings at
-the dataset edge. The flight phases are the pilot's (:mod:`flightmode.sim.flight.phases`); the bag's ground phases
+the dataset edge. The flight phases are the pilot's (:mod:`flightmode.sim.flight.pilot.phases`); the bag's ground phases
 (terminal walk, boarding, ...) from the carrier timeline.
 """
 
@@ -39,7 +39,7 @@ PHASES = FLIGHT_PHASES + CARRIER_PHASES
 PHASE_CODE = {name: i for i, name in enumerate(PHASES)}
 
 # the in-flight window ends when every engine's N2 is below this after fuel cut-off ("engines off": the
-# pilot's shutdown, sim.flight.controllers.Shutdown); the engines excite no vibration from there on
+# pilot's shutdown, sim.flight.pilot.ground.Shutdown); the engines excite no vibration from there on
 ENGINES_OFF_N2_PCT = 5.0
 
 AIRBORNE_PHASES = frozenset({"initial_climb", "climb", "cruise", "descent", "approach", "flare", "go_around"})

@@ -83,7 +83,7 @@ def test_installed_wheel_imports_flightmode_sim_and_not_sim(wheel, tmp_path):
         text=True,
     )
     code = (
-        "import importlib, flightmode, flightmode.sim.flight.phases, flightmode.scenarios.scenario as s;"
+        "import importlib, flightmode, flightmode.sim.flight.pilot.phases, flightmode.scenarios.scenario as s;"
         "print(flightmode.__file__); print(len(s.builtin_names()))\n"
         "try:\n import sim\n print('sim imported from', sim.__file__)\nexcept ModuleNotFoundError:\n print('no sim')"
     )

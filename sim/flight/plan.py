@@ -87,7 +87,7 @@ class FlightPlan:
     fdm_hz: int = 120  # JSBSim's integration rate and the FlightTrack's sample rate
     landing_quality: str = "normal"  # normal, firm, hard: the touchdown sink speed's distribution
     touchdown_sink_mps: float | None = None  # fixes the touchdown sink target instead of drawing it
-    go_arounds: int = 0  # go-arounds ordered at the flare height (sim.flight.controllers.GoAround)
+    go_arounds: int = 0  # go-arounds ordered at the flare height (sim.flight.pilot.go_around.GoAround)
     surface_wind_mps: float | None = None  # fixes the wind at 20 ft (the boundary layer's gustiness)
     background_edr: float | None = None  # fixes the background turbulence above 2000 ft (EDR, m^2/3 s^-1)
     convective_velocity_mps: float | None = (

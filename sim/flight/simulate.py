@@ -31,7 +31,7 @@ from flightmode.sim.flight.draws import draw_flight
 from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.jsbsim.adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft
 from flightmode.sim.flight.jsbsim.model_edits import edits_for
-from flightmode.sim.flight.pilot import Pilot
+from flightmode.sim.flight.pilot.pilot import Pilot
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import draw_taxi
 from flightmode.sim.flight.track import Event, FlightTrack, euler_to_quat_wxyz

@@ -11,7 +11,7 @@ Manual part 2, ch. 1), with stop points (holds). Its layout varies from flight t
 (:func:`draw_taxi`, from the flight's ``taxi`` stream):
 
 taxi-out (origin frame): the tug pushes the aircraft back from its stand onto an apron taxilane and
-turns it 90 deg (:class:`~flightmode.sim.flight.controllers.Pushback`); the taxilane either runs
+turns it 90 deg (:class:`~flightmode.sim.flight.pilot.ground.Pushback`); the taxilane either runs
 parallel to the runway, joining the parallel taxiway through a link (two turns), or toward it (one
 turn); along the parallel taxiway the route may change taxiways at junctions (jogs of two turns each
 to a neighbouring parallel and back); at the runway end it turns onto the entry taxiway, holds short,

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from flightmode.sim.flight.control import PID, rate_limit
+from flightmode.sim.flight.pilot.control import PID, rate_limit
 from flightmode.sim.flight.taxi_route import GRID_M, Path2D, draw_taxi, pure_pursuit_steer_rad, taxi_in_route
 
 

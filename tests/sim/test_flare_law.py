@@ -1,4 +1,4 @@
-"""The exponential flare's guidance (sim.flight.controllers.exponential_flare_*): its path, flown exactly,
+"""The exponential flare's guidance (sim.flight.pilot.controllers.exponential_flare_*): its path, flown exactly,
 meets the runway at the drawn touchdown sink at the time the closed form gives, begins at the sink the
 aircraft has at the flare height, and never asks a firm or hard landing for more sink than its approach's."""
 
@@ -11,7 +11,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from flightmode.sim.flight.aircraft.registry import get_profile
-from flightmode.sim.flight.controllers import (
+from flightmode.sim.flight.pilot.flare import (
     FLARE_TAU_MIN_S,
     exponential_flare_sink_cmd_mps,
     exponential_flare_tau_s,
@@ -110,7 +110,7 @@ def test_the_a320s_approach_speed_adds_airbus_wind_additive(wind_kt, extra_kt):
     import dataclasses
     from types import SimpleNamespace
 
-    from flightmode.sim.flight.autopilot import Autopilot
+    from flightmode.sim.flight.pilot.autopilot import Autopilot
     from flightmode.units import KT_MPS
 
     ap = SimpleNamespace(
@@ -134,7 +134,7 @@ def test_the_737s_approach_speed_adds_boeing_wind_additive(wind_kt, extra_kt):
     flies the same rule (the common practice; no Fokker manual found: aircraft.fokker100)."""
     from types import SimpleNamespace
 
-    from flightmode.sim.flight.autopilot import Autopilot
+    from flightmode.sim.flight.pilot.autopilot import Autopilot
     from flightmode.units import KT_MPS
 
     for aircraft in ("737", "fokker100"):
@@ -287,7 +287,7 @@ def test_a_touchdown_over_the_design_sink_is_a_hard_landing_not_a_failed_flight(
 def test_a_gusty_787_approach_flares_before_the_threshold_and_lands_in_the_touchdown_zone(fly_cached):
     """The 787-8's normal pattern landing, seed 65, in its drawn gusts (surface wind and thermals). On
     short final the path loop may lower the nose 2 deg below the approach's mean attitude
-    (controllers.FINAL_PITCH_MARGIN_DEG), so a gust that lifts the aircraft is flown back towards the
+    (pilot.enroute.FINAL_PITCH_MARGIN_DEG), so a gust that lifts the aircraft is flown back towards the
     glideslope, whose main-gear height at the threshold is 38 ft: the flare (from 75 ft) begins before
     the threshold (80 m before it) and the wheels meet the runway 824 m past it, inside the touchdown
     zone's 3,000 ft (914.4 m: FAA AIM 2-1-5). With the floor at the attitude of the one tick that crossed

@@ -47,7 +47,7 @@ def test_boeing_reduced_go_around_thrust_holds_the_737_fcoms_climb_rate(fly_cach
     assert 1000.0 <= rate <= 2000.0, rate
     # a climb all the way to the acceleration height from the end of the rotation (10 s): closed on the
     # rate of climb rather than the energy rate, the autothrottle fought the pitch's hold of the speed
-    # and the 737 sank again at 430 ft (sim.flight.controllers.ENERGY_RATE_THRUST_PI)
+    # and the 737 sank again at 430 ft (sim.flight.pilot.energy.ENERGY_RATE_THRUST_PI)
     t_acc = next(e.t_s for e in tr.events if e.name == "acceleration_height" and e.t_s > t_ga)
     sel = (tr.t_s > t_ga + 10.0) & (tr.t_s < t_acc)
     assert (np.diff(tr.alt_m[sel]) > 0).all()

@@ -1,4 +1,4 @@
-"""The localizer's and the flare's lateral law (sim.flight.autopilot.Autopilot.track_centreline): it steers
+"""The localizer's and the flare's lateral law (sim.flight.pilot.autopilot.Autopilot.track_centreline): it steers
 the ground track, so air that drifts sideways is corrected from the moment it drifts the aircraft, and a
 steady crosswind leaves no offset; flown in gusty air, airliners keep to the runway's centreline."""
 
@@ -11,8 +11,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from flightmode.sim.flight.pilot.autopilot import LOC_LOOK_MIN_M, Autopilot
 from flightmode.studies.validate import TOUCHDOWN_CENTRELINE_FT
-from flightmode.sim.flight.autopilot import LOC_LOOK_MIN_M, Autopilot
 from flightmode.units import FT_M, G0_MPS2
 
 IX = {"v_north_mps": 0, "v_east_mps": 1, "psi_rad": 2}

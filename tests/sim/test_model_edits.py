@@ -149,7 +149,7 @@ def test_the_a320s_nose_is_flown_down_not_let_fall(fly_cached):
 
 
 def test_the_a320_rotates_smoothly(fly_cached):
-    """The rotation's elevator bias is ramped in over controllers.ROTATE_RAMP_S. Applied at once it
+    """The rotation's elevator bias is ramped in over pilot.takeoff.ROTATE_RAMP_S. Applied at once it
     pitched the A320 up at 13.6-17.3 deg/s^2 on 3 seeded pattern takeoffs (instantaneous; this flight
     13.0 averaged over 0.1 s), 0.36-0.42 g at the cockpit (40 % of the length ahead of the CG);
     ramped, 5.7-6.7 deg/s^2 and 0.22-0.29 g (this flight 5.6 and 0.21). A smooth rotation toward
@@ -206,7 +206,7 @@ def test_the_a320s_nose_wheel_turns_it_briskly(fly_cached):
 
 @pytest.mark.parametrize("model", ["737", "A320", "787-8", "fokker100"])
 def test_the_first_ground_contact_is_the_nose_gear(model):
-    """The rollout reads the nose wheels' weight-on-wheels as JSBSim's gear/unit[0] (controllers.NOSE_WOW):
+    """The rollout reads the nose wheels' weight-on-wheels as JSBSim's gear/unit[0] (pilot.rollout.NOSE_WOW):
     JSBSim numbers the contacts in the order of the model file, so the first must be the nose gear (the
     model's one steerable contact, gear.nose_gear) in every profiled model."""
     from flightmode.sim.flight.jsbsim.gear import nose_gear

@@ -132,7 +132,7 @@ def test_exceeding_a_limit_raises_flight_error_naming_phase_time_and_cause(monke
 
 
 def test_the_nose_is_flown_down_after_the_mains_not_dropped(fly_cached):
-    """Derotation (sim.flight.controllers.Rollout): the nose wheels meet the runway about 3.5 s after the
+    """Derotation (sim.flight.pilot.rollout.Rollout): the nose wheels meet the runway about 3.5 s after the
     mains on an A320 (a cabin-floor landing-shock record, Irvine, vibrationdata); the pilot lowers the
     nose over that time. The pattern 737 touches down at about 3 deg: lowered at (3 - 1) / 3.5 deg/s
     with the attitude loop's lag of about a second, its nose reaches the ground attitude 1.5-6 s after

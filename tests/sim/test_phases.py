@@ -1,12 +1,12 @@
-"""The pilot's phase transition table (sim.flight.phases), walked as a graph, and fired in flight."""
+"""The pilot's phase transition table (sim.flight.pilot.phases), walked as a graph, and fired in flight."""
 
 from __future__ import annotations
 
 import pytest
 
 from flightmode.labels import FLIGHT_PHASES
-from flightmode.sim.flight.controllers import CONTROLLERS
-from flightmode.sim.flight.phases import START, TABLE, TRANSITIONS, reachable, successors
+from flightmode.sim.flight.pilot.controllers import CONTROLLERS
+from flightmode.sim.flight.pilot.phases import START, TABLE, TRANSITIONS, reachable, successors
 
 
 def test_every_phase_is_reachable_has_an_exit_and_can_end():

@@ -1,4 +1,4 @@
-"""Step climbs (sim.flight.step_climb): the optimum-level law against the ISA stratosphere in closed
+"""Step climbs (sim.flight.pilot.step_climb): the optimum-level law against the ISA stratosphere in closed
 form, the trigger, and the long built-in flight that climbs a step (slow)."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy import constants
 
-from flightmode.sim.flight.step_climb import STEP_FT, next_level_m, optimum_alt_m
+from flightmode.sim.flight.pilot.step_climb import STEP_FT, next_level_m, optimum_alt_m
 from flightmode.units import FT_M
 
 

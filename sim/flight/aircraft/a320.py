@@ -63,7 +63,7 @@ PROFILE = AircraftProfile(
     flare_pitch_kp=4.0,
     # the flare aims 1.5 m up (flare_aim_m) and begins at a constant time to contact when the
     # approach is steeper than the glideslope (flare_at_time_to_contact); below the aim it holds the
-    # attitude unless ballooning (controllers.Flare._rate_decel). Measured on pattern landings (flown
+    # attitude unless ballooning (pilot.flare.Flare._rate_decel). Measured on pattern landings (flown
     # minus drawn touchdown sink, ft/s; normal: mean (sd) on seeds 16-55, firm on seeds 0-15), against
     # the 2 m aim, the fixed 70 ft start and the push below the aim: normal +0.72 (1.33), was +1.22
     # (1.19), flown median 2.62 ft/s (was 3.33; the surveys' 2.0); firm -0.12 (1.22), was -0.52

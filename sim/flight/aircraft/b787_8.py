@@ -33,7 +33,7 @@ PROFILE = AircraftProfile(
     # (european-trio's, one 787 each): at a 50 t floor all landed, at 173-175 t (over the MLW); at
     # 44 t one floated 4.3 km down the runway and off its end, and at 40 t the same flight floated
     # 3.2 km, before the pilot flew go-arounds; with them (a float over the runway's second half goes
-    # around: sim.flight.controllers.FLOAT_LIMIT_FRACTION) it goes around once and lands 460 m past
+    # around: sim.flight.pilot.flare.FLOAT_LIMIT_FRACTION) it goes around once and lands 460 m past
     # the threshold, and all 20 land (sink median 3.7 ft/s, p90 6.3; CG peak max 2.3 g, a "hard"
     # draw). Planned with the real type's burn (OpenAP FuelFlow("B788"): 4.6 t/h; at least 10 t),
     # the same routes landed near 137 t and 1 of 20 failed (a normal landing at 10.0 ft/s): the
@@ -91,7 +91,7 @@ PROFILE = AircraftProfile(
     # 3.15 / 4.39 / 5.82 ft/s, past 900 m 9 -> 6 of 12. The floats left come from the long
     # flare (13 s from 80 ft) and a fast, heavy approach: on short routes the 50 t fuel floor
     # (fuel_kg) of the time landed it at about 177 t, above the 787-8's 172 t maximum landing mass,
-    # and its mass-scaled Vapp (autopilot.vapp_mps) was then 158 kt, 13 kt over vapp_kt.
+    # and its mass-scaled Vapp (pilot.autopilot.Autopilot.vapp_mps) was then 158 kt, 13 kt over vapp_kt.
     # Then the attitude for the lift lost as the speed bleeds (flare_lift_attitude_rad, Flare): without it
     # the sink, arrested near the target 5 ft up, rose to about 2.9 ft/s whatever was drawn (still air,
     # seeds 0-7: 1.36-3.49 ft/s drawn, 2.89-3.40 flown, +0.94 on average). With it the flare is firmer and
@@ -103,7 +103,7 @@ PROFILE = AircraftProfile(
     # 10 / 14 of 40 (0.25 rad: +0.77 / +0.51, 11 / 14 past); firm (seeds 0-15) +0.01 -> -0.48; hard (seeds
     # 12-39) over 10 ft/s, then failed flights, 6 -> 6 of 28 (1 fails now, at 13.6 ft/s).
     # Most of those floats began above the glideslope: the short-final pitch floor held the nose up
-    # (controllers.FINAL_PITCH_MARGIN_DEG). With the floor lowered (its 10 s mean), the flare from 70 ft,
+    # (pilot.enroute.FINAL_PITCH_MARGIN_DEG). With the floor lowered (its 10 s mean), the flare from 70 ft,
     # begun on the glideslope, landed firmer (seeds 56-95 / 96-135: flown minus drawn +0.66 / +0.88 ->
     # +0.77 / +1.32 ft/s, p90 4.12 / 5.46 -> 4.50 / 6.82), from 75 ft +0.71 / +0.87 (p90 4.64 / 5.33),
     # as before; past 914 m 14 / 12 -> 6 / 3 of 40 (from 70 ft 2 / 1), touchdown median 796 / 744 ->

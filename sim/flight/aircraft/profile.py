@@ -1,5 +1,5 @@
 """Per-type speeds, flap schedules, geometry, procedures and gains: the one table the pilot flies
-from (the controllers in :mod:`flightmode.sim.flight.controllers` hold no numbers of their own).
+from (the controllers in :mod:`flightmode.sim.flight.pilot.controllers` hold no numbers of their own).
 
 Speeds are chosen inside OpenAP WRAP's real-traffic ranges for the type (OpenAP's ``WRAP`` kinematic
 model, built from ADS-B) and the type's published figures; gains were tuned on these JSBSim models.
@@ -30,7 +30,7 @@ class ApproachStep:
     gear_down: bool = False
 
 
-FLARE_LAWS = ("constant_deceleration", "exponential")  # sim.flight.controllers.Flare
+FLARE_LAWS = ("constant_deceleration", "exponential")  # sim.flight.pilot.flare.Flare
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,59 +64,59 @@ class AircraftProfile:
     climb: ClimbSchedule
     takeoff: TakeoffThrust
     # the flare guidance's pitch rate per missing upward acceleration, as a fraction of
-    # sim.flight.controllers.FLARE_PITCH_GAIN
+    # sim.flight.pilot.flare.FLARE_PITCH_GAIN
     flare_accel_gain: float = 1.0
-    # the flare's guidance law (sim.flight.controllers.Flare), one of FLARE_LAWS
+    # the flare's guidance law (sim.flight.pilot.flare.Flare), one of FLARE_LAWS
     flare_law: str = "constant_deceleration"
-    # the constant-deceleration law's lag compensation (sim.flight.controllers.Flare._rate_decel): the
+    # the constant-deceleration law's lag compensation (sim.flight.pilot.flare.Flare._rate_decel): the
     # height above the runway at which it aims to reach the touchdown sink (m), and how far ahead (s) it
     # predicts the sink rate and height from the upward acceleration the aircraft has
     flare_aim_m: float = 2.0
     flare_predict_s: float = 0.0
     # begin the flare at flare_height_ft or, on an approach steeper than the glideslope (sink over
-    # ground speed), at the same time to contact (sim.flight.controllers.flare_start_height_m)
+    # ground speed), at the same time to contact (sim.flight.pilot.flare.flare_start_height_m)
     flare_at_time_to_contact: bool = False
     # the exponential law's proportional gain: attitude change per sink-rate error, times the true
-    # airspeed (rad per rad of flight-path angle; sim.flight.controllers.FLARE_EXP_INTEGRAL_PER_S)
+    # airspeed (rad per rad of flight-path angle; sim.flight.pilot.flare.FLARE_EXP_INTEGRAL_PER_S)
     flare_path_gain: float = 1.5
-    # the exponential law's longest time constant (s; sim.flight.controllers.exponential_flare_tau_s):
+    # the exponential law's longest time constant (s; sim.flight.pilot.flare.exponential_flare_tau_s):
     # a flare entered with little sink to lose (a firm or hard landing) is held at its entry sink until
     # h / tau_max falls under the sink it has to lose
     flare_tau_max_s: float = 6.0
     # the exponential law's attitude for the lift the flare loses as the speed bleeds at idle (rad;
-    # sim.flight.controllers.Flare): this times ((V_0 / V)^2 - 1), V_0 the true airspeed at the flare height;
+    # sim.flight.pilot.flare.Flare): this times ((V_0 / V)^2 - 1), V_0 the true airspeed at the flare height;
     # 0: none
     flare_lift_attitude_rad: float = 0.0
     # the main gear's height at which the flare pulls the thrust to idle ("retard")
     retard_height_ft: float = 20.0
-    # the approach speed's wind additive (sim.flight.autopilot.Autopilot.vapp_mps): this fraction of
+    # the approach speed's wind additive (sim.flight.pilot.autopilot.Autopilot.vapp_mps): this fraction of
     # the wind at 20 ft (the flight's drawn surface wind, the boundary layer's gustiness) above the
     # additive that vapp_kt already holds (vapp_wind_included_kt), at most vapp_wind_max_kt in all
     vapp_wind_fraction: float = 0.0
     vapp_wind_included_kt: float = 0.0
     vapp_wind_max_kt: float = 0.0
-    # the initial climb (sim.flight.controllers.InitialClimb): the speed held from liftoff to the
+    # the initial climb (sim.flight.pilot.takeoff.InitialClimb): the speed held from liftoff to the
     # acceleration height, V2 plus this, and the most pitch the speed loop may command for it.
     # Boeing: "V2 + 15 to V2 + 25" with all engines (Boeing 737 FCTM, takeoff, initial climb), 20 here
     initial_climb_v2_add_kt: float = 20.0
     initial_climb_pitch_max_deg: float = 15.0
     # None: the speed loop takes the pitch from liftoff on; a pitch (deg): the rotation goes on after
-    # liftoff toward it at 3 deg/s (the rotation's rate, sim.flight.controllers.TakeoffRoll) before the
+    # liftoff toward it at 3 deg/s (the rotation's rate, sim.flight.pilot.takeoff.TakeoffRoll) before the
     # speed loop takes over (sooner if the speed falls under V2)
     initial_climb_rotate_to_deg: float | None = None
     # True: from liftoff to the acceleration height the throttle may rise above the takeoff throttle
     # (to 1.0) to hold the flight's drawn initial rate of climb (climb.vs_initial) as an energy rate
-    # (sim.flight.controllers.InitialClimb), for a model whose drag in the takeoff configuration is
+    # (sim.flight.pilot.takeoff.InitialClimb), for a model whose drag in the takeoff configuration is
     # too high for the thrust that gives the real takeoff acceleration
     initial_climb_thrust_for_rate: bool = False
-    # the go-around's thrust (sim.flight.controllers.GoAround): None, the type's climb thrust at once
+    # the go-around's thrust (sim.flight.pilot.go_around.GoAround): None, the type's climb thrust at once
     # (Airbus TOGA, Fokker GA); a rate of climb (ft/min), Boeing's reduced go-around thrust, which the
     # autothrottle adjusts to hold that climb once the pitch has come up
     go_around_climb_fpm: float | None = None
-    # the share of the flare's elevator the attitude loop keeps at touchdown (sim.flight.controllers.Rollout):
+    # the share of the flare's elevator the attitude loop keeps at touchdown (sim.flight.pilot.rollout.Rollout):
     # 0 relaxes it to the loop's own (half its integrator), 1 keeps it all
     touchdown_elevator_keep: float = 0.0
-    # maximum operating altitude (type certificate data sheet): the highest step climb (sim.flight.step_climb)
+    # maximum operating altitude (type certificate data sheet): the highest step climb (sim.flight.pilot.step_climb)
     ceiling_ft: float = 37_000.0
     # the descent path's angle from cruise to the glideslope on flights between any two airports
     # (flightmode.scenarios.routes; a scenario file sets its own). One geometric path: the vertical rate
@@ -134,7 +134,7 @@ class AircraftProfile:
     min_runway_m: float = 2100.0
     # mean fuel flow gate to gate, kg/h, for the fuel plan (sim.flight.simulate.planned_fuel_kg)
     burn_kg_per_h: float = 2600.0
-    # attitude and speed loop gains (flightmode.sim.flight.autopilot)
+    # attitude and speed loop gains (flightmode.sim.flight.pilot.autopilot)
     pitch_kp: float = 2.0
     pitch_ki: float = 0.6
     pitch_kq: float = 1.2

@@ -47,7 +47,7 @@ class PilotTuning:
     taxi_brake_pi: tuple = (0.03, 0.01)  # over-speed (m/s) -> brake command
     taxi_brake_rate: tuple = (0.05, 0.1, 1.0)  # per second: applying, releasing, at a standstill
     taxi_hold_brake: float = 0.5  # standing at a hold
-    taxi_ref_tau_s: float = 2.0  # the taxi speed reference's lag (sim.flight.controllers.Taxi)
+    taxi_ref_tau_s: float = 2.0  # the taxi speed reference's lag (sim.flight.pilot.taxi.Taxi)
     # path following: pure-pursuit look-ahead (s of travel, at least 12 m) and nose-wheel angle limit
     taxi_lookahead_s: float = 2.5
     taxi_max_steer_deg: float = 40.0

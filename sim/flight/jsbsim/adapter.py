@@ -101,7 +101,8 @@ class JSBSimAircraft:
     n_engines : number of engines whose N1/N2/thrust are read every step.
     workdir : where the temporary private model copy is made (a fresh subdirectory, deleted
         after loading); the system temporary directory when ``None``.
-    edits : functions of the model's XML root applied to the private copy (:func:`~flightmode.sim.flight.jsbsim.model_copy.private_model_copy`).
+    edits : functions of the model's XML root applied to the private copy
+        (:func:`~flightmode.sim.flight.jsbsim.model_copy.private_model_copy`).
     """
 
     def __init__(self, model: str, dt_s: float, n_engines: int, workdir: Path | None = None, edits=()):

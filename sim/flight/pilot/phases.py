@@ -1,7 +1,7 @@
 """The pilot's phases and the transitions between them, as data.
 
 A flight moves from phase to phase only through :data:`TRANSITIONS`: a controller
-(:mod:`flightmode.sim.flight.controllers`) reports that a named condition holds, and the pilot looks
+(:mod:`flightmode.sim.flight.pilot.controllers`) reports that a named condition holds, and the pilot looks
 the (phase, condition) pair up here to find the next phase (:meth:`Pilot.fire`); a pair that is not
 in the table is a programming error. Each phase event of a FlightTrack carries the condition that
 started it, so a flight shows which transitions fired. ``flightmode scenarios --phases`` prints the

@@ -1,7 +1,7 @@
 """The loops every phase controller flies with: actuators, attitude and path loops, lateral
 navigation, runway tracking and taxiing. No JSBSim airliner has a usable autopilot, so this is one.
 
-Loops (PID blocks of :mod:`flightmode.sim.flight.control`): pitch on elevator with pitch-rate
+Loops (PID blocks of :mod:`flightmode.sim.flight.pilot.control`): pitch on elevator with pitch-rate
 damping; vertical speed -> flight-path angle -> pitch; speed on pitch in the climb; heading -> bank ->
 aileron; IAS/Mach -> throttle (speedbrake when idle is not enough); great-circle course to each
 waypoint; localizer (on the ground track) and glideslope by geometry to the destination runway;
@@ -20,8 +20,8 @@ from collections.abc import Callable
 
 from flightmode.sim.flight import geodesy
 from flightmode.sim.flight.aircraft.profile import AircraftProfile
-from flightmode.sim.flight.control import PID, clamp, rate_limit
 from flightmode.sim.flight.geodesy import RunwayFrame
+from flightmode.sim.flight.pilot.control import PID, clamp, rate_limit
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import Path2D, pure_pursuit_steer_rad
 from flightmode.units import FT_M, KT_MPS, LB_KG, NM_M
@@ -73,7 +73,7 @@ class Autopilot:
         self.path: Path2D | None = None  # the taxi route being followed
         self.diff_brake = 0.0
         self.cruise_alt_m = plan.cruise_alt_m  # the current cruise level (step climbs raise it)
-        self.parking_brake = 0.0  # the shutdown's brake command (sim.flight.controllers.Shutdown)
+        self.parking_brake = 0.0  # the shutdown's brake command (sim.flight.pilot.ground.Shutdown)
         self.taxi_brake = 0.0  # the taxi speed loop's brake command, its mode and integrator
         self.taxi_braking = False
         self.taxi_brake_int = 0.0

@@ -2,9 +2,9 @@
 
 Every control tick the pilot reads the SI state row of
 :class:`~flightmode.sim.flight.jsbsim.adapter.JSBSimAircraft`, checks the flight's limits, and runs
-the current phase's controller (:mod:`flightmode.sim.flight.controllers`). A controller ends its phase
+the current phase's controller (:mod:`flightmode.sim.flight.pilot.controllers`). A controller ends its phase
 by reporting a condition (:meth:`Pilot.fire`); the next phase is the transition table's
-(:data:`flightmode.sim.flight.phases.TRANSITIONS`). Each phase event records the condition that
+(:data:`flightmode.sim.flight.pilot.phases.TRANSITIONS`). Each phase event records the condition that
 started it. The pilot also says how turbulent the air is (:attr:`Pilot.gust_sigma_mps`): the
 flight's background from liftoff to touchdown, and the plan's patches.
 
@@ -20,9 +20,9 @@ import math
 from flightmode.errors import FlightDivergedError
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITIES, SEVERITY_CODE
 from flightmode.sim.flight.aircraft.profile import AircraftProfile
-from flightmode.sim.flight.autopilot import Autopilot
-from flightmode.sim.flight.controllers import CONTROLLERS
-from flightmode.sim.flight.phases import START, TABLE
+from flightmode.sim.flight.pilot.autopilot import Autopilot
+from flightmode.sim.flight.pilot.controllers import CONTROLLERS
+from flightmode.sim.flight.pilot.phases import START, TABLE
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.turbulence import background_edr, sigma_high_mps
 from flightmode.units import FT_M, KT_MPS
@@ -45,7 +45,7 @@ class Pilot:
         self.t_phase = 0.0
         self.t_liftoff: float | None = None
         self.t_engines_off: float | None = None
-        self.takeoff_thrust_norm: float | None = None  # set at brake release (controllers.TakeoffRoll)
+        self.takeoff_thrust_norm: float | None = None  # set at brake release (takeoff.TakeoffRoll)
         self.events: list[tuple[float, str, str]] = [(0.0, START, "start")]  # (t_s, name, detail)
         self.phase = START
         self.phase_code = PHASE_CODE[START]
@@ -84,7 +84,7 @@ class Pilot:
         if tr is None:
             raise RuntimeError(
                 f"no transition from phase '{self.phase}' on '{condition}' in the table "
-                "(flightmode.sim.flight.phases.TRANSITIONS)"
+                "(flightmode.sim.flight.pilot.phases.TRANSITIONS)"
             )
         if tr.target is None:
             self.event("end", condition)
