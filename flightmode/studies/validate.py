@@ -608,20 +608,20 @@ ICAO_SOURCE = "ICAO turbulence descriptions: change at the CG light < 0.5 g, mod
 def load_factor_windows(track, sel: np.ndarray, window_s: float = WINDOW_S) -> tuple[np.ndarray, np.ndarray]:
     """(std, peak |change from the median|) of the vertical load factor at the CG over each whole
     ``window_s`` run of consecutive selected samples."""
+    from flightmode.intervals import true_runs
     from flightmode.units import G0_MPS2
 
     nz = -track.specific_force_body_mps2[:, 2] / G0_MPS2
     n = int(round(window_s * track.fs_hz))
     stds, peaks = [], []
-    idx = np.flatnonzero(sel)
-    if idx.size == 0:
+    runs = true_runs(sel)
+    if not runs:
         return np.array([]), np.array([])
-    cuts = np.flatnonzero(np.diff(idx) > 1) + 1
-    for run in np.split(idx, cuts):
-        k = run.size // n
+    for start, stop in runs:
+        k = (stop - start) // n
         if k == 0:
             continue
-        x = nz[run[: k * n]].reshape(k, n)
+        x = nz[start : start + k * n].reshape(k, n)
         stds.append(x.std(axis=1))
         peaks.append(np.abs(x - np.median(x, axis=1, keepdims=True)).max(axis=1))
     if not stds:
