@@ -168,6 +168,15 @@ def test_tiny_study_on_dask_equals_in_process(tiny):
         assert _same(tiny, mc.run_montecarlo(3, seed=5, config=TINY, client=client))
 
 
+def test_tiny_study_on_its_own_two_worker_cluster_equals_in_process(tiny):
+    """run_montecarlo(workers=2) opens flightmode.cluster's LocalCluster itself (the CLI's path)."""
+    done = []
+    assert _same(tiny, mc.run_montecarlo(3, seed=5, config=TINY, workers=2, on_run=done.append))
+    assert sorted(done) == [0, 1, 2]  # every run reported once, by its index
+    with pytest.raises(mc.DetectorError, match="workers = 0: must be a positive integer"):
+        mc.run_montecarlo(3, seed=5, config=TINY, workers=0)
+
+
 def test_summary_and_files(tiny, tmp_path):
     rows = mc.summary(tiny)
     assert [(r["table"], r["label"]) for r in rows] == [(1, "SHOD"), (4, "MBGTD-Acc."), (4, "MBGTD-Prod")]
