@@ -96,15 +96,18 @@ def tradeoff_population(
     workers: int = 1,
     on_start: Callable[[int], None] | None = None,
     on_flight: Callable[[int], None] | None = None,
+    scheduler: str | None = None,
 ) -> list[dict]:
-    """Every flight's rows (:func:`tradeoff_flight`), in dataset and flight order."""
+    """Every flight's rows (:func:`tradeoff_flight`), in dataset and flight order; one Dask task per
+    flight on ``workers`` local processes or the ``scheduler`` at that address (:mod:`flightmode.cluster`)."""
     from flightmode.cluster import map_flights
 
     jobs = check_request(datasets, intervals_s, byte_count, ms, k, odr_per_axis_hz)
     if on_start:
         on_start(len(jobs))
     args = [(d, r, tuple(intervals_s), byte_count, tuple(ms), k, odr_per_axis_hz) for d, r in jobs]
-    return [row for rows in map_flights(tradeoff_flight, args, workers, on_flight) for row in rows]
+    results = map_flights(tradeoff_flight, args, workers, on_flight, scheduler=scheduler)
+    return [row for rows in results for row in rows]
 
 
 def summarise(rows: list[dict], confidence: float = 0.95) -> list[dict]:

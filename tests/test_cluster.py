@@ -38,6 +38,8 @@ def test_a_local_cluster_of_two_processes_maps_in_order_and_raises_a_failure():
         assert sorted(seen) == list(range(6))
         with pytest.raises(ZeroDivisionError):
             cluster.map_flights(operator.truediv, [(1, 1), (1, 0)], client=c)
+        # the same workers reached through their scheduler's address (many machines: `dask scheduler`)
+        assert cluster.map_flights(operator.add, [(1, 2), (3, 4)], scheduler=c.scheduler.address) == [3, 7]
 
 
 def test_a_scheduler_that_does_not_answer_is_a_cluster_error():

@@ -413,12 +413,13 @@ def run_montecarlo(
     order=None,
     on_run=None,
     workers: int = 1,
+    scheduler: str | None = None,
 ) -> MonteCarloResult:
     """The study over runs 0 .. n_runs - 1, one task per run (:func:`flightmode.cluster.map_flights`):
-    on ``client`` (a ``dask.distributed.Client``) when given, else on a local cluster of ``workers``
-    processes (:func:`flightmode.cluster.open_client`) when ``workers`` > 1, else in this process.
-    ``order``: the order to run them in (a permutation of
-    0 .. n_runs - 1; the result does not depend on it). ``on_run(index)`` after each run."""
+    on ``client`` (a ``dask.distributed.Client``) when given, else on the Dask ``scheduler`` at that
+    address, else on a local cluster of ``workers`` processes (:func:`flightmode.cluster.open_client`)
+    when ``workers`` > 1, else in this process. ``order``: the order to run them in (a permutation
+    of 0 .. n_runs - 1; the result does not depend on it). ``on_run(index)`` after each run."""
     cfg = MonteCarloConfig() if config is None else config
     if isinstance(n_runs, bool) or not isinstance(n_runs, (int, np.integer)) or n_runs < 1:
         raise DetectorError(f"n_runs = {n_runs!r}: must be a positive integer")
@@ -442,6 +443,7 @@ def run_montecarlo(
         int(workers),
         (lambda n: on_run(idx[n])) if on_run else None,
         client=client,
+        scheduler=scheduler,
         keys=[f"activity-mc-{token}-{i}" for i in idx],
     )
     done = {r["index"]: r for r in results}

@@ -435,8 +435,10 @@ def certify(
     on_flight: Callable[[str], None] | None = None,
     figures: bool = True,
     log: Callable[[str], None] = lambda s: None,
+    scheduler: str | None = None,
 ) -> Certification:
-    """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``."""
+    """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``. ``workers``
+    and ``scheduler``: the sweep's Dask cluster (:func:`flightmode.studies.sweep.sweep`)."""
     from flightmode.atomic import write_text as atomic_text
     from flightmode.studies.sweep import breakdown, read_sweep, summarise, sweep
 
@@ -465,6 +467,7 @@ def certify(
             out=sweep_dir,
             on_start=on_start,
             on_flight=on_flight,
+            scheduler=scheduler,
         )
     summary = summarise(
         result.points, target.confidence, target.rate_per_h, by_sensor=bool(result.meta.get("sensors"))

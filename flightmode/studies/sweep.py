@@ -463,11 +463,14 @@ def sweep(
     out: str | Path | None = None,
     on_start: Callable[[int], None] | None = None,
     on_flight: Callable[[str], None] | None = None,
+    scheduler: str | None = None,
 ) -> SweepResult:
     """Evaluate ``grid`` on every successful flight of ``datasets`` (module docstring); the failed
     flights are excluded and returned. ``sensors``: re-sense each flight with each of these presets
     (datasets made with ``--truth full``) instead of reading its samples. Writes the sweep folder
-    ``out`` if given. ``on_start(flights)`` and ``on_flight(flight_id)`` report progress."""
+    ``out`` if given. ``on_start(flights)`` and ``on_flight(flight_id)`` report progress. One Dask
+    task per flight on ``workers`` local processes, or on the Dask ``scheduler`` at that address
+    (:func:`flightmode.cluster.map_flights`)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -503,6 +506,7 @@ def sweep(
         [(d, r, grid, sigma2_from, fam, sensors) for d, r, fam in jobs],
         workers,
         (lambda n: on_flight(jobs[n][1]["flight_id"])) if on_flight else None,
+        scheduler=scheduler,
     )
     tables = {
         part: pa.Table.from_pylist([row for res in results for row in res[part]])

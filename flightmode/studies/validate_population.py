@@ -111,14 +111,20 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
 
 
 def validate_dataset(
-    dataset: str | Path, paper_flight: int = 1, workers: int = 1, on_done: Callable[[int], None] | None = None
+    dataset: str | Path,
+    paper_flight: int = 1,
+    workers: int = 1,
+    on_done: Callable[[int], None] | None = None,
+    scheduler: str | None = None,
 ) -> tuple[list[dict], list[dict]]:
     """Every successful flight of the dataset validated: (per-flight results of :func:`validate_flight`
-    in manifest order, the manifest rows of the flights that failed to fly)."""
+    in manifest order, the manifest rows of the flights that failed to fly). One Dask task per flight
+    on ``workers`` local processes or the ``scheduler`` at that address (:mod:`flightmode.cluster`)."""
     from flightmode.cluster import map_flights
 
     ok, failed = check_request(dataset, paper_flight)
-    results = map_flights(validate_flight, [(str(dataset), r, paper_flight) for r in ok], workers, on_done)
+    args = [(str(dataset), r, paper_flight) for r in ok]
+    results = map_flights(validate_flight, args, workers, on_done, scheduler=scheduler)
     return results, failed
 
 
