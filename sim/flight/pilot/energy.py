@@ -1,4 +1,5 @@
-"""The energy-rate autothrottle the initial climb and the go-around share."""
+"""The energy-rate autothrottle the initial climb and the go-around share (Lambregts's total energy
+control, AIAA paper 83-2239, 1983)."""
 
 from __future__ import annotations
 

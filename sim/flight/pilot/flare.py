@@ -1,5 +1,7 @@
 """The flare, its two guidance laws and their constants, and the rejected landing's decision (a
-balloon or a float over the runway's second half goes around: :mod:`flightmode.sim.flight.pilot.go_around`)."""
+balloon or a float over the runway's second half goes around: :mod:`flightmode.sim.flight.pilot.go_around`).
+Sources: Blakelock, *Automatic Control of Aircraft and Missiles* (1991), NASA TN D-6544 (the flare laws),
+Lee 1976 (the time-to-contact start), each cited where it is used."""
 
 from __future__ import annotations
 

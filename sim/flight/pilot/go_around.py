@@ -1,4 +1,5 @@
-"""The go-around from the flare and the circuit back to the localizer."""
+"""The go-around from the flare and the circuit back to the localizer, flown as the go-around modes of
+airliner flight directors fly it (Airbus SRS, Boeing TO/GA: Boeing 737 FCTM, Airbus A320 FCOM)."""
 
 from __future__ import annotations
 
