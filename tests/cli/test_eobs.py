@@ -8,7 +8,6 @@ import numpy as np
 from typer.testing import CliRunner
 
 from flightmode.cli.main import app
-from tests.eobs.conftest import REAL_MOVEBANK as ALBATROSSES
 
 
 def test_eobs_calibrate_recovers_a_simulated_tag_from_six_movebank_files(tmp_path):
@@ -50,9 +49,12 @@ def test_eobs_calibrate_recovers_a_simulated_tag_from_six_movebank_files(tmp_pat
     # = 6e-5, 5e-4 is 8 sigma
     assert np.allclose(cal.zero_count, unit.zero_count, atol=0.15)
     assert np.allclose(np.array(cal.slope_g_per_count) / np.array(unit.slope_g_per_count), 1.0, atol=5e-4)
-    # a file with the wrong axes: one line
+    # a file with the wrong axes (two-axis XY bursts, as the albatross tags recorded): one line
+    xy = tmp_path / "xy.csv"
+    t0 = np.datetime64("2026-01-01T00:00:00", "ns")
+    write_movebank(bursts_to_file([simulate_burst(unit, g, "XY", 10.0, t0, rng, noise_g)]), xy)
     bad = CliRunner().invoke(
-        app, ["eobs", "calibrate", *args[:-1], str(ALBATROSSES), "--out", str(tmp_path / "x.toml")]
+        app, ["eobs", "calibrate", *args[:-1], str(xy), "--out", str(tmp_path / "x.toml")]
     )
     assert bad.exit_code == 2 and "needs bursts of all three axes (XYZ)" in bad.output
     assert not (tmp_path / "x.toml").exists()
@@ -61,7 +63,7 @@ def test_eobs_calibrate_recovers_a_simulated_tag_from_six_movebank_files(tmp_pat
 def test_detect_runs_the_duty_cycled_detector_on_the_real_albatross_file(real_movebank):
     r = CliRunner().invoke(
         app,
-        ["eobs", "detect", str(ALBATROSSES), "--tag-number", "2242", "--k", "4", "--bursts", "1"],
+        ["eobs", "detect", str(real_movebank), "--tag-number", "2242", "--k", "4", "--bursts", "1"],
         env={"COLUMNS": "160"},
     )
     assert r.exit_code == 0, r.output
@@ -76,5 +78,5 @@ def test_detect_runs_the_duty_cycled_detector_on_the_real_albatross_file(real_mo
     # the birds seen flying by their GPS fixes (9-11 m/s) never hold still for a 12 s burst
     for bird in ("2131-2131", "1163-1163", "unbanded-159"):
         assert rows[bird][7] == "0"
-    r = CliRunner().invoke(app, ["eobs", "detect", str(ALBATROSSES)])
+    r = CliRunner().invoke(app, ["eobs", "detect", str(real_movebank)])
     assert r.exit_code == 2 and "give --tag-number" in r.output

@@ -7,19 +7,9 @@ from pathlib import Path
 
 import pytest
 
-# beside the checkout (shared/data/eobs: data nobody here wrote, not copied into the repository)
-REAL_MOVEBANK = (
-    Path(__file__).resolve().parents[2].parent
-    / "shared"
-    / "data"
-    / "eobs"
-    / "albatrosses_movebank_format.csv"
-)
+from tests.shared_data import shared_data_or_skip
 
 
 @pytest.fixture(scope="module")
 def real_movebank() -> Path:
-    assert REAL_MOVEBANK.is_file(), (
-        f"the real e-obs Movebank file is expected at {REAL_MOVEBANK} (shared/data beside the checkout)"
-    )
-    return REAL_MOVEBANK
+    return shared_data_or_skip("eobs/albatrosses_movebank_format.csv")

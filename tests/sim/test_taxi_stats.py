@@ -4,7 +4,6 @@ real ADS-B figures recomputed against ADSB_TAXI_ANCHORS, and the cut of a simula
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -15,9 +14,8 @@ from flightmode.labels import PHASE_CODE
 from flightmode.sim.flight import taxi_stats as ts
 from flightmode.sim.flight.geodesy import WGS84_A_M, WGS84_E2
 from flightmode.units import G0_MPS2, KT_MPS
+from tests.shared_data import shared_data_or_skip
 
-# the real tracks, beside the checkout (shared/data/adsb: data nobody here wrote, not copied into the repository)
-ADSB_DIR = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "adsb"
 LAT0, LON0 = 47.45, 8.56
 
 
@@ -198,10 +196,9 @@ def test_bad_input_raises_typed_errors():
 
 
 def _adsb_files():
-    assert ADSB_DIR.is_dir(), (
-        f"the real ADS-B tracks are expected in {ADSB_DIR} (shared/data beside the checkout)"
-    )
-    return {p.stem: p for p in sorted(ADSB_DIR.glob("*.csv"))}
+    # the real tracks (data nobody here wrote, not copied into the repository)
+    adsb = shared_data_or_skip("adsb")
+    return {p.stem: p for p in sorted(adsb.glob("*.csv"))}
 
 
 def test_adsb_taxi_figures_match_the_anchors():
