@@ -138,7 +138,7 @@ def fly(
     fuel_start_lbs = _fuel_lbs(ac)
     ac.set("atmosphere/turb-type", 0)  # JSBSim's own turbulence is off: flightmode feeds its gusts
     if ac.get("simulation/integrator/rate/rotational") != ROTATIONAL_RATE_INTEGRATOR_RECT_EULER:
-        # the track's angular acceleration is the rates' forward difference (jsbsim_adapter, the
+        # the track's angular acceleration is the rates' forward difference (jsbsim.adapter, the
         # comment above ROTATIONAL_RATE_INTEGRATOR_RECT_EULER)
         raise AircraftError(
             f"'{plan.aircraft}' integrates its body rates with JSBSim integrator "
@@ -193,7 +193,7 @@ def fly(
         t = step / fdm_hz
         codes = (pilot.phase_code, pilot.severity_code)
         x = list(map(mul, raw, scales_list))  # SI floats
-        x.append(x[i_alt] - terrain_m)  # the derived channels (jsbsim_adapter.DERIVED_CHANNELS)
+        x.append(x[i_alt] - terrain_m)  # the derived channels (jsbsim.adapter.DERIVED_CHANNELS)
         pilot.tick(x, t)
         if (pilot.phase_code, pilot.severity_code) != codes:
             # labels change at the sample whose state made the pilot change phase
@@ -240,7 +240,7 @@ def fly(
     ticks = np.frombuffer(tick_steps, dtype=np.int64)
     at_ticks = np.frombuffer(slow, dtype=np.float64).reshape(-1, nch - nf)
     all_steps = np.arange(step, dtype=np.float64)
-    slow_cols = []  # the slow channels at every step: linear between ticks (jsbsim_adapter.Channel)
+    slow_cols = []  # the slow channels at every step: linear between ticks (jsbsim.adapter.Channel)
     for j, ch in enumerate(ac.channels[nf:]):
         if ch.name == "alpha_rad":  # an angle: interpolated the short way round (it wraps at standstill)
             slow_cols.append(np.angle(np.exp(1j * np.interp(all_steps, ticks, np.unwrap(at_ticks[:, j])))))
@@ -303,7 +303,7 @@ def _si_groups(
     ac, fast: np.ndarray, slow_cols: list[np.ndarray], groups: dict[str, list[int]]
 ) -> dict[str, np.ndarray]:
     """SI arrays from the raw record: ``fast`` (steps, fast channels) and ``slow_cols`` (one array per
-    slow channel, every step), in jsbsim_adapter's channel order; one (steps,) array per one-channel
+    slow channel, every step), in jsbsim.adapter's channel order; one (steps,) array per one-channel
     group, one (steps, k) array per group of k. Each value is scaled once, straight into its array:
     a whole scaled copy of the record first was a second 100+ MB array to fill and read again."""
     nf, scales = fast.shape[1], ac.scales
@@ -368,7 +368,7 @@ def _to_track(
     )
     vel = g["vel"]
     # JSBSim's own angular acceleration of each step: the rates' forward difference (rectangular
-    # Euler: jsbsim_adapter, ROTATIONAL_RATE_INTEGRATOR_RECT_EULER)
+    # Euler: jsbsim.adapter, ROTATIONAL_RATE_INTEGRATOR_RECT_EULER)
     ang_acc = np.diff(g["rates"], axis=0, append=np.asarray(rates_after)[None, :]) * fdm_hz
     euler = g["euler"]
     t_push = next((e.t_s for e in events if e.name == "pushback"), math.inf)

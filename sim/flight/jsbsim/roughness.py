@@ -160,7 +160,7 @@ class GearRoughness:
         return prof
 
     def tick(self, x, phase: str, every: int) -> None:
-        """Knots for the next ``every`` steps from the state row ``x`` (SI, jsbsim_adapter order)."""
+        """Knots for the next ``every`` steps from the state row ``x`` (SI, jsbsim.adapter order)."""
         surface = PHASE_SURFACE[phase]
         if surface is None or x[self._iwow] < 0.5:
             if self._on is not None:
