@@ -24,7 +24,9 @@ ROOMS = {
 HEAVY = ("numpy", "scipy", "jsbsim", "rerun", "pyarrow", "pandas", "dask", "distributed", "matplotlib")
 
 
-_IGNORE_ANYWHERE = shutil.ignore_patterns("build", "*.egg-info", "__pycache__", ".pytest_cache", ".hypothesis")
+_IGNORE_ANYWHERE = shutil.ignore_patterns(
+    "build", "*.egg-info", "__pycache__", ".pytest_cache", ".hypothesis"
+)
 
 
 def _ignore(folder: str, names: list[str]) -> set[str]:
