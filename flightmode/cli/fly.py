@@ -109,6 +109,7 @@ def _fly_json(result, out: Path) -> dict:
             "response_s": e.response_s,
             "accuracy": e.accuracy,
         },
+        "ground_rolls": [] if result.path is None else [c.as_dict() for c in result.path.ground_rolls],
         "wall_s": result.wall_s,
         "written": {k: str(v) for k, v in result.written.items()},
     }

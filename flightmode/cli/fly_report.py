@@ -1,11 +1,12 @@
 """What ``flightmode fly`` and ``flightmode sense`` print (printing only): the progress bar, the
-flight's summary table, the sensor, detector and path lines."""
+flight's summary table, the sensor and detector lines, the ground rolls rebuilt from the bag's samples."""
 
 from __future__ import annotations
 
 from contextlib import contextmanager
 from pathlib import Path
 
+from rich import box
 from rich.table import Table
 from rich.text import Text
 
@@ -68,8 +69,8 @@ def print_fly(result, out: Path) -> None:
             f"{'never came back' if r.combined.response_s is None else f'{r.combined.response_s:.1f} s'}",
             highlight=False,
         )
-    print_path_lines(result.path)
     rid = Path(out) / result.run_id
+    print_ground_rolls(result.path, rid)
     files = ", ".join(p.name for p in result.written.values())
     console().print(Text.assemble("wrote ", (str(rid), "bold"), f" ({files})"), highlight=False)
     if "rrd" in result.written:
@@ -82,22 +83,44 @@ def print_fly(result, out: Path) -> None:
         )
 
 
-def print_path_lines(path) -> None:
-    """The path errors, aided first, and the unaided error beside what the random-walk law predicts."""
+def print_ground_rolls(path, run_dir: Path) -> None:
+    """The takeoff roll and the rollout rebuilt from the bag's samples against the truth
+    (:func:`flightmode.runs.ground_roll.ground_rolls`); the whole-flight drift is ``flightmode path``'s."""
     if path is None:
         return
-    by = {r["method"].split(" ")[0]: r for r in path.rows}
-    tri, rec = by["tridiagonal"], by["recurrence"]
+    if not path.ground_rolls:
+        console().print(f"ground rolls not rebuilt: {path.ground_rolls_note}", highlight=False)
+    else:
+        t = Table(
+            title="ground rolls rebuilt from the bag's samples alone (seed 002 splines): "
+            "lengths in m, speeds in m/s",
+            box=box.SIMPLE,
+        )
+        for h in ("", "length", "true", "error", "%", "speed", "true", "error"):
+            t.add_column(h, justify="left" if not h else "right", no_wrap=True)
+        for c in path.ground_rolls:
+            t.add_row(
+                c.segment,
+                f"{c.est_length_m:,.0f}",
+                f"{c.true_length_m:,.0f}",
+                f"{c.length_error_m:+,.0f}",
+                f"{c.length_error_pct:+.1f}",
+                f"{c.est_speed_mps:.1f}",
+                f"{c.true_speed_mps:.1f}",
+                f"{c.speed_error_mps:+.1f}",
+            )
+        console().print(t)
+        console().print(
+            "  offset and tilt from the bag at the stop beside each roll; speed at liftoff (takeoff roll, "
+            "integrated from rest at brake release) and at touchdown (rollout, integrated backwards from "
+            f"the truth's exit speed {path.ground_rolls[1].known_speed_mps:.1f} m/s)",
+            highlight=False,
+        )
     console().print(
-        f"path from acceleration (seed 002 cubic splines, frames from the truth), over the {path.span_s / 60:.0f} min "
-        f"the bag is stowed: aided by the two gate positions (tridiagonal), max error {tri['max_m']:,.0f} m",
-        highlight=False,
-    )
-    console().print(
-        f"  unaided dead reckoning from the gate at rest (recurrence): final error {rec['final_m']:,.0f} m. Integrating "
-        f"twice drifts: noise as t^1.5 (this sensor's alone: {path.random_walk_m:,.0f} m RMS after "
-        f"{path.span_s / 60:.0f} min), a constant offset b as b t^2 / 2 (this unit's zero-g offset alone: "
-        f"{path.offset_drift_m:,.0f} m). flightmode path RUN_DIR prints the table.",
+        Text.assemble(
+            "whole-flight dead reckoning drifts by kilometres (a MEMS offset integrated twice): ",
+            (f"flightmode path {run_dir}", "bold"),
+        ),
         highlight=False,
     )
 

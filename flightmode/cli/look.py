@@ -69,15 +69,17 @@ def path_cmd(
 
     Each row integrates twice over the whole time the bag is stowed: noise drifts as t^1.5 and a
     constant offset b as b t^2 / 2, so unaided dead reckoning from a real unit ends kilometres off;
-    the tridiagonal spline, pinned to both gates, and ZUPT at the detector's statics bound it."""
-    from flightmode.cli.path_report import print_rows
-    from flightmode.runs.path import path_table
+    the tridiagonal spline, pinned to both gates, and ZUPT at the detector's statics bound it. A
+    paragraph after the table explains the drift with the run's own figures."""
+    from flightmode.cli.path_report import print_drift, print_rows
+    from flightmode.runs.path import path_report
 
-    rows, run_id = path_table(run_dir, comma_list(sensor, "--sensor") or ("run",))
+    r = path_report(run_dir, comma_list(sensor, "--sensor") or ("run",))
     if as_json:
-        emit_json(rows)
+        emit_json(r.rows)
         return
-    print_rows(console(), rows, f"{run_id}: path errors against the truth (bag seat position)")
+    print_rows(console(), r.rows, f"{r.run_id}: path errors against the truth (bag seat position)")
+    print_drift(console(), r.drift)
 
 
 def cabin_cmd(

@@ -34,6 +34,7 @@ if TYPE_CHECKING:
 
     from flightmode.detector.evaluation import Evaluation
     from flightmode.detector.pressure import PressureParams, RedundantEvaluation
+    from flightmode.runs.ground_roll import GroundRollCheck
     from flightmode.sim.flight.track import FlightTrack
     from flightmode.sim.sensor.accelerometer import AccelerometerPreset
     from flightmode.sim.sensor.carrier import CarrierSpec
@@ -54,6 +55,10 @@ class PathResult:
     )
     offset_drift_m: float  # 0.5 |b| t^2: what the unit's zero-g offset b alone does over the span
     span_s: float
+    # the takeoff roll and the rollout rebuilt from the bag's samples (runs.ground_roll), or () when
+    # they cannot be (ground_rolls_note says why)
+    ground_rolls: tuple[GroundRollCheck, ...] = ()
+    ground_rolls_note: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -310,27 +315,47 @@ def detect_redundant(
     )
 
 
-def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
-    """Seed 002's cubic-spline paths of the bag while stowed, from its samples rotated with the truth
-    (truth-aided frames), and their errors against the truth, beside the random-walk law's figure."""
+def drift_laws_m(recording: Recording, span_s: float) -> tuple[float, float]:
+    """What integrating ``recording``'s unit twice over ``span_s`` costs by the two laws (m): the
+    random walk of its noise (RMS, t^1.5; NaN for a noiseless preset) and its zero-g offset b alone,
+    0.5 |b| t^2."""
     import math
 
     import numpy as np
 
-    from flightmode.nav.evaluation import estimate_paths, path_rows, predicted_random_walk_m
-    from flightmode.sim.flight.aircraft.registry import get_profile
+    from flightmode.nav.evaluation import predicted_random_walk_m
     from flightmode.sim.sensor.accelerometer import get_preset, noise_random_walk_sigma_g
-    from flightmode.sim.sensor.carrier import LOCATION_OF
     from flightmode.units import G0_MPS2
+
+    # the noise's density at 0 Hz (its coloured part included) is what integrates into a random walk
+    noise = noise_random_walk_sigma_g(get_preset(recording.preset)) * G0_MPS2
+    law = float(predicted_random_walk_m(noise, recording.odr_hz, span_s)) if noise > 0 else math.nan
+    offset = float(np.linalg.norm(recording.unit["offset_g"])) * G0_MPS2
+    return law, 0.5 * offset * span_s**2
+
+
+def estimate_path(track: FlightTrack, recording: Recording) -> PathResult:
+    """Seed 002's cubic-spline paths of the bag while stowed, from its samples rotated with the truth
+    (truth-aided frames), and their errors against the truth, beside the random-walk law's figure;
+    and the takeoff roll and the rollout rebuilt from the bag's samples alone
+    (:func:`flightmode.runs.ground_roll.ground_rolls`)."""
+    from flightmode.errors import NavError
+    from flightmode.nav.evaluation import estimate_paths, path_rows
+    from flightmode.runs.ground_roll import ground_rolls
+    from flightmode.sim.flight.aircraft.registry import get_profile
+    from flightmode.sim.sensor.carrier import LOCATION_OF
 
     lever = get_profile(track.aircraft).locations_m[LOCATION_OF[recording.carrier.placement]]
     est = estimate_paths(track, recording, lever)
     span = float(est["t_s"][-1] - est["t_s"][0])
-    # the noise's density at 0 Hz (its coloured part included) is what integrates into a random walk
-    noise = noise_random_walk_sigma_g(get_preset(recording.preset)) * G0_MPS2
-    law = float(predicted_random_walk_m(noise, recording.odr_hz, span)) if noise > 0 else math.nan
-    offset = float(np.linalg.norm(recording.unit["offset_g"])) * G0_MPS2
-    return PathResult(est, path_rows(est, recording.preset), law, 0.5 * offset * span**2, span)
+    law, offset_drift = drift_laws_m(recording, span)
+    rolls: tuple[GroundRollCheck, ...] = ()
+    note = None
+    try:
+        rolls = ground_rolls(track, recording)
+    except NavError as e:  # e.g. no stop beside a roll: the whole-flight rows still stand
+        note = str(e)
+    return PathResult(est, path_rows(est, recording.preset), law, offset_drift, span, rolls, note)
 
 
 class RunWriter:
@@ -603,6 +628,7 @@ __all__ = [
     "pressure_params",
     "baro_preset",
     "estimate_path",
+    "drift_laws_m",
     "write",
     "RunWriter",
     "RunResult",

@@ -83,7 +83,8 @@ def resense_run(
         new["truth"] = dict(info["truth"], path=str(Path(run_dir).resolve() / "truth.parquet"))
         new["sensor"] = rec.summary()
         new["wall_time_s"] = {"sense": wall}
-        for stale in ("detector", "path", "path_laws_m"):  # of the other recording
+        # of the other recording
+        for stale in ("detector", "path", "path_laws_m", "ground_rolls", "ground_rolls_note"):
             new.pop(stale, None)
         run_io.write_run_json(stage, new)
     return rec, folder / rid

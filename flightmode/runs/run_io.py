@@ -403,4 +403,7 @@ def run_info(result, *, track_sha256: str | None = None) -> dict:
             "offset": result.path.offset_drift_m,
             "span_s": result.path.span_s,
         }
+        info["ground_rolls"] = [c.as_dict() for c in result.path.ground_rolls]
+        if result.path.ground_rolls_note is not None:
+            info["ground_rolls_note"] = result.path.ground_rolls_note
     return info

@@ -1,4 +1,5 @@
-"""`flightmode path` and the path lines of `flightmode fly`, on the pattern run."""
+"""`flightmode path` (the whole-flight drift and its explanation) and the ground-roll table of
+`flightmode fly`, on the pattern run."""
 
 from __future__ import annotations
 
@@ -10,9 +11,13 @@ from typer.testing import CliRunner
 from flightmode.cli.main import app
 
 
-def test_fly_prints_the_aided_error_first_and_the_drift_laws(pattern_run):
-    run, output = pattern_run
-    text = " ".join(output.split())
+def test_path_prints_the_aided_error_first_and_the_drift_laws(pattern_run):
+    """(Moved from `flightmode fly`'s output, which now shows the ground rolls: the same assertions on
+    `flightmode path`'s paragraph.)"""
+    run, _ = pattern_run
+    r = CliRunner().invoke(app, ["path", str(run), "--sensor", "run"], env={"COLUMNS": "200"})
+    assert r.exit_code == 0, r.output
+    text = " ".join(r.output.split())
     info = json.loads((run / "run.json").read_text())
     rows = {r["method"].split(" ")[0]: r for r in info["path"]}
     laws = info["path_laws_m"]
@@ -65,3 +70,28 @@ def test_path_table_agrees_with_the_run_and_sensor_error_dominates(pattern_run):
     assert r.exit_code == 0 and "recurrence + ZUPT" in r.output and "tilt-only (vertical only)" in r.output
     r = CliRunner().invoke(app, ["path", str(run), "--sensor", "lis303"], env={"COLUMNS": "200"})
     assert r.exit_code == 2 and "unknown sensor preset 'lis303'" in r.output
+
+
+def test_fly_prints_the_ground_rolls_against_the_truth_and_not_the_drift(pattern_run, tmp_path):
+    run, output = pattern_run
+    text = " ".join(output.split())
+    info = json.loads((run / "run.json").read_text())
+    rolls = info["ground_rolls"]
+    assert [c["segment"] for c in rolls] == ["takeoff roll", "rollout"]
+    # the table's figures are run.json's, rounded as printed: lengths to the metre, speeds to 0.1 m/s
+    for c in rolls:
+        row = (
+            f"{c['segment']} {c['est_length_m']:,.0f} {c['true_length_m']:,.0f} {c['length_error_m']:+,.0f} "
+            f"{c['length_error_pct']:+.1f} {c['est_speed_mps']:.1f} {c['true_speed_mps']:.1f} "
+            f"{c['speed_error_mps']:+.1f}"
+        )
+        assert row in text, row
+    assert f"exit speed {rolls[1]['known_speed_mps']:.1f} m/s" in text
+    # the whole-flight drift is no longer fly's: it points to `flightmode path`
+    rows = {r["method"].split(" ")[0]: r for r in info["path"]}
+    assert f"max error {rows['tridiagonal']['max_m']:,.0f} m" not in text and "final error" not in text
+    assert f"flightmode path {run}" in text
+    # --json carries the same numbers (the same scenario and seed fly the same flight, bit for bit)
+    r = CliRunner().invoke(app, ["fly", "pattern", "--out", str(tmp_path), "--no-rrd", "--json"])
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.output)["ground_rolls"] == rolls
