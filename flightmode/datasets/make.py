@@ -32,13 +32,16 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flightmode.atomic import TMP_GLOB
 from flightmode.atomic import write_parquet as atomic_parquet  # the names the CLI and tests use
 from flightmode.atomic import write_text as atomic_text
 from flightmode.cluster import open_client
 from flightmode.errors import ClusterError, DatasetError, FlightmodeError, FlightTimeoutError, InputDataError
+
+if TYPE_CHECKING:
+    from flightmode.scenarios.family import Family
 
 TRUTH_RATES = ("full", "10hz", "none")
 ATTEMPTS = 2  # a failed flight is retried once
@@ -99,21 +102,24 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
 
     r = pipeline.run(sc, stages=("fly", "sense", "detect"), progress=watchdog)
     fid = flight_id(i)
+    tr, rec, det, metrics = r.track, r.recording, r.detection, r.metrics
+    if tr is None or rec is None or det is None or metrics is None:  # never: run() fills the stages asked
+        raise DatasetError(f"flight {fid}: the run returned no track, recording or detection")
     out = Path(out_dir)
     part = f"aircraft={sc.aircraft}/part-{fid}.parquet"
-    samples = run_io.recording_table(r.recording)
+    samples = run_io.recording_table(rec)
     samples = samples.append_column("flight_id", pa.array(np.full(samples.num_rows, fid)))
     files = {"samples": f"samples/{part}"}
     atomic_parquet(samples, out / files["samples"])
     if options["truth"] != "none":
-        truth = run_io.track_table(r.track)
+        truth = run_io.track_table(tr)
         if options["truth"] == "10hz":
-            step = max(1, int(round(r.track.fs_hz / 10.0)))
+            step = max(1, int(round(tr.fs_hz / 10.0)))
             truth = truth.take(pa.array(np.arange(0, truth.num_rows, step)))
         truth = truth.append_column("flight_id", pa.array(np.full(truth.num_rows, fid)))
         if options["truth"] == "full":  # what rebuilds the FlightTrack, so that the flight can be re-sensed
             truth = truth.replace_schema_metadata(
-                {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(r.track), default=run_io.json_default)}
+                {run_io.TRACK_INFO_KEY: json.dumps(run_io.track_info(tr), default=run_io.json_default)}
             )
         files["truth"] = f"truth/{part}"
         atomic_parquet(truth, out / files["truth"])
@@ -128,7 +134,6 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
             dest.parent.mkdir(parents=True, exist_ok=True)
             shutil.move(str(written["rrd"]), dest)
         files["rrd"] = str(dest.relative_to(out))
-    tr, rec, det = r.track, r.recording, r.detection
     dt = 1.0 / tr.fs_hz
     phase_s = np.bincount(tr.phase_code, minlength=len(PHASES)) * dt
     row = {
@@ -157,7 +162,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         "carrier_kind": sc.carrier.kind,
         "sensor_preset": sc.sensor.preset,
         **stowage_columns(rec.stowage),
-        "touchdown_sink_mps": float(r.metrics.get("touchdown_sink_mps", float("nan"))),
+        "touchdown_sink_mps": float(metrics.get("touchdown_sink_mps", float("nan"))),
         "detector_false_static_count": det.false_static_count,
         "detector_false_static_s": det.false_static_s,
         "detector_response_s": float("nan") if det.response_s is None else float(det.response_s),
@@ -416,7 +421,7 @@ def check_request(
     truth: str = "10hz",
     flight_timeout_s: float | None = None,
     rrd: bool = False,
-):
+) -> tuple[Family, Options, Path]:
     """(family, options, out folder) of a valid request; a :class:`DatasetError` (or ScenarioError for the
     family) naming what is wrong otherwise. Writes nothing."""
     from flightmode.scenarios.family import Family
@@ -504,7 +509,9 @@ def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) 
     token = hashlib.sha256(
         f"{fam.digest()}|{out.resolve()}|{json.dumps(opts, sort_keys=True)}".encode()
     ).hexdigest()[:12]
-    fut_index, attempts, futures = {}, {}, []
+    fut_index: dict[str, int] = {}  # task key -> member index
+    attempts: dict[int, int] = {}  # member index -> tries so far
+    futures = []
 
     def submit(i: int):
         f = client.submit(

@@ -23,7 +23,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 from flightmode.errors import FlightmodeError, did_you_mean
 from flightmode.scenarios.scenario import Scenario, SensorChoice
@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     from flightmode.sim.sensor.carrier import CarrierSpec
     from flightmode.sim.sensor.gyroscope import GyroSpec
     from flightmode.sim.sensor.recording import Recording
+    from flightmode.viz.rrd import RrdWriter
 
 STAGES = ("fly", "sense", "detect", "path", "write")
 
@@ -210,34 +211,40 @@ def stream_rest(source: str, columns: dict, info: dict | None) -> tuple[np.ndarr
     tracker zeroes its gyroscope at rest after power-on), both cut to the shorter; ``rest``: the
     longest run of truly static samples before the flight (with the recording's gyroscope, if it
     has one)."""
-    import numpy as np
-
-    from flightmode.detector.evaluation import longest_static_run
     from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
 
     s = _bench_sensor(source, info)
-    if s is not None:
+    gyro = columns.get("gyro_dps")
+    if s is not None and info is not None:  # _bench_sensor returns a sensor only from an info
         p = dataclasses.replace(get_preset(s["preset"]), odr_hz=float(s["odr_hz"]))
         m = bench_static(
             p, UnitDraw.from_dict(s.get("unit")), streams_of(int(info["seed"])).rng("detector/bench")
         )
         where = f"bench recording of this {s['preset']} unit (60 s static)"
-        if columns.get("gyro_dps") is None:
+        if gyro is None:
             return m.acc_g, None, where
-        _, gyr, _ = stream_rest("rest", columns, info)
-        n = min(m.acc_g.shape[0], gyr.shape[0])
-        return m.acc_g[:n], gyr[:n], f"{where}; the gyroscope's {n} samples at rest before the flight"
+        a, b = _rest_before_flight(columns)
+        n = min(m.acc_g.shape[0], b - a)
+        return m.acc_g[:n], gyro[a : a + n], f"{where}; the gyroscope's {n} samples at rest before the flight"
+    a, b = _rest_before_flight(columns)
+    return (
+        columns["acc_g"][a:b],
+        None if gyro is None else gyro[a:b],
+        f"{b - a} truly static samples before the flight",
+    )
+
+
+def _rest_before_flight(columns: dict) -> tuple[int, int]:
+    """[start, end) of the longest run of truly static samples before the in-flight window."""
+    import numpy as np
+
+    from flightmode.detector.evaluation import longest_static_run
+
     static = np.asarray(columns["sensor_static"], bool).copy()
     window = np.asarray(columns["in_flight_window"], bool)
     if window.any():
         static[int(np.flatnonzero(window)[0]) :] = False  # only what a tracker saw before the flight
-    a, b = longest_static_run(static)
-    gyr = columns.get("gyro_dps")
-    return (
-        columns["acc_g"][a:b],
-        None if gyr is None else gyr[a:b],
-        f"{b - a} truly static samples before the flight",
-    )
+    return longest_static_run(static)
 
 
 def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) -> tuple[np.ndarray, str]:
@@ -249,7 +256,7 @@ def stream_sigma2(source: str, columns: dict, info: dict | None, window: int) ->
     from flightmode.sim.sensor.accelerometer import get_preset
 
     s = _bench_sensor(source, info)
-    if s is not None:
+    if s is not None and info is not None:  # _bench_sensor returns a sensor only from an info
         s2 = unit_sigma2(
             s["preset"],
             float(s["odr_hz"]),
@@ -403,7 +410,7 @@ class RunWriter:
         for f in self._futures:
             f.result()  # re-raises a write's error here
 
-    def __exit__(self, exc_type, exc, tb) -> bool:
+    def __exit__(self, exc_type, exc, tb) -> Literal[False]:  # never swallows an exception
         failure = exc
         if failure is None:
             try:
@@ -431,7 +438,7 @@ class _Rrd:
     the paths, and the rename."""
 
     def __init__(self, writer: RunWriter):
-        self.w = None
+        self.w: RrdWriter | None = None
         writer.on_failure(self.abort)
 
     def open(self, stage: Path, result: RunResult) -> None:
@@ -448,7 +455,9 @@ class _Rrd:
     def close(self, stage: Path, result: RunResult) -> None:
         from flightmode.runs.run_view import path_lines
 
-        if result.path is not None:
+        if self.w is None:  # never: open ran before on the same writer thread (its failure fails the run)
+            raise FlightmodeError("recording.rrd: its paths were to be written before it was opened")
+        if result.path is not None and result.recording is not None:  # a path is estimated from a recording
             self.w.send_paths(path_lines(result.path.estimates, result.recording.odr_hz))
         self.w.close()
 
@@ -552,11 +561,14 @@ def run(
     root = streams_of(sc.seed)
     wall: dict[str, float] = {}
     tell = on_stage or (lambda name: None)
-    writing = "write" in stages and out is not None
     with contextlib.ExitStack() as stack:
         # files are written by a background thread as soon as their data exist (a run folder appears
         # whole, or not at all: RunWriter)
-        writer = stack.enter_context(RunWriter(Path(out), sc.run_id)) if writing else None
+        writer = (
+            stack.enter_context(RunWriter(Path(out), sc.run_id))
+            if "write" in stages and out is not None
+            else None
+        )
         tell("fly")
         t0 = time.perf_counter()
         if track is None:
@@ -589,7 +601,7 @@ def run(
             wall["sense"] = time.perf_counter() - t0
             if writer is not None:
                 writer.submit("samples", "samples.parquet", run_io.write_samples, rec)
-        if "detect" in stages:
+        if "detect" in stages and rec is not None:  # rec is set: detect needs sense (checked above)
             tell("detect")
             t0 = time.perf_counter()
             det = detect(rec, root.rng("detector/bench"))

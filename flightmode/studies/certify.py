@@ -32,11 +32,15 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from flightmode.detector.recommended_point import POINT as RECOMMENDED
 from flightmode.errors import InputDataError
+
+if TYPE_CHECKING:
+    from flightmode.detector.grid import Grid
 
 SEED000_POINT = RECOMMENDED.grid_point()  # seed 000, Table 9, as a grid point of the sweep
 
@@ -220,22 +224,19 @@ def recommend(
     need = hours_needed(target.rate_per_h, target.confidence, x)
     short = max(0.0, need - t_h)
     per = hours_per_flight(grid_point(best))
-    out |= {
-        "hours_needed": need,
-        "hours_short": short,
-        "flights_short": {f: int(math.ceil(short / h)) for f, h in per.items() if h > 0},
-    }
+    flights_short = {f: int(math.ceil(short / h)) for f, h in per.items() if h > 0}
+    out |= {"hours_needed": need, "hours_short": short, "flights_short": flights_short}
+    at_rate = ""
     if x > 0:  # if the events keep coming at the observed rate, the claim needs more
-        out["hours_needed_at_rate"] = hours_at_rate(target.rate_per_h, target.confidence, best["rate_per_h"])
+        at_rate_h = hours_at_rate(target.rate_per_h, target.confidence, best["rate_per_h"])
+        out["hours_needed_at_rate"] = at_rate_h
+        at_rate = (
+            f"; never, if they keep coming at {best['rate_per_h']:.2g} /h"
+            if math.isinf(at_rate_h)
+            else f"; {at_rate_h:,.0f} h in all if they keep coming at {best['rate_per_h']:.2g} /h"
+        )
     more = " or ".join(
-        f"{n:,} more flights of {f} ({per[f]:.2f} in-window h each)" for f, n in out["flights_short"].items()
-    )
-    at_rate = (
-        ""
-        if x == 0
-        else f"; never, if they keep coming at {best['rate_per_h']:.2g} /h"
-        if math.isinf(out["hours_needed_at_rate"])
-        else f"; {out['hours_needed_at_rate']:,.0f} h in all if they keep coming at {best['rate_per_h']:.2g} /h"
+        f"{n:,} more flights of {f} ({per[f]:.2f} in-window h each)" for f, n in flights_short.items()
     )
     out["text"] = (
         f"the dataset is too small to show {target.rate_per_h:g} false statics per flight-hour at "
@@ -335,6 +336,11 @@ def threshold_from_static(
     return out
 
 
+def _flight_key(r: dict) -> tuple:
+    """A flight of the sweep: (dataset, flight id, sensor preset)."""
+    return r["dataset"], r["flight_id"], r["sensor_preset"]
+
+
 def worst_flight(points, phases, point: dict) -> dict | None:
     """The flight closest to trouble at ``point``: the most false-static seconds; on a tie (none),
     the most in-window checks under ``k sigma^2`` on all axes (eq. 7's temporary statics)."""
@@ -349,20 +355,17 @@ def worst_flight(points, phases, point: dict) -> dict | None:
         .select(["dataset", "flight_id", "sensor_preset", "under_all"])
         .to_pylist()
     ):
-        key = (r["dataset"], r["flight_id"], r["sensor_preset"])
-        under[key] = under.get(key, 0) + r["under_all"]
+        flight = _flight_key(r)
+        under[flight] = under.get(flight, 0) + r["under_all"]
 
-    def key(r):
-        return r["dataset"], r["flight_id"], r["sensor_preset"]
-
-    best = max(rows, key=lambda r: (r["false_static_s"], under.get(key(r), 0)))
+    best = max(rows, key=lambda r: (r["false_static_s"], under.get(_flight_key(r), 0)))
     return {
         "dataset": best["dataset"],
         "flight_id": best["flight_id"],
         "sensor_preset": best["sensor_preset"],
         "false_static_s": best["false_static_s"],
         "false_statics": best["false_static_count"],
-        "under_all": under.get(key(best), 0),
+        "under_all": under.get(_flight_key(best), 0),
         "aircraft": best.get("aircraft"),
         "placement": best.get("placement"),
         "turbulence": best.get("turbulence"),
@@ -424,7 +427,7 @@ def command_of(
 
 def certify(
     datasets: Sequence[str | Path],
-    grid,
+    grid: Grid,
     target: Target,
     *,
     sigma2_from: str = "preset",
@@ -492,7 +495,8 @@ def certify(
         seed_method = (RECOMMENDED.method, RECOMMENDED.weight)
         method_5_1_1 = seed_method if seed_method in mv_methods else mv_methods[0]
         window_5_1_1 = RECOMMENDED.window_s if RECOMMENDED.window_s in grid.windows_s else grid.windows_s[0]
-        th = threshold_from_static(result.static, target.pm, *method_5_1_1, window_5_1_1, target.confidence)
+        method, weight = method_5_1_1  # a grid's (method, weight) pair
+        th = threshold_from_static(result.static, target.pm, method, weight, window_5_1_1, target.confidence)
         th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
     breakdowns = {"recommended": breakdown(result.points, rp, result.phases)}
     seed_point = SEED000_POINT | (

@@ -269,6 +269,8 @@ def _gyro_rest(row: dict, cols: dict) -> tuple[np.ndarray, np.ndarray]:
             'dataset from a family with [sensor].gyro (e.g. gyro = "bmi270")'
         )
     acc, gyr, _ = pipeline.stream_rest("rest", cols, None)
+    if gyr is None:  # never: stream_rest cuts the gyro_dps checked above
+        raise InputDataError(f"flight {row['flight_id']}: no gyroscope samples at rest before the flight")
     return acc, gyr
 
 

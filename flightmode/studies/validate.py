@@ -879,9 +879,9 @@ def placement_text(stowage: dict | None) -> tuple[str, bool]:
     for at least :data:`COMPARABLE_SHARE` of the time the bag lay stowed in the in-flight window (a
     handling sets it down anew, at a new yaw). Without a record (a run or manifest made before it was
     kept): the note says so and the cells are judged, as they always were."""
-    f = (stowage or {}).get("in_flight")
-    if not f:
+    if not stowage or not stowage.get("in_flight"):
         return "; the bag's placement was not recorded", True
+    f = stowage["in_flight"]
     parts = stowage.get("in_flight_segments") or [f | {"share": 1.0}]
     stowed = sum(p["share"] for p in parts)
     limit = comparable_x_from_fuselage_deg()

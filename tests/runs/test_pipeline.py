@@ -74,3 +74,28 @@ def test_a_failed_write_or_stage_leaves_no_run_folder(fly_cached, tmp_path, monk
         "truth.parquet",
     ]
     assert set(r.written) == {"truth", "samples", "run_json"}
+
+
+@pytest.mark.parametrize("rest_n", [4_000, 9_000])  # rest shorter, then longer, than the 60 s bench
+def test_the_bench_recording_pairs_with_the_gyroscope_at_rest_before_the_flight(rest_n):
+    """stream_rest("preset") on a stream with a gyroscope: the unit's own bench recording (the run's
+    "detector/bench" stream) and the gyroscope's longest truly static run before the in-flight
+    window, both cut to the shorter. Exact: both are slices of the same arrays."""
+    from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
+
+    n = 30_000
+    gyro = np.arange(3 * n, dtype=float).reshape(n, 3)  # every row distinct: the slice is identified
+    static = np.zeros(n, bool)
+    static[1_000:2_000] = True  # a shorter run before the window
+    static[3_000 : 3_000 + rest_n] = True  # the longest before the window
+    window = np.zeros(n, bool)
+    window[15_000:] = True
+    static[16_000:29_000] = True  # longer still, but in the window: never the rest
+    cols = {"acc_g": np.zeros((n, 3)), "gyro_dps": gyro, "sensor_static": static, "in_flight_window": window}
+    info = {"seed": 7, "sensor": {"preset": "ideal", "odr_hz": 100.0, "unit": None}}
+    acc, gyr, said = pipeline.stream_rest("preset", cols, info)
+    bench = bench_static(get_preset("ideal"), UnitDraw(), pipeline.streams_of(7).rng("detector/bench")).acc_g
+    m = min(bench.shape[0], rest_n)
+    assert acc.shape == gyr.shape == (m, 3)
+    assert np.array_equal(acc, bench[:m]) and np.array_equal(gyr, gyro[3_000 : 3_000 + m])
+    assert said.endswith(f"the gyroscope's {m} samples at rest before the flight")
