@@ -52,6 +52,7 @@ from pathlib import Path
 import numpy as np
 
 from flightmode.errors import InputDataError
+from flightmode.intervals import true_runs_array
 from flightmode.sim.flight.geodesy import geodetic_to_ned
 from flightmode.units import G0_MPS2, KT_MPS
 
@@ -152,12 +153,6 @@ def _turn_mask(heading_deg: np.ndarray) -> np.ndarray:
     return mask
 
 
-def _runs(mask: np.ndarray) -> np.ndarray:
-    """(k, 2) start/stop (exclusive) indices of the True runs of a boolean array."""
-    d = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
-    return np.stack([np.flatnonzero(d == 1), np.flatnonzero(d == -1)], axis=1)
-
-
 def taxi_statistics(t_s, lat_deg, lon_deg, ground_speed_mps=None, track_deg=None) -> dict[str, float]:
     """Figures of one taxi segment (see the module docstring for the method).
 
@@ -238,7 +233,7 @@ def taxi_statistics(t_s, lat_deg, lon_deg, ground_speed_mps=None, track_deg=None
     # 4. figures
     moving = (speed > MOVING_MPS) & valid
     turning = _turn_mask(heading)
-    n_turns = int(_runs(turning).shape[0])
+    n_turns = int(true_runs_array(turning).shape[0])
     duration = float(t[-1] - t[0])
     moving_s = float(moving.mean() * duration)
     out: dict[str, float] = {
@@ -363,7 +358,7 @@ def adsb_taxi_segments(t_s, on_ground, ground_speed_mps) -> tuple[TaxiSegment, .
     pause_len = np.where(moving, t_ext[np.arange(n) + 1] - t, t_ext[nxt_after] - t)
     parked = pause_len >= PARK_S
     segs: list[TaxiSegment] = []
-    for a, b in _runs(g):  # ground runs [a, b)
+    for a, b in true_runs_array(g):  # ground runs [a, b)
         region0 = a
         if a > 0:  # a landing
             slow = np.flatnonzero(kt[a:b] <= EXIT_KT)

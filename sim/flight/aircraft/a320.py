@@ -7,6 +7,7 @@ from __future__ import annotations
 from flightmode.sim.flight.aircraft.performance import ClimbSchedule, Spread, TakeoffThrust
 from flightmode.sim.flight.aircraft.profile import AircraftProfile, ApproachStep
 from flightmode.sim.flight.aircraft.tuning import PilotTuning
+from flightmode.units import FT_M
 
 PROFILE = AircraftProfile(
     model="A320",
@@ -24,7 +25,7 @@ PROFILE = AircraftProfile(
     n_engines=2,
     length_m=37.57,
     wingspan_m=34.1,
-    cg_height_m=8.42 * 0.3048,
+    cg_height_m=8.42 * FT_M,
     wheelbase_m=12.64,
     fuel_kg=5500.0,
     # measured on this model: 5,500 kg ran out 7,500-7,650 s after the gate on 20 airline-mix

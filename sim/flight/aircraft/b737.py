@@ -7,6 +7,7 @@ from __future__ import annotations
 from flightmode.sim.flight.aircraft.performance import ClimbSchedule, Spread, TakeoffThrust
 from flightmode.sim.flight.aircraft.profile import AircraftProfile, ApproachStep
 from flightmode.sim.flight.aircraft.tuning import PilotTuning
+from flightmode.units import FT_M
 
 PROFILE = AircraftProfile(
     model="737",
@@ -24,7 +25,7 @@ PROFILE = AircraftProfile(
     n_engines=2,
     length_m=33.4,
     wingspan_m=28.9,
-    cg_height_m=3.69 * 0.3048,
+    cg_height_m=3.69 * FT_M,
     wheelbase_m=12.4,
     fuel_kg=9000.0,
     burn_kg_per_h=2700.0,  # measured on this model: 2.6 t per airborne hour on ist-osl-737 (3.3 h airborne)

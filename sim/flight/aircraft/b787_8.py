@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from flightmode.sim.flight.aircraft.performance import ClimbSchedule, Spread, TakeoffThrust
 from flightmode.sim.flight.aircraft.profile import AircraftProfile, ApproachStep
+from flightmode.units import FT_M
 
 PROFILE = AircraftProfile(
     model="787-8",
@@ -26,7 +27,7 @@ PROFILE = AircraftProfile(
     n_engines=2,
     length_m=56.7,
     wingspan_m=60.1,
-    cg_height_m=13.78 * 0.3048,
+    cg_height_m=13.78 * FT_M,
     wheelbase_m=22.8,
     # at least 40 t: short routes land at 163-166 t, under the 787-8's 172 t maximum landing mass
     # (OpenAP prop "mlw"), within the masses its flare was tuned at. On 20 European routes

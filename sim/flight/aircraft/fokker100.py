@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from flightmode.sim.flight.aircraft.performance import ClimbSchedule, Spread, TakeoffThrust
 from flightmode.sim.flight.aircraft.profile import AircraftProfile, ApproachStep
+from flightmode.units import FT_M
 
 PROFILE = AircraftProfile(
     model="fokker100",
@@ -25,7 +26,7 @@ PROFILE = AircraftProfile(
     n_engines=2,
     length_m=35.5,
     wingspan_m=28.08,
-    cg_height_m=7.35 * 0.3048,
+    cg_height_m=7.35 * FT_M,
     wheelbase_m=14.0,
     fuel_kg=9000.0,
     burn_kg_per_h=2400.0,  # measured on this model: 2.3 t per airborne hour on hel-zrh-f100 (2.6 h airborne)
