@@ -14,7 +14,10 @@ Chain, per sample (vectorised; the only recursion, the outflow-valve lag, is ``s
 
    - door open (``gate``, ``parked``) and every other ground phase: ambient;
    - ``takeoff_roll``: pre-pressurisation, the cabin driven ``prepress_psi`` above field pressure
-     at ``prepress_rate_fpm`` (A320 FCOM, as quoted in FACTS: 0.1 psi at 400 ft/min before rotation);
+     at ``prepress_rate_fpm``, every type (A320 FCOM DSC 21-20-10, quoted verbatim on PPRuNe: 0.1 psi
+     at 400 ft/min before rotation; the 737 FCOM 2.40.4 "slightly pressurizing the cabin" and the 787
+     FCOM 2.30.1 "a small positive pressurization prior to rotation" give no number, so the 737, 787
+     and Fokker 100 borrow the A320's: *assumption*);
    - airborne, climb side: from the pre-pressurised departure field up to the cruise cabin altitude in
      proportion to the aircraft's progress from the field to the planned cruise level (the
      proportional auto-schedule of the 737's controller; Airbus's "fixed pre-programmed law");
@@ -22,10 +25,23 @@ Chain, per sample (vectorised; the only recursion, the outflow-valve lag, is ``s
      differential allows at the planned level, never above the type's maximum cabin altitude
      (14 CFR 25.841(a): 8,000 ft; 787: 6,000 ft), never below the lower pre-pressurised field;
    - airborne, descent side (from the first ``descent``/``approach`` sample): from ``C`` down to the
-     arrival field + ``prepress_psi`` ("the cabin reaches field pressure + 0.1 psi just before
-     landing", Airbus Getting to Grips with the Cockpit/Cabin systems, as quoted in FACTS), again in
-     proportion to the aircraft's altitude;
-   - after touchdown: ambient (the residual 0.1 psi released at ``release_rate_fpm``).
+     *landing pressure*, the arrival field + ``cabin.landing_residual_psi``, again in proportion to
+     the aircraft's altitude, except that the last 2N of that schedule (N =
+     ``cabin.landing_level_height_ft`` above the field) is squeezed into N..2N: the cabin reaches its
+     landing pressure while the aircraft is still N above the field and holds it through the final
+     approach and the flare (737 FCOM 2.40.5: "proportional descent to slightly below the selected
+     LAND ALT ... programs the cabin to land slightly pressurized"; 787 FCOM 2.30.2: "cabin altitude
+     decreases to slightly below the FMC planned landing altitude. This ensures that the airplane
+     lands pressurized"; A320: the landing field's pressure "just prior to landing"). Above 2N the
+     schedule is the proportional one it always was;
+   - after touchdown (the first ground sample after the last airborne one), per type: the landing
+     pressure held until the vent starts, then ambient at the venting rate: A320 from touchdown at
+     ``release_rate_fpm`` = 500 ft/min (A320 FCOM DSC-21-20-30, as paraphrased: "any remaining cabin
+     pressure is released at 500 ft/min" from touchdown, the outflow valve fully open 55 s after
+     landing); 787 from touchdown over ``cabin.vent_787_s`` (FCOM 2.30.2: "At touchdown, both outflow
+     valves open"); 737 from the start of the taxi-in over ``cabin.vent_737_s`` (FCOM 2.40.5: "While
+     taxiing in, the controller drives the outflow valve slowly to the full open position"); Fokker
+     100 as the A320 (*assumption*: no description read).
 3. **Rate limits** on the schedule: cabin climb at most ``climb_rate_fpm``, cabin descent at most
    ``descent_rate_fpm``, raised (up to ``descent_rate_max_fpm``) when the descent is too short for the
    default rate ("optimised" descent rate). Both are exact closed forms, not loops: a rise limit
@@ -59,9 +75,11 @@ Figures and their quality (per type in :data:`CABIN_PROFILES`):
   FACTS); the others 500 ft/min up and 300 ft/min down, the usual passenger-comfort figures (SAE
   ARP1270 "Aircraft Cabin Pressurization Criteria" recommends them: *recalled, not read*), 750 ft/min
   at most in descent (*assumption*: Airbus's figure);
-- pre-pressurisation 0.1 psi at 400 ft/min (A320 FCOM, FACTS; the 737 "lands slightly pressurised"
-  too); release after touchdown at 500 ft/min (*assumption*; A320 FCOM: released about 55 s after
-  landing, which 0.1 psi at 500 ft/min, about 25 s, satisfies);
+- pre-pressurisation 0.1 psi at 400 ft/min (A320 FCOM; borrowed by the others, above); the landing
+  pressure, the height from which it is held and the Boeing vents are the uncertain parameters of
+  :data:`UNCERTAIN` (value, range, source: docs/research/fleet_loads/OTHER_SOURCES.md section 1 lists
+  what was read); the A320's release at 500 ft/min (FCOM, paraphrased; 0.1 psi in about 23 s, inside
+  its 55 s);
 - outflow-valve lag 5 s (*assumption*: no public figure for the controller's closed-loop time constant);
 - weather: QNH ~ N(1013.25, 8 hPa) and ISA deviation ~ N(0, 8 K) (*assumptions*: a typical
   mid-latitude day-to-day spread of sea-level pressure and temperature, recalled, not read; no
@@ -72,6 +90,7 @@ Figures and their quality (per type in :data:`CABIN_PROFILES`):
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -79,7 +98,59 @@ import numpy as np
 from flightmode.errors import AircraftError, InputDataError, ScenarioError, did_you_mean, first_nonfinite
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, PHASES
 from flightmode.sim.flight import atmosphere as isa
+from flightmode.uncertain import Uncertain, value_of
 from flightmode.units import FPM_MPS, FT_M, HPA_PA, PSI_PA
+
+# ---------------------------------------------------------------------------------------------
+# near the ground: the numbers no source gives (docs/research/fleet_loads/OTHER_SOURCES.md, section 1)
+
+LANDING_RESIDUAL = Uncertain(
+    "cabin.landing_residual_psi",
+    0.1,
+    0.03,
+    0.2,
+    "psi",
+    "Airbus Getting to Grips with the Cockpit/Cabin systems, as usually quoted: the cabin reaches field "
+    "pressure + 0.1 psi just before landing (not read here); a crew flash-card deck of unnamed type: 190 ft "
+    "below the field (0.1 psi); 737 FCOM 2.40.5 and 787 FCOM 2.30.2: 'slightly' pressurised, no number; "
+    "assumption: the range from barely measurable to twice the quoted figure",
+    "the cabin's overpressure over the arrival field at touchdown: the pressure step after it",
+)
+LANDING_LEVEL_HEIGHT = Uncertain(
+    "cabin.landing_level_height_ft",
+    1000.0,
+    200.0,
+    2500.0,
+    "ft",
+    "assumption: the descriptions give no height (A320: landing pressure 'just prior to landing'; 737 "
+    "FCOM 2.40.5 and 787 FCOM 2.30.2: the cabin descends to slightly below the landing altitude and "
+    "lands pressurised); 1,000 ft, the stabilised-approach gate; 200 ft, the last seconds of a final "
+    "approach; 2,500 ft, its start",
+    "the aircraft's height above the arrival field from which the cabin holds its landing pressure",
+)
+VENT_737 = Uncertain(
+    "cabin.vent_737_s",
+    90.0,
+    30.0,
+    240.0,
+    "s",
+    "737 FCOM 2.40.5: 'While taxiing in, the controller drives the outflow valve slowly to the full "
+    "open position' (no time); assumption: half a minute to four, within a taxi-in",
+    "how long a 737's residual overpressure takes to vent, from the start of the taxi-in",
+)
+VENT_787 = Uncertain(
+    "cabin.vent_787_s",
+    5.0,
+    1.0,
+    30.0,
+    "s",
+    "787 FCOM 2.30.2: 'At touchdown, both outflow valves open' (no rate); the manual switch moves a "
+    "valve over its full travel in 30 s (the slowest end); assumption: the automatic drive about as "
+    "fast as the valve's 5 s lag",
+    "how long a 787's residual overpressure takes to vent from touchdown",
+)
+UNCERTAIN = (LANDING_RESIDUAL, LANDING_LEVEL_HEIGHT, VENT_737, VENT_787)
+VENT_STARTS = ("touchdown", "taxi_in")
 
 # ---------------------------------------------------------------------------------------------
 # per-type pressurisation profiles
@@ -98,8 +169,10 @@ class CabinProfile:
     descent_rate_max_fpm: float = 750.0
     prepress_psi: float = 0.1
     prepress_rate_fpm: float = 400.0
-    release_rate_fpm: float = 500.0
+    release_rate_fpm: float = 500.0  # the venting rate after landing, unless ``vent`` is given
     ofv_tau_s: float = 5.0
+    vent_start: str = "touchdown"  # or "taxi_in": when the residual overpressure starts to vent
+    vent: Uncertain | None = None  # the vent's duration (s), when no rate is published
 
     def max_diff_pa(self, cruise_alt_m: float) -> float:
         """Maximum differential (Pa) the controller holds at the selected cruise level."""
@@ -121,10 +194,16 @@ class CabinProfile:
 
 
 CABIN_PROFILES: dict[str, CabinProfile] = {
-    "737": CabinProfile("737", 8000.0, diff_bands=((28_000.0, 7.45), (37_000.0, 7.80), (1e9, 8.35))),
+    "737": CabinProfile(
+        "737",
+        8000.0,
+        diff_bands=((28_000.0, 7.45), (37_000.0, 7.80), (1e9, 8.35)),
+        vent_start="taxi_in",
+        vent=VENT_737,
+    ),
     "A320": CabinProfile("A320", 8000.0, climb_rate_fpm=1000.0, descent_rate_fpm=350.0),
     "fokker100": CabinProfile("fokker100", 8000.0),
-    "787-8": CabinProfile("787-8", 6000.0),
+    "787-8": CabinProfile("787-8", 6000.0, vent=VENT_787),
 }
 
 
@@ -231,6 +310,9 @@ class CabinTruth:
     cruise_cabin_altitude_m: float
     descent_rate_fpm: float
     hold: str
+    landing_residual_psi: float = math.nan  # the run's values of the landing parameters (UNCERTAIN)
+    landing_level_height_m: float = math.nan
+    vent_s: float = math.nan  # the schedule's venting ramp after landing (s; the lag adds ~3 tau)
 
 
 def _phase_codes(phase, n: int) -> np.ndarray:
@@ -273,6 +355,18 @@ def _check_series(t_s, alt_m) -> tuple[np.ndarray, np.ndarray, float]:
     return t, h, step
 
 
+def cumulative_rise_m(rate_mps: np.ndarray, dt: float) -> np.ndarray:
+    """R[k] = sum of ``rate_mps[i] * dt`` for 1 <= i <= k (R[0] = 0): a rate limit's allowance. The
+    rates take a few values (one per phase group), so R is summed per value from integer counts, one
+    rounding each: a running float sum drifts by ~1e-9 m over an hour's 10^4 steps, enough to tip the
+    first step of a descent at the exact rate it needs over its limit by 1e-6 ft/min."""
+    r = np.asarray(rate_mps, float)[1:]
+    out = np.zeros(r.size + 1)
+    for u in np.unique(r):
+        out[1:] += u * dt * np.cumsum(r == u)
+    return out
+
+
 def cabin_pressure(
     t_s,
     alt_m,
@@ -285,6 +379,7 @@ def cabin_pressure(
     departure_elev_m: float | None = None,
     arrival_elev_m: float | None = None,
     hold: str = "pressurised",
+    overrides: Mapping[str, float] | None = None,
 ) -> CabinTruth:
     """Cabin (and hold) pressure of one flight (module docstring).
 
@@ -293,7 +388,9 @@ def cabin_pressure(
     cruise level as a pressure altitude (FL350 = 35,000 ft); ``aircraft`` a JSBSim model with a
     :data:`CABIN_PROFILES` entry, or a profile. ``weather`` / ``arrival_weather`` (default the same) the
     airports' :class:`Weather`; ``departure_elev_m`` / ``arrival_elev_m`` their elevations (default:
-    ``alt_m`` at the first and last sample, the aircraft on the ground there).
+    ``alt_m`` at the first and last sample, the aircraft on the ground there). ``overrides``: the
+    run's uncertain model parameters (a scenario's ``[model]`` table, name -> value; read with
+    :func:`flightmode.uncertain.value_of`; None: every one nominal).
     """
     prof = aircraft if isinstance(aircraft, CabinProfile) else get_cabin_profile(aircraft)
     t, z, dt = _check_series(t_s, alt_m)
@@ -329,10 +426,12 @@ def cabin_pressure(
 
     # fields (pressure altitudes), pre-pressurised fields, cruise cabin
     pre = prof.prepress_psi * PSI_PA
+    resid = value_of(LANDING_RESIDUAL, overrides) * PSI_PA
+    n_land = value_of(LANDING_LEVEL_HEIGHT, overrides) * FT_M
     p_dep = float(ambient_pressure_pa(e_dep, weather.qnh_hpa, weather.isa_dev_k, e_dep))
     p_arr = float(ambient_pressure_pa(e_arr, arr_w.qnh_hpa, arr_w.isa_dev_k, e_arr))
     h_dep, h_arr = float(isa.pressure_altitude_m(p_dep)), float(isa.pressure_altitude_m(p_arr))
-    a_dep, a_arr = float(isa.pressure_altitude_m(p_dep + pre)), float(isa.pressure_altitude_m(p_arr + pre))
+    a_dep, a_arr = float(isa.pressure_altitude_m(p_dep + pre)), float(isa.pressure_altitude_m(p_arr + resid))
     cruise_cab = max(prof.cruise_cabin_alt_m(cruise_alt_m), min(a_dep, a_arr))
     dp_max = prof.max_diff_pa(cruise_alt_m)
 
@@ -347,7 +446,13 @@ def cabin_pressure(
     climb_side = airborne & ~descent_side
     s[climb_side] = (a_dep + (cruise_cab - a_dep) * frac(h_dep))[climb_side]
     desc_air = airborne & descent_side
-    s[desc_air] = (a_arr + (cruise_cab - a_arr) * frac(h_arr))[desc_air]
+    f_land = frac(h_arr)
+    if cruise_alt_m > h_arr:  # the last 2N of the proportional schedule squeezed into N..2N above
+        # the field: the cabin at its landing pressure from N above it down to touchdown
+        f_land = np.clip(
+            np.minimum(f_land, 2.0 * (h_amb - h_arr - n_land) / (cruise_alt_m - h_arr)), 0.0, 1.0
+        )
+    s[desc_air] = (a_arr + (cruise_cab - a_arr) * f_land)[desc_air]
     roll = code == PHASE_CODE["takeoff_roll"]
     if roll.any():
         t_roll = t[np.flatnonzero(roll)[0]]
@@ -356,21 +461,34 @@ def cabin_pressure(
         )
         s[roll] = ramp[roll]
 
-    # rate limits per interval (k-1 -> k), by the phase of sample k (the first entry is unused)
+    # after touchdown: the landing pressure held until the vent starts (at touchdown, or the 737's
+    # taxi-in), then ambient at the type's venting rate
     up = np.where(airborne, prof.climb_rate_fpm, prof.release_rate_fpm) * FPM_MPS
-    r_up = np.concatenate([[0.0], np.cumsum(up[1:] * dt)])
+    vent_s = (h_arr - a_arr) / (prof.release_rate_fpm * FPM_MPS)
+    if prof.vent is not None:
+        vent_s = value_of(prof.vent, overrides)
+    if air_idx.size and air_idx[-1] + 1 < n:
+        td = int(air_idx[-1]) + 1
+        later = np.flatnonzero(in_set(("taxi_in", "shutdown", "parked"))[td:])
+        v0 = td if prof.vent_start == "touchdown" else td + int(later[0]) if later.size else n
+        s[td:v0] = a_arr  # the landing pressure: the field's + the residual (not the moving CG's)
+        up[td:] = max(h_arr - a_arr, 0.0) / vent_s
+    # rate limits per interval (k-1 -> k), by the phase of sample k (the first entry is unused)
+    r_up = cumulative_rise_m(up, dt)
     c1 = r_up + np.minimum.accumulate(s - r_up)  # cabin rise limited
     rate_dn = prof.descent_rate_fpm
     if air_idx.size:
         # the steepest average descent the cabin needs from its peak: no earlier start than the peak
         seg = slice(air_idx[0], air_idx[-1] + 1)
-        ca, ta = c1[seg], t[seg]
+        ca = c1[seg]
         k = ca.size - 1 - int(np.argmax(ca[::-1]))
         if k < ca.size - 1:
-            need_mps = float(np.max((ca[k] - ca[k + 1 :]) / (ta[k + 1 :] - ta[k])))
+            # elapsed time as the limiter counts it (steps of dt): the times' own rounding, ~1e-9 s
+            # over an hour's descent, would let the first step exceed the rate by that much
+            need_mps = float(np.max((ca[k] - ca[k + 1 :]) / (np.arange(1, ca.size - k) * dt)))
             rate_dn = min(max(rate_dn, need_mps / FPM_MPS), prof.descent_rate_max_fpm)
     dn = np.where(airborne, rate_dn, prof.prepress_rate_fpm) * FPM_MPS
-    r_dn = np.concatenate([[0.0], np.cumsum(dn[1:] * dt)])
+    r_dn = cumulative_rise_m(dn, dt)
     c2 = np.minimum.accumulate((c1 + r_dn)[::-1])[::-1] - r_dn  # cabin descent limited (backwards)
     # structural limits: differential at most dp_max (safety valve), never negative (relief valve)
     c2 = np.clip(c2, isa.pressure_altitude_m(p_amb + dp_max), h_amb)
@@ -392,6 +510,9 @@ def cabin_pressure(
         cruise_cabin_altitude_m=float(cruise_cab),
         descent_rate_fpm=float(rate_dn),
         hold=hold,
+        landing_residual_psi=resid / PSI_PA,
+        landing_level_height_m=n_land,
+        vent_s=float(vent_s),
     )
 
 
