@@ -13,7 +13,7 @@ flight's arrays (a track, or a synthetic profile):
 - the residual overpressure at touchdown (cabin minus ambient);
 - the vent: its start (the first sample after touchdown more than :data:`TOL_PA` below the touchdown
   value), its end (the first with the cabin within :data:`TOL_PA` of ambient), the pressure step
-  between them, and the door's opening (the first door-open sample after touchdown).
+  (the cabin at touchdown to the ambient it vents to), and the door's opening (the first door-open sample after touchdown).
 
 Anchors (:data:`VENT_ANCHORS`; docs/research/fleet_loads/OTHER_SOURCES.md section 1 quotes them): the
 A320's outflow valve fully open 55 s after landing, the release starting at touchdown; the 787's
@@ -144,7 +144,7 @@ def landing_figures(
         "vent_start_s": rel(start),
         "vent_complete_s": rel(done),
         "vent_duration_s": rel(done) - rel(start),
-        "step_hpa": float(pc[td] - pc[td + done]) / HPA_PA if done is not None else math.nan,
+        "step_hpa": float(pc[td] - pa[td + done]) / HPA_PA if done is not None else math.nan,
         "taxi_in_s": rel(taxi),
         "door_open_s": rel(door),
         "residual_at_door_hpa": float(diff[td + door]) / HPA_PA if door is not None else math.nan,

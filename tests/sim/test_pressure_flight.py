@@ -163,6 +163,34 @@ def test_the_sweep_gate_is_the_redundant_rule(baro_run):
     )
 
 
+def test_the_cabin_lands_pressurised_and_steps_down_while_taxiing_in(fly_cached):
+    # issue 50's "At landing": the cabin level at its landing pressure before touchdown, then one step
+    # down to the field's pressure (the pattern is a 737: held through the rollout, vented while
+    # taxiing in, 737 FCOM 2.40.5)
+    from flightmode.sim.flight.cabin import LANDING_RESIDUAL, VENT_737
+    from flightmode.sim.flight.cabin_landing import LEVEL_AHEAD_MIN_S, TOL_PA, landing_figures
+
+    sc, tr = fly_cached("pattern")
+    assert sc.aircraft == "737"
+    f = landing_figures(tr.t_s, tr.alt_m, tr.cabin_pressure_pa, tr.ambient_pressure_pa, tr.phase_code)
+    td = int(np.searchsorted(tr.t_s, f["touchdown_t_s"]))
+    flare = tr.phase_code == PHASE_CODE["flare"]
+    assert flare.any() and f["level_before_touchdown_s"] >= LEVEL_AHEAD_MIN_S
+    # through the final approach and the flare the cabin does not move (a step detector's baseline)
+    assert np.ptp(tr.cabin_pressure_pa[flare]) <= TOL_PA
+    # the residual over the ambient at the aircraft: the declared 0.1 psi (6.9 hPa) less the air
+    # between the runway and the aircraft's reference point (the 737's CG 1.1 m up: 13 Pa; 30 Pa
+    # allows the struts' travel at touchdown)
+    assert f["residual_psi"] * 6894.757 == pytest.approx(LANDING_RESIDUAL.value * 6894.757, abs=30.0)
+    # held through the rollout, vented while taxiing in over the declared time, done before the door
+    roll = slice(td, td + int(np.searchsorted(tr.t_s[td:], f["touchdown_t_s"] + f["taxi_in_s"])))
+    assert np.ptp(tr.cabin_pressure_pa[roll]) <= TOL_PA
+    assert f["taxi_in_s"] <= f["vent_start_s"] < f["vent_complete_s"] < f["door_open_s"]
+    assert f["vent_duration_s"] == pytest.approx(VENT_737.value, abs=20.0)  # the ramp, less TOL, plus the lag
+    # one step of the residual: what the cabin at touchdown drops to once vented is the field's pressure
+    assert f["step_hpa"] * HPA_PA == pytest.approx(f["residual_hpa"] * HPA_PA, abs=30.0)
+
+
 def test_an_unpressurised_hold_is_valid_and_changes_the_schedule(fly_cached):
     sc, tr = fly_cached(
         "pattern", cabin={"hold": "unpressurised"}, carrier={"kind": "parcel", "placement": "hold"}
