@@ -134,7 +134,9 @@ def tradeoff_on_track(
     for interval in intervals_s:
         preset = eobs_preset(float(interval), byte_count, odr_per_axis_hz)
         streams = pipeline.streams_of(scenario.seed)
-        rec = pipeline.sense(track, scenario.carrier, preset, streams.child("sensor"))
+        rec = pipeline.sense(
+            track, scenario.carrier, preset, streams.child("sensor"), overrides=scenario.overrides
+        )
         n = preset.burst_samples
         bench = bench_static(
             dataclasses.replace(preset, burst_interval_s=None, burst_samples=None),

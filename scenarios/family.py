@@ -38,6 +38,9 @@ another choice's numbers. A family file (``flightmode family FILE --show 5``):
     gate_walk_s = [30, 300]
     gate_rest_s = [300, 2400]
 
+    [model]                         # optional: uncertain model parameters for every member
+    "turbulence.background_scale" = 0.5   # (`flightmode model` lists them)
+
     [sensor]
     preset = { lis302dl-logged16 = 1 }
     vibration_level = [0.7, 1.4]    # optional: the floor vibration's multiplier, log-uniform
@@ -77,6 +80,7 @@ SECTIONS = {
         "gate_rest_s",
     },
     "sensor": {"preset", "vibration_level", "baro", "gyro"},
+    "model": None,  # free keys: uncertain model parameters (flightmode.scenarios.model), every member's
 }
 EN_ROUTE_CLIMB_MPS = 10.0  # the estimate of the top of climb and descent for placing a patch (WRAP: 5-13 m/s)
 EN_ROUTE_SPEED_MPS = 200.0  # mean ground speed airborne (390 kt)
@@ -157,6 +161,8 @@ class Family:
     gyro: str | None
     text: str  # the file's text (what the dataset stores)
     source: str = "<family>"
+    # the [model] table: every member's overrides of uncertain model parameters (sorted name, value)
+    model: tuple[tuple[str, float], ...] = ()
 
     # ------------------------------------------------------------------ reading
     @classmethod
@@ -165,6 +171,7 @@ class Family:
 
         from flightmode.labels import SEVERITIES
         from flightmode.scenarios import airports as ap
+        from flightmode.scenarios.model import check_model
         from flightmode.scenarios.spec import SPEC
         from flightmode.sim.flight.aircraft.registry import PROFILES
         from flightmode.sim.sensor.barometer import PRESETS as BARO_PRESETS
@@ -312,6 +319,7 @@ class Family:
             gyro=_preset(source, "gyro", sen.get("gyro"), GYRO_PRESETS),
             text=text,
             source=source,
+            model=tuple(check_model(doc.get("model"), source).items()),
         )
         for t in out.aircraft.choices:  # every type with a positive weight needs a route it can fly
             if out.aircraft.p[out.aircraft.choices.index(t)] > 0 and not out.routes_for(t):
@@ -352,6 +360,25 @@ class Family:
         if p.suffix == ".toml" or p.exists():
             return cls.from_toml(p)
         return cls.builtin(str(name_or_path))
+
+    def with_model(self, overrides: Mapping[str, float]) -> Family:
+        """This family with its ``[model]`` table replaced by ``overrides`` (name -> value; ``{}``: none):
+        the same members, drawn from the same streams, flown with those parameters. Its text is the
+        file's with the table rewritten (a new digest: another dataset)."""
+        import tomllib
+
+        import tomli_w
+
+        doc = tomllib.loads(self.text)
+        if "model" in doc or not overrides:
+            doc.pop("model", None)
+            if overrides:
+                doc["model"] = dict(overrides)
+            text = tomli_w.dumps(doc)
+        else:  # the file as written, the table added at its end (comments kept)
+            table = tomli_w.dumps({"model": dict(overrides)})
+            text = self.text.rstrip("\n") + "\n\n" + table
+        return Family.from_toml_text(text, f"{self.source} (model overrides)")
 
     def digest(self) -> str:
         """SHA-256 of the family file's text: the family hash a dataset is tied to."""
@@ -407,6 +434,8 @@ class Family:
             changes["sensor"]["baro"] = self.baro
         if self.gyro is not None:
             changes["sensor"]["gyro"] = self.gyro
+        if self.model:  # no draw: the overrides move no member's numbers
+            changes["model"] = dict(self.model)
         return sc.replace(**changes)
 
     def members(self, n: int, start: int = 0) -> Iterator:

@@ -54,6 +54,9 @@ class Scenario:
     carrier: Any  # flightmode.sim.sensor.carrier.CarrierSpec
     sensor: SensorChoice
     source: str = field(default="<scenario>", compare=False)  # where it came from, for messages
+    # the [model] table: overrides of uncertain model parameters (flightmode.uncertain), sorted
+    # (name, value) pairs; () runs every parameter at its nominal value
+    model: tuple[tuple[str, float], ...] = ()
 
     # ------------------------------------------------------------------ reading
     @classmethod
@@ -129,7 +132,8 @@ class Scenario:
             sen["preset"], sen["odr_hz"], sen["vibration_level"], sen["baro"], sen["baro_odr_hz"], sen["gyro"]
         )
         check_scenario(source, plan, sensor.preset, sensor.odr_hz, sensor.baro, sensor.baro_odr_hz)
-        return cls(s["description"], s["seed"], plan, CarrierSpec(**v["carrier"]), sensor, source)
+        model = tuple(sorted(v["model"].items()))
+        return cls(s["description"], s["seed"], plan, CarrierSpec(**v["carrier"]), sensor, source, model)
 
     @classmethod
     def from_toml_text(cls, text: str, source: str = "<scenario>") -> Scenario:
@@ -165,6 +169,12 @@ class Scenario:
     @property
     def aircraft(self) -> str:
         return self.plan.aircraft
+
+    @property
+    def overrides(self) -> dict[str, float]:
+        """The ``[model]`` overrides as a dict (name -> value; empty: every parameter nominal), what the
+        flight and sensing functions read through :func:`flightmode.uncertain.value_of`."""
+        return dict(self.model)
 
     @property
     def run_id(self) -> str:
@@ -232,6 +242,8 @@ class Scenario:
                 }
             ),
         }
+        if self.model:
+            doc["model"] = dict(self.model)
         if p.turbulence:
             doc["turbulence"] = [
                 _drop_none(
@@ -259,7 +271,8 @@ class Scenario:
         - a section with a dict of its keys to change: ``cruise={"altitude_m": 9000.0}``, or a typed
           value for it (``carrier=CarrierSpec(...)``, ``origin=Runway(...)``, ``sensor=SensorChoice(...)``);
         - ``turbulence=[...]``: the whole list (dicts or ``TurbulenceSegment``);
-        - a dotted ``"section.key"`` (pass as ``**{"cruise.altitude_m": 9000.0}``).
+        - a dotted ``"section.key"`` (pass as ``**{"cruise.altitude_m": 9000.0}``);
+        - ``model={...}``: the whole ``[model]`` table (uncertain parameter name -> value; ``{}``: none).
         """
         from flightmode.scenarios.spec import SPEC
 
@@ -279,6 +292,12 @@ class Scenario:
                 doc["scenario"][key] = value
             elif key == "turbulence":
                 doc["turbulence"] = [_as_doc(t) for t in value]
+            elif key == "model":
+                if not isinstance(value, Mapping):
+                    raise ScenarioError(
+                        f"replace(model={value!r}): give a dict of uncertain parameter name -> value"
+                    )
+                doc["model"] = dict(value)
             elif key in SPEC:
                 if isinstance(value, Mapping):  # a key given None is unset (an optional key's "absent")
                     merged = {**doc.get(key, {}), **value}
@@ -286,7 +305,7 @@ class Scenario:
                 else:
                     doc[key] = _as_doc(value)
             else:
-                allowed = [*SPEC["scenario"], *SPEC]
+                allowed = [*SPEC["scenario"], *SPEC, "model"]
                 raise ScenarioError(
                     f"replace({key}=...): not a scenario key or section{did_you_mean(key, allowed)}; "
                     f"allowed: {', '.join(allowed)}, or 'section.key'"

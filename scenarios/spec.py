@@ -329,6 +329,9 @@ SPEC: dict[str, dict[str, Key]] = {
     },
 }
 ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables
+# the [model] table: overrides of uncertain model parameters, name -> number (free keys, checked against
+# flightmode.scenarios.model.registry(); `flightmode model` lists them)
+MODEL_SECTION = "model"
 OPTIONAL_SECTIONS = {
     "takeoff",
     "route",
@@ -406,13 +409,13 @@ def validate_doc(doc: dict[str, Any], source: str = "<scenario>") -> dict[str, A
     if not isinstance(doc, dict):
         raise ScenarioError(f"{source}: a scenario must be a table of sections, got {type(doc).__name__}")
     for sec in doc:
-        if sec not in SPEC:
+        if sec not in SPEC and sec != MODEL_SECTION:
             raise _fail(
                 source,
                 f"[{sec}]",
                 "...",
-                f"unknown section; allowed: {', '.join(SPEC)}",
-                did_you_mean(sec, SPEC),
+                f"unknown section; allowed: {', '.join([*SPEC, MODEL_SECTION])}",
+                did_you_mean(sec, [*SPEC, MODEL_SECTION]),
             )
     for sec in SPEC:
         if sec not in doc and sec not in OPTIONAL_SECTIONS:
@@ -456,6 +459,9 @@ def validate_doc(doc: dict[str, Any], source: str = "<scenario>") -> dict[str, A
         )
         waypoints.append([lat, lon])
     v["route"]["waypoints"] = waypoints
+    from flightmode.scenarios.model import check_model
+
+    v[MODEL_SECTION] = check_model(doc.get(MODEL_SECTION), source)  # name -> value, validated
     return v
 
 
@@ -583,4 +589,9 @@ def spec_text() -> str:
                 " (required)" if key.default is None and not key.optional else f" (default {key.default!r})"
             )
             lines.append(f"  {k}: {t}{rng}{dflt} - {key.doc}")
+    lines.append(f"[{MODEL_SECTION}]  (optional)")
+    lines.append(
+        '  "<parameter>": float - an uncertain model parameter overridden within its declared range '
+        "(`flightmode model` lists them)"
+    )
     return "\n".join(lines)

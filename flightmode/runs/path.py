@@ -112,13 +112,15 @@ def path_report(run_dir: str | Path, sensors: tuple[str, ...] = ("run", "ideal")
     for name in sensors:
         preset = run_preset if name == "run" else name
         if preset not in recs:
-            recs[preset] = pipeline.sense(track, sc.carrier, preset, streams.child("sensor"))
+            recs[preset] = pipeline.sense(
+                track, sc.carrier, preset, streams.child("sensor"), overrides=sc.overrides
+            )
     rows = path_rows(track, recs, sc.carrier, streams)
     own = recs.get(run_preset)
     own_rows = rows
     if own is None and not ("path" in info and "path_laws_m" in info and "sensor" in info):
         # the drift paragraph is about the run's own sensor: sensed for it when run.json lacks it
-        own = pipeline.sense(track, sc.carrier, run_preset, streams.child("sensor"))
+        own = pipeline.sense(track, sc.carrier, run_preset, streams.child("sensor"), overrides=sc.overrides)
         own_rows = path_rows(track, {run_preset: own}, sc.carrier, streams)
     return PathReport(info["run_id"], rows, _drift(info, run_preset, track, own, own_rows))
 

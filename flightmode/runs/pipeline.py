@@ -8,6 +8,10 @@ flights.
     >>> r.detection.false_static_count, r.written      # doctest: +SKIP
     (0, {})
 
+Model parameters: a scenario's ``[model]`` table (:attr:`Scenario.overrides`) is passed to the flight
+and sensing functions that read uncertain parameters (:mod:`flightmode.uncertain`), as an argument:
+the same scenario, seed and overrides give the same run in any process.
+
 Randomness: one :class:`~flightmode.streams.Streams` per run, from the scenario's seed (or the
 ``seed`` given), with a named child per stage: ``flight`` (turbulence), ``sensor`` (the unit, the
 bag's timeline and motion, vibration, noise, gyro) and ``detector/bench`` (the bench calibration of
@@ -20,7 +24,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
@@ -117,10 +121,18 @@ def fly(
     stop_after_s: float | None = None,
 ) -> FlightTrack:
     """Fly the scenario's plan gate to gate in JSBSim (``streams``: the run's flight streams;
-    ``stop_after_s``: only the first that many simulated seconds, the exact prefix of the flight)."""
+    ``stop_after_s``: only the first that many simulated seconds, the exact prefix of the flight), with
+    the scenario's ``[model]`` overrides of the uncertain model parameters."""
     from flightmode.sim.flight.simulate import fly as _fly
 
-    return _fly(scenario.plan, streams, workdir=workdir, progress=progress, stop_after_s=stop_after_s)
+    return _fly(
+        scenario.plan,
+        streams,
+        workdir=workdir,
+        progress=progress,
+        stop_after_s=stop_after_s,
+        overrides=scenario.overrides,
+    )
 
 
 def baro_preset(sensor: SensorChoice | str | AccelerometerPreset | None):
@@ -141,11 +153,13 @@ def sense(
     *,
     gyro: GyroSpec | None = None,
     fitted: SensorChoice | None = None,
+    overrides: Mapping[str, float] | None = None,
 ) -> Recording:
     """What the bag's sensors record of ``track`` (``streams``: the run's sensor streams): the
     accelerometer, and the barometer and gyroscope that the ``[sensor]`` choice fits (``fitted``: take
     them from this choice instead, e.g. the scenario's when ``sensor`` names another accelerometer;
-    ``gyro``: this gyroscope instead)."""
+    ``gyro``: this gyroscope instead); ``overrides``: the uncertain model parameters (a scenario's
+    ``[model]`` table, :attr:`Scenario.overrides`; None: every one nominal)."""
     from flightmode.sim.sensor.sensing import sense as _sense
 
     parts = fitted if fitted is not None else sensor if isinstance(sensor, SensorChoice) else None
@@ -162,6 +176,7 @@ def sense(
         gyro=gyro,
         vibration_level=1.0 if level is None else float(level),
         baro=baro_preset(parts),
+        overrides=overrides,
     )
 
 
@@ -597,6 +612,7 @@ def run(
                 root.child("sensor"),
                 gyro=g,
                 fitted=None if isinstance(choice, SensorChoice) else sc.sensor,
+                overrides=sc.overrides,
             )
             wall["sense"] = time.perf_counter() - t0
             if writer is not None:

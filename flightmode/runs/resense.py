@@ -69,6 +69,7 @@ def resense_run(
         sc.sensor,
         pipeline.streams_of(sc.seed).child("sensor"),
         gyro=gyro_preset("bmi270") if gyro else None,
+        overrides=sc.overrides,
     )
     wall = time.perf_counter() - t0
     tag = "-".join([rec.preset] + [f"{k}-{v}" for k, v in sorted(changes.items())])

@@ -138,7 +138,13 @@ def flight_streams(dataset: str, row: dict, sensors: Sequence[str] | None):
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
     for preset in sensors:
         sc2 = sc.replace(sensor={"preset": preset, "odr_hz": None})
-        rec = pipeline.sense(track, sc2.carrier, sc2.sensor, pipeline.streams_of(sc2.seed).child("sensor"))
+        rec = pipeline.sense(
+            track,
+            sc2.carrier,
+            sc2.sensor,
+            pipeline.streams_of(sc2.seed).child("sensor"),
+            overrides=sc2.overrides,
+        )
         cols = {
             "t_s": rec.t_s,
             "acc_g": rec.acc_g,

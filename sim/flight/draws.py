@@ -23,6 +23,7 @@ Touchdown sink speed by landing quality (the scenario's ``[landing].quality``):
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -79,10 +80,12 @@ def draw_sink_mps(quality: str, rng: np.random.Generator) -> float:
     return rng.uniform(lo, hi) * FPS_MPS
 
 
-def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDraws:
+def draw_flight(
+    plan: FlightPlan, profile: AircraftProfile, streams, overrides: Mapping[str, float] | None = None
+) -> FlightDraws:
     """One flight's draws from its ``flight`` streams (named: ``climb``, ``climb/initial``, ``takeoff``,
     ``landing``, ``turbulence/atmosphere``, ``weather/departure``, ``weather/arrival``); the plan's fixed
-    values replace the draws."""
+    values replace the draws; ``overrides``: the run's uncertain model parameters."""
     c = profile.climb
     r = streams.rng("climb")
     climb = (c.vs_pre_cas.draw(r), c.vs_cas.draw(r), c.vs_mach.draw(r))
@@ -98,6 +101,7 @@ def draw_flight(plan: FlightPlan, profile: AircraftProfile, streams) -> FlightDr
         w20_mps=plan.surface_wind_mps,
         background_edr=plan.background_edr,
         w_star_mps=plan.convective_velocity_mps,
+        overrides=overrides,
     )
     dep = _weather(plan, plan.departure_qnh_hpa, streams.rng("weather/departure"))
     arr = _weather(plan, plan.arrival_qnh_hpa, streams.rng("weather/arrival"))

@@ -18,7 +18,7 @@ import dataclasses
 import math
 import operator
 from array import array
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 
 import numpy as np
@@ -111,6 +111,7 @@ def fly(
     workdir: Path | None = None,
     progress: Callable[[float, str], None] | None = None,
     stop_after_s: float | None = None,
+    overrides: Mapping[str, float] | None = None,
 ) -> FlightTrack:
     """Fly ``plan`` gate to gate; raise :class:`FlightDivergedError` if the flight fails.
 
@@ -120,6 +121,8 @@ def fly(
     ``progress(t_s, phase)`` is called about once per simulated minute. ``stop_after_s``: stop after
     that much simulated time (a preview, or a quick check: the track is then the exact prefix of the
     whole flight's, its in-flight window running to its end if the engines still run).
+    ``overrides``: the run's uncertain model parameters (a scenario's ``[model]`` table: name -> value,
+    :mod:`flightmode.uncertain`), passed to the functions that read them; None: every one nominal.
     """
     streams = as_streams(streams)
     fdm_hz = float(plan.fdm_hz)
@@ -146,7 +149,7 @@ def fly(
             "remove the model's <integrator> setting"
         )
     ac.set("propulsion/cutoff_cmd", 1)
-    draws = draw_flight(plan, prof, streams)
+    draws = draw_flight(plan, prof, streams, overrides)
     pilot = Pilot(ac, plan, prof, fdm_hz, draws, taxi)
     gusts = GustFeed(ac, GustField(fdm_hz, streams.rng("turbulence/field")), draws.atmosphere, ac.index)
     # JSBSim's state straight after run_ic is the requested initial condition, not yet resolved on
@@ -260,7 +263,7 @@ def fly(
         "fuel_loaded_kg": fuel_start_lbs * LB_KG,
         "fuel_used_kg": (fuel_start_lbs - _fuel_lbs(ac)) * LB_KG,
     }
-    cab = pressure_truth(track, plan, draws)
+    cab = pressure_truth(track, plan, draws, overrides)
     return dataclasses.replace(
         track,
         conditions=draws.as_dict()
@@ -280,9 +283,10 @@ def fly(
     )
 
 
-def pressure_truth(track: FlightTrack, plan: FlightPlan, draws):
+def pressure_truth(track: FlightTrack, plan: FlightPlan, draws, overrides: Mapping[str, float] | None = None):
     """The flight's pressure truth (:func:`flightmode.sim.flight.cabin.cabin_pressure`): the type's
-    schedule to the plan's cruise level, under the drawn (or fixed) weather at both airports."""
+    schedule to the plan's cruise level, under the drawn (or fixed) weather at both airports, with the
+    run's uncertain model parameters ``overrides``."""
     from flightmode.sim.flight.cabin import cabin_pressure
 
     return cabin_pressure(
@@ -296,6 +300,7 @@ def pressure_truth(track: FlightTrack, plan: FlightPlan, draws):
         departure_elev_m=plan.origin.elevation_m,
         arrival_elev_m=plan.destination.elevation_m,
         hold=plan.hold,
+        overrides=overrides,
     )
 
 

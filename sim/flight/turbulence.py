@@ -40,15 +40,21 @@ What is drawn (:func:`draw_atmosphere`, per flight, from the flight's ``turbulen
   at 0.31 z_i) and sigma_u^2 = sigma_v^2 = 0.36 w*^2 (Stull, sec. 11.1: sigma_u about 0.6 w*).
   The mechanical model alone made the air below 2000 ft calmer than calm cruise on every built-in
   (validate's 30 s load-factor std ratio 0.47-0.67, against >= 1), where low-level air is usually rougher.
+
+Uncertain parameter (:data:`UNCERTAIN`, overridden by a scenario's ``[model]`` table): the drawn
+background EDR's scale ``turbulence.background_scale`` (1 in 0.33-1): calm cruise here is 2-3 times
+rougher than a real A320's recorded one, and calm cruise is where a detector must not see static air.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
+from flightmode.uncertain import Uncertain, value_of
 from flightmode.units import FT_M
 
 L_HIGH_M = 1750.0 * FT_M  # MIL-F-8785C 3.7.2.1: scale length above 2000 ft
@@ -61,6 +67,18 @@ SURFACE_WIND_MEAN_MPS = 4.5  # Troen and Petersen (1989), open terrain: Rayleigh
 MID_TOP_M = 20_000.0 * FT_M  # the mid levels end at FL200
 W_STAR_RANGE_MPS = (0.0, 2.0)  # convective velocity scale (module docstring)
 Z_I_RANGE_M = (500.0, 2000.0)  # mixed-layer depth (module docstring)
+BACKGROUND_SCALE = Uncertain(
+    "turbulence.background_scale",
+    1.0,
+    0.33,
+    1.0,
+    "1",
+    "assumption: validate's calm-cruise load-factor spread is 2-3 times an A320 QAR's (issue 50); "
+    "the Sharman and Pearson (2017) climatology is of all flights, not of the calm ones; x 0.33 "
+    "matches the QAR, x 1 the climatology",
+    "calm air above 2000 ft: the drawn background EDR (cruise's quiet, the in-flight windows)",
+)
+UNCERTAIN = (BACKGROUND_SCALE,)
 
 
 @dataclass(frozen=True, slots=True)
@@ -93,13 +111,17 @@ def draw_atmosphere(
     w20_mps: float | None = None,
     background_edr: float | None = None,
     w_star_mps: float | None = None,
+    overrides: Mapping[str, float] | None = None,
 ) -> Atmosphere:
     """Draw one flight's turbulence (module docstring). ``patches``: the plan's turbulence segments
     (``severity`` and an optional ``edr``); ``w20_mps`` / ``background_edr`` / ``w_star_mps`` fix
-    those draws. The draws are always made in the same order, so fixing one never moves the others."""
+    those draws. The draws are always made in the same order, so fixing one never moves the others.
+    ``overrides``: the run's uncertain parameters (:data:`UNCERTAIN`: the drawn background EDR is
+    multiplied by ``turbulence.background_scale``; a fixed ``background_edr`` is used as given)."""
     w20 = float(rng.rayleigh(SURFACE_WIND_MEAN_MPS / math.sqrt(math.pi / 2.0)))
-    mid = _truncated_lognormal(rng, EDR_BANDS["light"][0])
-    upper = _truncated_lognormal(rng, EDR_BANDS["light"][0])
+    k = value_of(BACKGROUND_SCALE, overrides)
+    mid = _truncated_lognormal(rng, EDR_BANDS["light"][0]) * k
+    upper = _truncated_lognormal(rng, EDR_BANDS["light"][0]) * k
     edrs = []
     for seg in patches:
         lo, hi = EDR_BANDS[seg.severity]

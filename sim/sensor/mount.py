@@ -47,6 +47,11 @@ Packings (the sensor inside the bag):
   Hz, horizontal 15-30 Hz, damping 0.1-0.3 (assumptions: a cushion designed to resonate above a
   road vehicle's 1-15 Hz band resonates inside the airframe's 10-30 Hz one, and amplifies it).
 
+The seat's and the lap's ranges decide the certification verdict (most false statics are bags on
+them at the ground holds) and rest on assumptions: each is scaled by a declared uncertain factor
+(:data:`UNCERTAIN`: ``mount.seat.fn_v_scale``, ``fn_h_scale``, ``zeta_scale`` and the lap's; 1 is the
+range above), which a scenario's ``[model]`` table overrides (:func:`support_stage`).
+
 The cabin row (``front``, ``mid``, ``rear``) sets the floor's vibration level
 (:data:`flightmode.sim.sensor.vibration.LOCATION_LEVEL`); it is drawn uniformly unless the carrier
 fixes it; a bag in the hold is in the hold.
@@ -54,10 +59,13 @@ fixes it; a bag in the hold is in the hold.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
+
+from flightmode.uncertain import Uncertain, value_of
 
 if TYPE_CHECKING:
     from flightmode.sim.sensor.carrier import CarrierSpec
@@ -109,6 +117,98 @@ PACKINGS = {  # the bag around the sensor (module docstring)
 }
 CABIN_ROWS = ("front", "mid", "rear")
 
+# ---------------------------------------------------------------------- uncertain parameters
+# The soft supports' ranges above are assumptions, and they decide the verdict: most false statics of
+# a population are bags on a seat cushion or a lap at the pushback and taxi holds. Each range is
+# scaled by a factor (1: the range above) declared here, so that a study can move it
+# (flightmode.uncertain; `flightmode certify --uncertainty`). A factor multiplies both ends of the
+# range, so the flight's draw moves with it (the same uniform number, a scaled range).
+SEAT_FN_V_SCALE = Uncertain(
+    "mount.seat.fn_v_scale",
+    1.0,
+    0.67,
+    3.8,
+    "1",
+    "assumption: fn = sqrt(g / delta) / 2 pi (Harris and Piersol, ch. 2); the 3.0-4.5 Hz above is a "
+    "deep 1.2-2.8 cm sinking; a light bag (1-3 kg) on a firm airline cushion sinks 1-5 mm, "
+    "7-16 Hz (x 3.8: 11-17 Hz); x 0.67: 2.8-6 cm into a soft one",
+    "a bag on a seat cushion: the vertical resonance (3.0-4.5 Hz times this)",
+)
+SEAT_FN_H_SCALE = Uncertain(
+    "mount.seat.fn_h_scale",
+    1.0,
+    0.6,
+    2.5,
+    "1",
+    "assumption: foam shear gives fn_h about 0.6 fn_v (Gibson and Ashby, ch. 5), so a 3.8 x firmer "
+    "cushion could hold the bag at up to 2.5 x the 5-7 Hz above; x 0.6: the foam alone, no friction",
+    "a bag on a seat cushion: the horizontal resonances (5-7 Hz times this)",
+)
+SEAT_ZETA_SCALE = Uncertain(
+    "mount.seat.zeta_scale",
+    1.0,
+    0.5,
+    2.0,
+    "1",
+    "assumption: polyurethane foam loss factors 0.2-0.4 (zeta 0.1-0.2 above), halved or doubled",
+    "a bag on a seat cushion: the damping of its resonances (0.1-0.2 times this)",
+)
+LAP_FN_V_SCALE = Uncertain(
+    "mount.lap.fn_v_scale",
+    1.0,
+    0.75,
+    2.0,
+    "1",
+    "assumption: the 4-6 Hz above is the seated body's resonance (ISO 5982:2001; Griffin 1990, ch. 8) "
+    "for a body-sized mass; a light bag on the thighs' soft tissue alone sits higher, up to 8-12 Hz",
+    "a bag on a lap: the vertical resonance (4-6 Hz times this)",
+)
+LAP_FN_H_SCALE = Uncertain(
+    "mount.lap.fn_h_scale",
+    1.0,
+    0.5,
+    2.0,
+    "1",
+    "assumption: no source for the 1.5-3 Hz above; halved or doubled",
+    "a bag on a lap: the horizontal resonances (1.5-3 Hz times this)",
+)
+LAP_ZETA_SCALE = Uncertain(
+    "mount.lap.zeta_scale",
+    1.0,
+    0.5,
+    2.0,
+    "1",
+    "assumption: the 0.3-0.5 above (soft tissue is heavily damped), halved or doubled (at most 1)",
+    "a bag on a lap: the damping of its resonances (0.3-0.5 times this)",
+)
+UNCERTAIN = (
+    SEAT_FN_V_SCALE,
+    SEAT_FN_H_SCALE,
+    SEAT_ZETA_SCALE,
+    LAP_FN_V_SCALE,
+    LAP_FN_H_SCALE,
+    LAP_ZETA_SCALE,
+)
+SCALED_SUPPORTS = {  # placement -> its (fn_h, fn_v, zeta) scale factors
+    "seat": (SEAT_FN_H_SCALE, SEAT_FN_V_SCALE, SEAT_ZETA_SCALE),
+    "lap": (LAP_FN_H_SCALE, LAP_FN_V_SCALE, LAP_ZETA_SCALE),
+}
+
+
+def support_stage(placement: str, overrides: Mapping[str, float] | None = None) -> Stage:
+    """The support's stage at ``placement`` with the run's ``overrides`` of its scale factors
+    (:data:`SCALED_SUPPORTS`; nominal: :data:`PLACEMENTS`' ranges, bit for bit). A damping ratio
+    is capped at 1 (critical)."""
+    st = PLACEMENTS[placement].stage
+    if placement not in SCALED_SUPPORTS:
+        return st
+    kh, kv, kz = (value_of(p, overrides) for p in SCALED_SUPPORTS[placement])
+    return Stage(
+        (st.fn_h_hz[0] * kh, st.fn_h_hz[1] * kh),
+        (st.fn_v_hz[0] * kv, st.fn_v_hz[1] * kv),
+        (min(1.0, st.zeta[0] * kz), min(1.0, st.zeta[1] * kz)),
+    )
+
 
 @dataclass(frozen=True, slots=True)
 class MountDraw:
@@ -138,11 +238,14 @@ def draw_stage(stage: Stage, rng: np.random.Generator) -> tuple[np.ndarray, np.n
     return np.array([fh[0], fh[1], fv]), zeta
 
 
-def draw_mount(spec: CarrierSpec, rng: np.random.Generator) -> MountDraw:
-    """The mount at the carrier's ``placement``. Draws, in this order: the support's stage, the
-    packing's (:func:`draw_stage` each), the cabin row (uniform over :data:`CABIN_ROWS`; replaced by
-    the carrier's ``cabin_row`` when it fixes one, by ``hold`` in the hold)."""
-    f1, z1 = draw_stage(PLACEMENTS[spec.placement].stage, rng)
+def draw_mount(
+    spec: CarrierSpec, rng: np.random.Generator, overrides: Mapping[str, float] | None = None
+) -> MountDraw:
+    """The mount at the carrier's ``placement``. Draws, in this order: the support's stage
+    (:func:`support_stage`, with the run's ``overrides``), the packing's (:func:`draw_stage` each),
+    the cabin row (uniform over :data:`CABIN_ROWS`; replaced by the carrier's ``cabin_row`` when it
+    fixes one, by ``hold`` in the hold)."""
+    f1, z1 = draw_stage(support_stage(spec.placement, overrides), rng)
     f2, z2 = draw_stage(PACKINGS[spec.packing_name], rng)
     row = CABIN_ROWS[int(rng.integers(0, len(CABIN_ROWS)))]
     if spec.placement == "hold":
@@ -152,15 +255,18 @@ def draw_mount(spec: CarrierSpec, rng: np.random.Generator) -> MountDraw:
     return MountDraw(np.vstack([f1, f2]), np.vstack([z1, z2]), row, spec.packing_name)
 
 
-def draw_mounts(spec: CarrierSpec, rng: np.random.Generator) -> dict[str, MountDraw]:
+def draw_mounts(
+    spec: CarrierSpec, rng: np.random.Generator, overrides: Mapping[str, float] | None = None
+) -> dict[str, MountDraw]:
     """The mount of every placement the bag rests on in the flight: :func:`draw_mount` at its
     ``placement``, then, for a ``cruise_placement``, that support's stage (drawn last, so that adding
-    it moves no other draw) with the same packing and cabin row (the same bag, at the same seat)."""
-    m = draw_mount(spec, rng)
+    it moves no other draw) with the same packing and cabin row (the same bag, at the same seat).
+    ``overrides``: the run's uncertain parameters (:data:`UNCERTAIN`)."""
+    m = draw_mount(spec, rng, overrides)
     out = {spec.placement: m}
     cp = spec.cruise_placement
     if cp is not None and cp != spec.placement:
-        f1, z1 = draw_stage(PLACEMENTS[cp].stage, rng)
+        f1, z1 = draw_stage(support_stage(cp, overrides), rng)
         out[cp] = MountDraw(np.vstack([f1, m.fn_hz[1]]), np.vstack([z1, m.zeta[1]]), m.cabin_row, m.packing)
     return out
 
@@ -193,6 +299,8 @@ __all__ = [
     "CABIN_ROWS",
     "PACKINGS",
     "PLACEMENTS",
+    "SCALED_SUPPORTS",
+    "UNCERTAIN",
     "MountDraw",
     "Stage",
     "Support",
@@ -201,4 +309,5 @@ __all__ = [
     "draw_stage",
     "mount_sos",
     "stage_gain",
+    "support_stage",
 ]

@@ -23,6 +23,8 @@ with the engines stopped (before engine start, after engines off), and not withi
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 from scipy.signal import sosfilt, sosfilt_zi
 
@@ -79,6 +81,7 @@ def sense(
     mount: mnt.MountDraw | None = None,
     vibration_level: float = 1.0,
     baro: BarometerPreset | None = None,
+    overrides: Mapping[str, float] | None = None,
 ) -> Recording:
     """Sense ``track`` with a bag carried as ``spec`` and an accelerometer ``preset``.
 
@@ -96,6 +99,9 @@ def sense(
 
     ``baro``: a barometer fitted beside the accelerometer (:func:`read_barometer`, streams
     ``baro/unit`` and ``baro/noise``); it needs a track with pressure truth.
+
+    ``overrides``: the run's uncertain model parameters (a scenario's ``[model]`` table, name ->
+    value, :mod:`flightmode.uncertain`), passed to the draws that read them (:func:`draw_path`).
     """
     _check_track(track)
     preset.validate()
@@ -107,7 +113,7 @@ def sense(
     cruise = (float(track.t_s[cruise_idx[0]]), float(track.t_s[cruise_idx[-1]])) if cruise_idx.size else None
     segs = car.build_timeline(spec, events, cruise, streams.rng("timeline"))
     rng_motion, rng_vib, rng_noise = streams.rng("motion"), streams.rng("vibration"), streams.rng("noise")
-    floor_draw, mount_draws = draw_path(track.aircraft, spec, streams)
+    floor_draw, mount_draws = draw_path(track.aircraft, spec, streams, overrides)
     vibration_imposed = vibration
     vibration = floor_draw.model if vibration is None else vibration
     if vibration_level != 1.0:  # a population's spread of levels (a scenario's [sensor].vibration_level)
@@ -326,15 +332,17 @@ def read_barometer(
 
 
 def draw_path(
-    aircraft: str, spec: car.CarrierSpec, streams: Streams
+    aircraft: str, spec: car.CarrierSpec, streams: Streams, overrides: Mapping[str, float] | None = None
 ) -> tuple[FloorDraw, dict[str, mnt.MountDraw]]:
     """One flight's draws of the path from the airframe to the sensor, each from its own stream: the
     mounts (support, packing, cabin row, for the placement and the cruise placement: stream
     ``mount``, :func:`~flightmode.sim.sensor.mount.draw_mounts`), then the floor's vibration at
-    that row for that type (stream ``floor``, :func:`~flightmode.sim.sensor.vibration.draw_floor`)."""
+    that row for that type (stream ``floor``, :func:`~flightmode.sim.sensor.vibration.draw_floor`);
+    ``overrides``: the run's uncertain model parameters (the mounts' and the floor's)."""
     spec.validate()
-    mounts = mnt.draw_mounts(spec, streams.rng("mount"))
-    return draw_floor(aircraft, mounts[spec.placement].cabin_row, streams.rng("floor")), mounts
+    mounts = mnt.draw_mounts(spec, streams.rng("mount"), overrides)
+    floor = draw_floor(aircraft, mounts[spec.placement].cabin_row, streams.rng("floor"), overrides=overrides)
+    return floor, mounts
 
 
 def _track_rows_at(rows: np.ndarray, track: FlightTrack, t: np.ndarray) -> np.ndarray:

@@ -45,6 +45,10 @@ What varies between flights (:func:`draw_floor`), each a named parameter:
   its other flights "similar" to its two tables;
 - the mode frequencies (``MODE_JITTER``): within +-10 % per flight (payload and fuel): assumption.
 
+Uncertain parameters (:data:`UNCERTAIN`, overridden by a scenario's ``[model]`` table): the engine
+excitation's share at idle (``vibration.engine_idle_share``, 0.5 in 0.25-0.8), which sets how loud
+the floor is at the pushback and the taxi holds, where most false statics are.
+
 Engine spool speeds (rpm at 100 %): CFM56-5B N1 5000 / N2 14460 (EASA type certificate data sheet
 E.067); CFM56-3 (737) 5490 / 15183; Rolls-Royce Tay 650 (fokker100) 8400 / 12500; Trent 1000 (787-8)
 2683 / 13391 (public type certificate data sheets, rounded).
@@ -53,6 +57,7 @@ E.067); CFM56-3 (737) 5490 / 15183; Rolls-Royce Tay 650 (fokker100) 8400 / 12500
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -60,6 +65,20 @@ import numpy as np
 from scipy.signal import iirpeak, lfilter, sosfilt, zpk2sos
 
 from flightmode.labels import ENGINES_OFF_N2_PCT
+from flightmode.uncertain import Uncertain, value_of
+
+ENGINE_IDLE_SHARE = Uncertain(
+    "vibration.engine_idle_share",
+    0.5,
+    0.25,
+    0.8,
+    "1",
+    "assumption: seed 000 section 2 says the vibration starts 'as soon as the engines are turned on', "
+    "no level; 0.5 was set with the mounts against seed 000's Tables 4-5 (cruise, not idle); "
+    "no public idle cabin-floor level was found",
+    "the floor's engine vibration at idle (pushback, taxi holds) relative to full power",
+)
+UNCERTAIN = (ENGINE_IDLE_SHARE,)
 
 ENGINE_RPM = {  # model -> (N1 rpm at 100 %, N2 rpm at 100 %)
     "A320": (5000.0, 14460.0),
@@ -88,7 +107,8 @@ class VibrationModel:
     joint_spacing_m: float = 5.0
     joint_impulse_g: float = 20.0e-3  # peak of one joint bump (decays through the modes)
     axis_share: tuple[float, float, float] = (0.3, 0.6, 1.0)  # x, y, z relative weights
-    engine_idle_share: float = 0.5  # engine excitation at 0 % N1 relative to 100 % (the rest grows as N1^2)
+    # engine excitation at 0 % N1 relative to 100 % (the rest grows as N1^2): ENGINE_IDLE_SHARE
+    engine_idle_share: float = ENGINE_IDLE_SHARE.value
     airflow_q_ref_pa: float = 15000.0  # dynamic pressure at which the airflow drive is mode_airflow_g
 
 
@@ -125,12 +145,19 @@ class FloorDraw:
 
 
 def draw_floor(
-    aircraft: str, location: str, rng: np.random.Generator, base: VibrationModel = VibrationModel()
+    aircraft: str,
+    location: str,
+    rng: np.random.Generator,
+    base: VibrationModel = VibrationModel(),
+    overrides: Mapping[str, float] | None = None,
 ) -> FloorDraw:
     """One flight's floor vibration at ``location`` (a cabin row ``front`` / ``mid`` / ``rear`` or
     ``hold``) of ``aircraft``: ``base`` with its amplitudes scaled by the type's level, the location's
     (by engine position) and a lognormal flight-to-flight factor, and its mode frequencies jittered.
-    Draws, in this order: the flight factor (one normal), the mode scale (one uniform)."""
+    Draws, in this order: the flight factor (one normal), the mode scale (one uniform). ``overrides``:
+    the run's uncertain parameters (:data:`UNCERTAIN`; one overridden replaces ``base``'s value)."""
+    if overrides and ENGINE_IDLE_SHARE.name in overrides:
+        base = dataclasses.replace(base, engine_idle_share=value_of(ENGINE_IDLE_SHARE, overrides))
     if aircraft not in ENGINE_POSITION:
         from flightmode.errors import SensorError, did_you_mean
 
