@@ -92,9 +92,18 @@ def cabin_cmd(
 ) -> None:
     """Print a flight's cabin pressure beside its type's pressurisation schedule.
 
-    Cruise cabin altitude and pressure, cabin climb and descent rates, and the differential."""
+    Cruise cabin altitude and pressure, cabin climb and descent rates, and the differential; then the
+    last 5 minutes before touchdown and the first 2 after it: when the cabin reached its landing
+    pressure, the residual overpressure at touchdown, and the pressure step of the vent, beside the
+    type's pressure-controller description."""
     from flightmode.runs import run_io
-    from flightmode.sim.flight.cabin import cabin_figures, get_cabin_profile
+    from flightmode.sim.flight.cabin import (
+        LANDING_LEVEL_HEIGHT,
+        LANDING_RESIDUAL,
+        cabin_figures,
+        get_cabin_profile,
+    )
+    from flightmode.sim.flight.cabin_landing import AFTER_S, BEFORE_S, VENT_ANCHORS, landing_figures
 
     track, info = run_io.read_track(run_dir)
     if track.cabin_pressure_pa is None:
@@ -109,6 +118,16 @@ def cabin_cmd(
         track.ambient_pressure_pa,
         track.phase_code,
     )
+    land = landing_figures(
+        track.t_s, track.alt_m, track.cabin_pressure_pa, track.ambient_pressure_pa, track.phase_code
+    )
+    anchor = VENT_ANCHORS.get(track.aircraft)
+    anchors = {
+        "landing_residual_psi": [LANDING_RESIDUAL.low, LANDING_RESIDUAL.high],
+        "landing_level_height_ft": [LANDING_LEVEL_HEIGHT.low, LANDING_LEVEL_HEIGHT.high],
+        "vent": anchor.text() if anchor is not None else None,
+        "vent_source": anchor.source if anchor is not None else None,
+    }
     prof = get_cabin_profile(track.aircraft)
     limits = {
         "max_cabin_alt_ft": prof.max_cabin_alt_ft,
@@ -123,9 +142,17 @@ def cabin_cmd(
 
         Path(out).mkdir(parents=True, exist_ok=True)
         png = Path(out) / CABIN_PNG
-        cabin_png(track, f, limits, png, f"{info['run_id']}: {track.aircraft}, cabin and aircraft altitude")
+        cabin_png(
+            track,
+            f,
+            limits,
+            png,
+            f"{info['run_id']}: {track.aircraft}, cabin and aircraft altitude",
+            landing=land or None,
+            window_s=(BEFORE_S, AFTER_S),
+        )
     if as_json:
-        emit_json({"figures": f, "schedule": limits})
+        emit_json({"figures": f, "schedule": limits, "landing": land, "landing_anchors": anchors})
         return
     t = Table(
         "figure",
@@ -165,5 +192,49 @@ def cabin_cmd(
     t.add_row("largest differential", f"{f['max_differential_psi']:.2f} psi", "")
     t.add_row("hold", limits["hold"], "")
     console().print(t)
+    if land:
+        console().print(_landing_table(info["run_id"], track.aircraft, land, anchors))
     if png is not None:
         console().print(Text.assemble("wrote ", (str(png), "bold")), highlight=False)
+
+
+def _landing_table(run_id: str, aircraft: str, f: dict, anchors: dict) -> Table:
+    """The cabin from 5 minutes before touchdown to 2 after, beside its anchors."""
+    t = Table(
+        "figure",
+        "this flight",
+        "anchor",
+        title=f"{run_id}: the cabin near touchdown ({aircraft})",
+        title_justify="left",
+    )
+    lo, hi = anchors["landing_residual_psi"]
+    hlo, hhi = anchors["landing_level_height_ft"]
+    t.add_row(
+        f"cabin {-f['before_t_s'] / 60:.0f} min before touchdown",
+        f"{f['cabin_altitude_before_ft']:,.0f} ft ({f['cabin_pressure_before_hpa']:.1f} hPa), aircraft "
+        f"{f['aircraft_height_before_ft']:,.0f} ft up",
+        "",
+    )
+    t.add_row(
+        "landing pressure reached",
+        f"{f['level_before_touchdown_s']:.0f} s before touchdown, aircraft {f['level_height_ft']:,.0f} ft up",
+        f"before touchdown, lands pressurised (737, 787 FCOM); declared {hlo:,.0f}-{hhi:,.0f} ft",
+    )
+    t.add_row(
+        "residual overpressure at touchdown",
+        f"{f['residual_psi']:.3f} psi ({f['residual_hpa']:.2f} hPa)",
+        f"declared {lo:g}-{hi:g} psi",
+    )
+    t.add_row(
+        "pressure step after touchdown",
+        f"{f['step_hpa']:.2f} hPa from {f['vent_start_s']:.0f} s to {f['vent_complete_s']:.0f} s "
+        f"({f['vent_duration_s']:.0f} s)",
+        anchors["vent"] or "no description read",
+    )
+    t.add_row(
+        "taxi-in, door open",
+        f"taxi-in from {f['taxi_in_s']:.0f} s, door open at {f['door_open_s']:.0f} s "
+        f"({f['residual_at_door_hpa']:.2f} hPa left)",
+        "",
+    )
+    return t

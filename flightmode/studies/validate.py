@@ -34,6 +34,9 @@ Groups and anchors:
   sunless day's low air is calmer, and the row is then shown without an anchor).
 - **ground**: the runway rolls rougher than taxiing (the issue's ordering; speed), the cockpit within
   +-0.4 g (NASA, Morris and Hall, 1965).
+- **cabin**: the cabin near the ground at the end of the flight beside its type's pressure-controller
+  description (:mod:`flightmode.studies.validate_cabin`): level at its landing pressure before
+  touchdown, the residual overpressure in its declared range, the vent's start and end.
 - **seed 000** (with a samples file): Table 2's spread of 1 s moving variances at rest (the paper's
   2 sigma^2 and 2.5 sigma^2 rows imply 0.398 and 0.348; within 30 %), Fig. 6's vibration lines in
   10-30 Hz (10 dB over the sensor's noise), and Tables 4 / 5's per-axis fractions of in-flight checks
@@ -1115,10 +1118,11 @@ def seed000_checks(
 
 # --------------------------------------------------------------------------------------- the run
 def track_checks(track, plan) -> list[Check]:
-    """Every check of a flight's track (kinematics, touchdown, taxi, turbulence, ground), in the order
+    """Every check of a flight's track (kinematics, touchdown, taxi, turbulence, ground, cabin), in the order
     printed; ``plan``: the flight plan it was flown to."""
     from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.flight_metrics import flight_metrics
+    from flightmode.studies.validate_cabin import cabin_rows
 
     m = flight_metrics(track, plan)
     checks = kinematic_checks(track, plan, get_profile(track.aircraft).wrap_type, m)
@@ -1127,6 +1131,7 @@ def track_checks(track, plan) -> list[Check]:
     checks += taxi_checks(track)
     checks += turbulence_checks(track)
     checks += ground_checks(track)
+    checks += [Check(**r) for r in cabin_rows(track)]
     return checks
 
 
