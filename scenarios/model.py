@@ -30,6 +30,8 @@ MODULES = (
     "flightmode.sim.sensor.vibration",
     "flightmode.sim.flight.turbulence",
     "flightmode.sim.flight.cabin",
+    "flightmode.sim.sensor.passenger",
+    "flightmode.sim.sensor.tug",
 )
 
 

@@ -9,7 +9,9 @@ accelerometer's own filter and sampling decide what reaches its output (aliasing
 Frames: on board, the floor's specific force is the FlightTrack's at the bag's lever arm (body
 axes) plus airframe vibration (:mod:`flightmode.sim.sensor.vibration`), passed through the mount of
 where the bag rests (:mod:`flightmode.sim.sensor.mount`: support and packing stages); the floor's
-level and the mounts are drawn once per flight (:func:`draw_path`); the sensor frame is rotated
+level and the mounts are drawn once per flight (:func:`draw_path`); the ground cases add the tug's
+jolts in the push to the floor (:mod:`flightmode.sim.sensor.tug`) and the passenger's breathing and
+posture shifts to a bag on a lap (:mod:`flightmode.sim.sensor.passenger`); the sensor frame is rotated
 from the body frame by the bag's orientation, drawn anew at every put-down. Off board, the bag is in
 a local north/east/down frame: specific force = motion - gravity.
 
@@ -35,6 +37,8 @@ from flightmode.sim.flight.aircraft.registry import get_profile
 from flightmode.sim.flight.track import FlightTrack
 from flightmode.sim.sensor import carrier as car
 from flightmode.sim.sensor import mount as mnt
+from flightmode.sim.sensor import passenger as pax
+from flightmode.sim.sensor import tug
 from flightmode.sim.sensor.accelerometer import AccelerometerPreset, SensorChain, UnitDraw, draw_unit
 from flightmode.sim.sensor.barometer import BarometerPreset
 from flightmode.sim.sensor.gyroscope import GyroSpec
@@ -125,6 +129,14 @@ def sense(
     fs = FS_INTERNAL_HZ
     dt = 1.0 / fs
     n_total = int(round((t_end - t_start) * fs))
+    # the ground cases (issue 50): the passenger under a bag on a lap (stream ``lap``) and the tug's
+    # jolts in the push (stream ``tug``), each drawn only where it acts (its own stream: no other
+    # draw moves)
+    lap = None
+    if any(s.on_board and s.placement == "lap" for s in segs):
+        lap = pax.draw_lap(t_start, t_end, streams.rng("lap"), overrides)
+    span = tug.push_span(track.t_s, track.phase_code, track.ground_speed_mps)
+    tug_draw = None if span is None else tug.draw_tug(span, streams.rng("tug"), overrides)
 
     # per-segment motion (walks, handling) drawn up front, in segment order
     motion: dict[int, np.ndarray] = {}
@@ -183,6 +195,7 @@ def sense(
                 {p: mounts[p] for p in resting},
                 mount_zi,
                 mount_running,
+                None if tug_draw is None else tug.tug_accel_mps2(t, tug_draw),
             )
             mount_running = resting
         else:
@@ -201,6 +214,8 @@ def sense(
                 f_frame = fl[:, a:b] + motion[k][j].T
             else:  # stowed: through the mount of where it rests
                 f_frame = bag[s.placement][:, a:b]
+                if lap is not None and s.placement == "lap":  # the passenger moves under it
+                    f_frame = f_frame + pax.lap_accel_mps2(t[a:b], lap)
             _transients(segs, k, transients, j, f_frame)
             np.matmul(s.orientation.T, f_frame, out=f_sensor[:, a:b])  # sensor <- frame: R^T f
         f_sensor *= 1.0 / G0
@@ -218,6 +233,7 @@ def sense(
         t_out, counts, acc, clipped = t_out[keep], counts[keep], acc[keep], clipped[keep]
     gyro_dps = None if gyro is None else _gyro(t_out, segs, track, gyro, streams.rng("gyro"))
     labels = _labels(t_out, segs, track, events)
+    ground = {k: d.as_dict() for k, d in (("lap", lap), ("tug", tug_draw)) if d is not None}
     pressure, baro_cols = None, {}
     if baro is not None:  # the pressure at the bag is the barometer's truth: computed only for one
         if track.cabin_pressure_pa is None:
@@ -244,7 +260,8 @@ def sense(
         **baro_cols,
         stowage=stowage_record(
             segs, events, mount_draws, floor_draw if vibration_imposed is None and mount is None else None
-        ),
+        )
+        | ({"ground": ground} if ground else {}),
     )
 
 
@@ -360,14 +377,17 @@ def _track_rows_at(rows: np.ndarray, track: FlightTrack, t: np.ndarray) -> np.nd
     return out
 
 
-def _floor_and_bag(track, chans, ne, t, fs, vibration, vstate, rng, mounts, mount_zi, mount_running):
+def _floor_and_bag(
+    track, chans, ne, t, fs, vibration, vstate, rng, mounts, mount_zi, mount_running, jolts=None
+):
     """One chunk on board: the floor's specific force at the bag's place (rows x, y, z, body axes,
-    m/s^2) from the track plus airframe vibration, and the bag's through the mount of each placement
+    m/s^2) from the track plus the tug's ``jolts`` (None: none in this chunk;
+    :mod:`flightmode.sim.sensor.tug`) plus airframe vibration, and the bag's through the mount of each placement
     (``mounts``: placement -> per-axis SOS). Updates ``mount_zi`` in place (started in their steady
     state unless in ``mount_running``); returns the floor without vibration (what a handled bag's arm
     adds to), {placement: the bag's}, and the new vibration state."""
     ch = _track_rows_at(chans, track, t)
-    fl = ch[0:3]
+    fl = ch[0:3] if jolts is None else ch[0:3] + jolts
     n1, n2 = ch[3 : 3 + ne], ch[3 + ne : 3 + 2 * ne]
     qb, gs, wow = ch[3 + 2 * ne], ch[4 + 2 * ne], ch[5 + 2 * ne] > 0.5
     if n1.max() < 1.0 and gs.max() < 0.5:

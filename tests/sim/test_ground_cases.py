@@ -167,3 +167,59 @@ def test_overrides_outside_the_declared_range_are_refused():
         _push(1, {"pushback.start_peak_mps2": 5.0})
     with pytest.raises(ScenarioError, match="passenger.shift_rate_per_min"):
         pax.draw_lap(0.0, 10.0, np.random.default_rng(1), {"passenger.shift_rate_per_min": 0.0})
+
+
+@pytest.fixture(scope="module")
+def pattern_track(fly_cached):
+    return fly_cached("pattern")[1]
+
+
+def _sense(track, placement, monkeypatch=None):
+    from flightmode.sim.sensor.accelerometer import UnitDraw, get_preset
+    from flightmode.sim.sensor.carrier import CarrierSpec
+    from flightmode.sim.sensor.sensing import sense
+
+    spec = CarrierSpec(placement=placement, handled_in_cruise=0)
+    return sense(track, spec, get_preset("lis302dl-logged16"), 4, unit=UnitDraw())
+
+
+def test_sensing_adds_the_jolts_only_in_the_push_and_the_passenger_only_on_a_lap(pattern_track, monkeypatch):
+    tr = pattern_track
+    with_cases = {p: _sense(tr, p) for p in ("under_seat", "lap")}
+    monkeypatch.setattr(tug, "tug_accel_mps2", lambda t, d: None)
+    monkeypatch.setattr(pax, "lap_accel_mps2", lambda t, d: np.zeros((3, np.asarray(t).shape[0])))
+    without = {p: _sense(tr, p) for p in ("under_seat", "lap")}
+    span = tug.push_span(tr.t_s, tr.phase_code, tr.ground_speed_mps)
+    assert span is not None
+    # every other draw is untouched (the cases draw from their own streams): outside the push the
+    # under-seat bag's samples are the same bit for bit; after it, once the mounts' ringing has
+    # decayed below a double's rounding (zeta omega >= 0.1 x 2 pi x 3 Hz: e^-1.9t < 1e-17 after 20 s;
+    # 60 s kept)
+    a, b = with_cases["under_seat"], without["under_seat"]
+    assert np.array_equal(a.t_s, b.t_s)
+    t = a.t_s
+    out = (t < span[0]) | (t > span[1] + 60.0)
+    assert np.array_equal(a.acc_g[out], b.acc_g[out])
+    inside = (t >= span[0]) & (t <= span[1])
+    assert not np.array_equal(a.acc_g[inside], b.acc_g[inside])
+    assert a.stowage["ground"]["tug"]["slack_pulses"] >= 0 and "lap" not in a.stowage["ground"]
+    # the lap: the passenger acts wherever the bag lies on the lap, and nowhere else (off board the
+    # bag is in the terminal: the same samples)
+    a, b = with_cases["lap"], without["lap"]
+    on_lap = np.zeros(t.shape, bool)
+    for seg in a.segments:
+        if seg.on_board and seg.placement == "lap" and seg.state == "stowed":
+            on_lap |= (t >= seg.t0_s) & (t < seg.t1_s)
+    # (from 1 s after the bag leaves the aircraft: the accelerometer's own filter carries the last
+    # on-board samples over for a few of its periods, 0.2 s at the 100 Hz part's anti-alias filter)
+    off_board = np.zeros(t.shape, bool)
+    for seg in a.segments:
+        if not seg.on_board:
+            off_board |= (t >= seg.t0_s + 1.0) & (t < seg.t1_s)
+    assert np.array_equal(a.acc_g[off_board], b.acc_g[off_board])
+    assert not np.array_equal(a.acc_g[on_lap & ~inside], b.acc_g[on_lap & ~inside])
+    assert "lap" in a.stowage["ground"]
+    # the same seed: the same recording, bit for bit
+    monkeypatch.undo()
+    again = _sense(tr, "lap")
+    assert np.array_equal(again.acc_g, with_cases["lap"].acc_g)
