@@ -30,6 +30,7 @@ MODULES = (
     "flightmode.sim.sensor.vibration",
     "flightmode.sim.flight.turbulence",
     "flightmode.sim.flight.cabin",
+    "flightmode.sim.flight.pilot.ground",
     "flightmode.sim.sensor.passenger",
     "flightmode.sim.sensor.tug",
 )

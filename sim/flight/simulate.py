@@ -31,6 +31,7 @@ from flightmode.sim.flight.draws import draw_flight
 from flightmode.sim.flight.geodesy import RunwayFrame
 from flightmode.sim.flight.jsbsim.adapter import ROTATIONAL_RATE_INTEGRATOR_RECT_EULER, JSBSimAircraft
 from flightmode.sim.flight.jsbsim.model_edits import edits_for
+from flightmode.sim.flight.pilot.ground import pushback_tuning
 from flightmode.sim.flight.pilot.pilot import Pilot
 from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.taxi_route import draw_taxi
@@ -127,6 +128,8 @@ def fly(
     streams = as_streams(streams)
     fdm_hz = float(plan.fdm_hz)
     prof = get_profile(plan.aircraft)
+    if (tuning := pushback_tuning(prof.tuning, overrides)) is not prof.tuning:  # [model] pushback.*
+        prof = dataclasses.replace(prof, tuning=tuning)
     # flightmode's changes to the stock model, each with its reason (sim.flight.jsbsim.model_edits)
     ac = JSBSimAircraft(plan.aircraft, 1.0 / fdm_hz, prof.n_engines, workdir=workdir, edits=edits_for(prof))
     origin = RunwayFrame(plan.origin)

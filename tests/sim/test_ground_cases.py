@@ -223,3 +223,34 @@ def test_sensing_adds_the_jolts_only_in_the_push_and_the_passenger_only_on_a_lap
     monkeypatch.undo()
     again = _sense(tr, "lap")
     assert np.array_equal(again.acc_g, with_cases["lap"].acc_g)
+
+
+def test_the_pushback_speed_profile_is_declared_and_overridden_only_when_named():
+    from flightmode.errors import ScenarioError
+    from flightmode.sim.flight.aircraft.registry import get_profile
+    from flightmode.sim.flight.pilot import ground
+
+    tu = get_profile("A320").tuning
+    # the declared nominal values are the profiles' own: a flight without overrides is unchanged
+    assert ground.PUSHBACK_SPEED_MPS.value == tu.pushback_mps
+    assert ground.PUSHBACK_RAMP_MPS2.value == tu.pushback_decel_mps2
+    assert ground.pushback_tuning(tu) is tu
+    assert ground.pushback_tuning(tu, {"mount.seat.fn_v_scale": 2.0}) is tu
+    slow = ground.pushback_tuning(tu, {"pushback.speed_mps": 0.6})
+    assert (slow.pushback_mps, slow.pushback_decel_mps2) == (0.6, tu.pushback_decel_mps2)
+    with pytest.raises(ScenarioError, match="pushback.ramp_mps2"):
+        ground.pushback_tuning(tu, {"pushback.ramp_mps2": 2.0})
+
+
+def test_an_overridden_pushback_speed_reaches_the_flight(fly_cached):
+    # the first 15 minutes of the pattern flight hold its gate wait, engine start and pushback;
+    # the push's top speed is the tug's speed to its PI loop's settling, 5 %
+    from flightmode.labels import PHASE_CODE
+
+    for speed in (0.6, None):
+        changes = {} if speed is None else {"model": {"pushback.speed_mps": speed}}
+        _, tr = fly_cached("pattern", stop_after_s=900.0, **changes)
+        push = tr.phase_code == PHASE_CODE["pushback"]
+        assert push.any()
+        top = float(tr.ground_speed_mps[push].max())
+        assert top == pytest.approx(1.2 if speed is None else speed, rel=0.05)

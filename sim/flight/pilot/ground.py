@@ -1,13 +1,62 @@
 """The ground phases at the stand: waiting at the gate, the engine start, the pushback by a tug,
-the shutdown at the arrival stand and standing parked (taxiing: :mod:`flightmode.sim.flight.pilot.taxi`)."""
+the shutdown at the arrival stand and standing parked (taxiing: :mod:`flightmode.sim.flight.pilot.taxi`).
+
+The pushback's speed profile (the tug's speed and how gently it gets there and stops) is declared
+uncertain here (:data:`UNCERTAIN`; the profiles' ``AircraftTuning.pushback_mps`` and
+``pushback_decel_mps2`` are its nominal values, and :func:`pushback_tuning` puts a run's overrides in
+their place). The tug's jolts on top of that smooth profile are the sensing stage's
+(:mod:`flightmode.sim.sensor.tug`): they do not move the aircraft's path.
+"""
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Mapping
 
 from flightmode.labels import ENGINES_OFF_N2_PCT
 from flightmode.sim.flight.pilot.control import rate_limit
 from flightmode.sim.flight.pilot.controller import Controller
+from flightmode.uncertain import Uncertain, value_of
+
+PUSHBACK_SPEED_MPS = Uncertain(
+    "pushback.speed_mps",
+    1.2,
+    0.55,
+    1.4,
+    "m/s",
+    "Applied Sciences 13(6) 3636 (2023), introduction: the traditional tow or pushback runs at 'about "
+    "2-5 km/h' (0.56-1.39 m/s); 1.2 m/s is the profiles' AircraftTuning.pushback_mps",
+    "the pushback's speed profile: the tug's pushing speed",
+)
+PUSHBACK_RAMP_MPS2 = Uncertain(
+    "pushback.ramp_mps2",
+    0.2,
+    0.05,
+    0.5,
+    "m/s^2",
+    "assumption: the tug reaches its 0.5-1.4 m/s in 2-10 s and stops over the end of the turn as gently "
+    "(AircraftTuning.pushback_decel_mps2); no measured push profile was found",
+    "the pushback's speed profile: the tug's smooth acceleration and deceleration",
+)
+UNCERTAIN = (PUSHBACK_SPEED_MPS, PUSHBACK_RAMP_MPS2)
+
+
+def pushback_tuning(tuning, overrides: Mapping[str, float] | None = None):
+    """``tuning`` (an :class:`~flightmode.sim.flight.aircraft.tuning.AircraftTuning`) with the run's
+    overrides of the pushback's speed and ramp in place of its own; the same object when the
+    overrides name neither (a flight at nominal values is bit-identical)."""
+    names = {PUSHBACK_SPEED_MPS.name, PUSHBACK_RAMP_MPS2.name}
+    if not overrides or not names & set(overrides):
+        return tuning
+    speed, ramp = PUSHBACK_SPEED_MPS, PUSHBACK_RAMP_MPS2
+    return dataclasses.replace(
+        tuning,
+        pushback_mps=value_of(speed, overrides) if speed.name in overrides else tuning.pushback_mps,
+        pushback_decel_mps2=value_of(ramp, overrides)
+        if ramp.name in overrides
+        else tuning.pushback_decel_mps2,
+    )
 
 
 class Gate(Controller):
