@@ -191,6 +191,21 @@ def test_the_cabin_lands_pressurised_and_steps_down_while_taxiing_in(fly_cached)
     assert f["step_hpa"] * HPA_PA == pytest.approx(f["residual_hpa"] * HPA_PA, abs=30.0)
 
 
+def test_the_model_table_reaches_the_cabin(fly_cached):
+    # a scenario's [model] overrides reach the cabin of the flight flown (issue 50 item 4's parameters)
+    from flightmode.sim.flight.cabin_landing import TOL_PA, landing_figures
+
+    sc, tr = fly_cached("pattern", model={"cabin.vent_737_s": 30.0, "cabin.landing_residual_psi": 0.05})
+    f = landing_figures(tr.t_s, tr.alt_m, tr.cabin_pressure_pa, tr.ambient_pressure_pa, tr.phase_code)
+    # 0.05 psi (3.4 hPa) less the air to the aircraft's CG (13 Pa; 30 Pa: the first test's allowance)
+    assert f["residual_psi"] * 6894.757 == pytest.approx(0.05 * 6894.757, abs=30.0)
+    # a 30 s ramp: the cabin is within TOL of ambient TOL / residual of it early and starts TOL below
+    # its touchdown value up to tau = 5 s late (the lag); the lag settles the end within 9 s
+    resid_pa = f["residual_hpa"] * HPA_PA
+    assert 30.0 * (1.0 - 2.0 * TOL_PA / resid_pa) - 5.0 <= f["vent_duration_s"] <= 30.0 + 9.0
+    assert f["vent_complete_s"] < f["door_open_s"]
+
+
 def test_an_unpressurised_hold_is_valid_and_changes_the_schedule(fly_cached):
     sc, tr = fly_cached(
         "pattern", cabin={"hold": "unpressurised"}, carrier={"kind": "parcel", "placement": "hold"}

@@ -126,6 +126,12 @@ def test_builtin_flights_beside_their_anchors(tmp_path_factory, run_cached, name
         assert by_group.get(g), f"no {g} checks"
         bad = [f"{c.figure}: {c.value:.4g} not in {c.anchor_text()}" for c in by_group[g] if not c.passed]
         assert not bad, bad
+    # the cabin near the ground (issue 50 item 4): level before touchdown, the residual in its declared
+    # range, the vent as the type's controller description says (a type without one shown unjudged)
+    cab = by_group.get("cabin", [])
+    assert len(cab) == 4 and all(c.passed for c in cab if c.judged), [
+        (c.figure, c.value, c.anchor_text()) for c in cab
+    ]
     # the climb reaches 10,000 ft on every airliner route, so its time is checked
     assert any(c.figure.startswith("time to 10,000 ft") for c in by_group["climb"])
     # the autoland keeps to the runway: touchdown within 22 ft of the centreline (FAA Order 8900.1)
