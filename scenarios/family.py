@@ -39,7 +39,7 @@ another choice's numbers. A family file (``flightmode family FILE --show 5``):
     gate_rest_s = [300, 2400]
 
     [model]                         # optional: uncertain model parameters for every member
-    "turbulence.background_scale" = 0.5   # (`flightmode model` lists them)
+    "turbulence.background_scale" = 0.5   # (`flightmode scenarios --model` lists them)
 
     [sensor]
     preset = { lis302dl-logged16 = 1 }

@@ -12,7 +12,7 @@ one name once. A scenario or family file overrides them in its ``[model]`` table
 
 :func:`check_model` validates such a table: an unknown name is a :class:`ScenarioError` naming the
 nearest declared one, a value outside the declared range :func:`~flightmode.uncertain.value_of`'s.
-``flightmode model`` prints the registry (:func:`registry_rows`, :func:`registry_markdown`).
+``flightmode scenarios --model`` prints the registry (:func:`registry_rows`, :func:`registry_markdown`).
 """
 
 from __future__ import annotations
@@ -75,7 +75,7 @@ def check_model(table: Any, source: str = "<scenario>") -> dict[str, float]:
         if name not in reg:
             raise ScenarioError(
                 f"{source}: [model].{name}: unknown model parameter{did_you_mean(name, reg)}; "
-                "`flightmode model` lists them"
+                "`flightmode scenarios --model` lists them"
             )
         try:
             out[name] = value_of(reg[name], {name: table[name]})
@@ -121,4 +121,37 @@ def registry_markdown() -> str:
     return "\n".join(lines) + "\n"
 
 
-__all__ = ["MODULES", "check_model", "module_of", "registry", "registry_markdown", "registry_rows"]
+DOCS_BEGIN = "<!-- the registry: python -m flightmode.scenarios.model docs/modelling.md -->"
+DOCS_END = "<!-- end of the registry -->"
+
+
+def with_registry(text: str) -> str:
+    """``text`` (docs/modelling.md) with the table between :data:`DOCS_BEGIN` and :data:`DOCS_END`
+    replaced by :func:`registry_markdown`."""
+    a, b = text.find(DOCS_BEGIN), text.find(DOCS_END)
+    if a < 0 or b < a:
+        raise ScenarioError(f"the text has no registry markers ({DOCS_BEGIN!r} ... {DOCS_END!r})")
+    return text[: a + len(DOCS_BEGIN)] + "\n\n" + registry_markdown() + "\n" + text[b:]
+
+
+__all__ = [
+    "DOCS_BEGIN",
+    "DOCS_END",
+    "MODULES",
+    "check_model",
+    "module_of",
+    "registry",
+    "registry_markdown",
+    "registry_rows",
+    "with_registry",
+]
+
+
+if __name__ == "__main__":  # python -m flightmode.scenarios.model docs/modelling.md: rewrite its table
+    import sys
+    from pathlib import Path
+
+    from flightmode.atomic import write_text
+
+    for arg in sys.argv[1:]:
+        write_text(with_registry(Path(arg).read_text(encoding="utf-8")), Path(arg))

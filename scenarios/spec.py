@@ -330,7 +330,7 @@ SPEC: dict[str, dict[str, Key]] = {
 }
 ARRAY_SECTIONS = {"turbulence"}  # [[turbulence]] tables
 # the [model] table: overrides of uncertain model parameters, name -> number (free keys, checked against
-# flightmode.scenarios.model.registry(); `flightmode model` lists them)
+# flightmode.scenarios.model.registry(); `flightmode scenarios --model` lists them)
 MODEL_SECTION = "model"
 OPTIONAL_SECTIONS = {
     "takeoff",
@@ -592,6 +592,6 @@ def spec_text() -> str:
     lines.append(f"[{MODEL_SECTION}]  (optional)")
     lines.append(
         '  "<parameter>": float - an uncertain model parameter overridden within its declared range '
-        "(`flightmode model` lists them)"
+        "(`flightmode scenarios --model` lists them)"
     )
     return "\n".join(lines)

@@ -29,6 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
+from flightmode.viz.tornado import TornadoData, fig_tornado, tornado_html
+
 FIGURES = (
     "pareto",
     "bound_vs_k",
@@ -68,6 +70,8 @@ class ReportData:
     response_curves: list  # [(legend, finite responses s sorted (n,), flights)] for response_cdf
     phases: dict  # {"phase", "k", "checks", "under_all"}: lists at the recommended method and window
     worst_flight: WorstFlightData | None
+    # the model-uncertainty study (certify --uncertainty): its tornado chart; None: not run
+    tornado: TornadoData | None = None
 
 
 def _plt():
@@ -442,6 +446,8 @@ def render_html(cert, figures: dict[str, bytes], data: ReportData) -> str:
             f"statics in {s['in_window_h']:,.1f} h, bound {s['rate_upper_per_h']:.3g} /h, response p95 "
             f"{s['response_p95_s']:.1f} s, availability {s['availability']:.3f}.</p>"
         )
+    if "tornado" in figures and data.tornado is not None:  # the verdict's uncertainty, beside the verdict
+        parts += tornado_html(data.tornado, figures["tornado"])
     if "pareto" in figures:  # the verdict's picture, above the fold
         parts.append(
             f"<img alt='pareto' src='data:image/png;base64,{base64.b64encode(figures['pareto']).decode()}'>"
@@ -508,7 +514,7 @@ def render_html(cert, figures: dict[str, bytes], data: ReportData) -> str:
             )
     parts.append("<h2>Figures</h2>")
     for name, png in figures.items():
-        if name == "pareto":
+        if name in ("pareto", "tornado"):
             continue
         parts.append(
             f"<h3>{e(name)}</h3><img alt='{e(name)}' src='data:image/png;base64,"
@@ -550,6 +556,9 @@ def write_report(cert, data: ReportData, out: Path) -> dict[str, Path]:
         fig_worst_flight(cert, data.worst_flight, paths["worst_flight"])
     else:
         paths.pop("worst_flight")
+    if data.tornado is not None:
+        paths["tornado"] = fig_dir / "tornado.png"
+        fig_tornado(data.tornado, paths["tornado"])
     report = Path(out) / "report.html"
     atomic_text(render_html(cert, {n: p.read_bytes() for n, p in paths.items()}, data), report)
     return paths | {"report": report}

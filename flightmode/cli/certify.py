@@ -45,15 +45,32 @@ def certify_cmd(
             "--out", help="The report folder (default DATASET/certify; needed for several datasets)."
         ),
     ] = None,
+    uncertainty: Annotated[
+        bool,
+        typer.Option(
+            "--uncertainty",
+            help="Also fly the dataset's members with each uncertain model parameter at each end of its "
+            "range, then at the worst corner (DATASET/uncertainty/), certify each, and say whether the "
+            "recommendation holds (one dataset).",
+        ),
+    ] = False,
+    parameter: Annotated[
+        str | None,
+        typer.Option(
+            "--parameter",
+            help="With --uncertainty: only these parameters (comma-separated; `flightmode scenarios --model`).",
+        ),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help=JSON_HELP)] = False,
 ) -> None:
     """Recommend detector parameters that meet a false-static target, with their evidence.
 
     The Pareto front of (false-static bound, response, availability); the point that meets the target
     with the best response, or how many flight-hours the datasets lack; the paper's section 5.1.1
-    threshold from the static data; OUT/report.html with its figures."""
+    threshold from the static data; OUT/report.html with its figures. --uncertainty: the verdict with
+    its model uncertainty (a tornado chart in the report)."""
     from flightmode.detector.grid import grid_from_text
-    from flightmode.studies.certify import Target, certify
+    from flightmode.studies.certify import Target
     from flightmode.studies.sweep import check_request
 
     grid = grid_from_text(method, weight, window_s, k, time_threshold_s)
@@ -62,8 +79,36 @@ def certify_cmd(
     out = out_of(out, datasets, "certify", "the report")
     sensors = comma_list(sensor, "--sensor")
     check_request(datasets, grid, sigma2_from, sensors)
+    study = None
+    if uncertainty:
+        from flightmode.errors import InputDataError
+        from flightmode.studies.uncertainty import choose_parameters
+        from flightmode.studies.uncertainty import uncertainty as run_uncertainty
+
+        if len(datasets) != 1:
+            raise InputDataError("--uncertainty: give one dataset (its members are flown again per variant)")
+        names = choose_parameters(comma_list(parameter, "--parameter"))
+        cert, study = run_uncertainty(
+            datasets[0],
+            grid,
+            target,
+            parameters=names,
+            sigma2_from=sigma2_from,
+            sensors=sensors,
+            workers=max(workers, 1),
+            out=out,
+            log=(lambda m: None) if as_json else (lambda m: console().print(m, highlight=False)),
+        )
+    else:
+        cert = _certify(datasets, grid, target, sigma2_from, workers, sensors, out, as_json)
+    _print(cert, study, confidence, out, as_json)
+
+
+def _certify(datasets, grid, target, sigma2_from, workers, sensors, out, as_json):
+    from flightmode.studies.certify import certify
+
     with SweepProgress(quiet=as_json) as progress:
-        cert = certify(
+        return certify(
             datasets,
             grid,
             target,
@@ -75,6 +120,9 @@ def certify_cmd(
             on_flight=progress.advance,
             log=(lambda m: None) if as_json else (lambda m: console().print(m, highlight=False)),
         )
+
+
+def _print(cert, study, confidence: float, out, as_json: bool) -> None:
     front = sorted(
         (cert.summary[i] for i in cert.pareto), key=lambda r: (r["rate_upper_per_h"], r["response_p95_s"])
     )
@@ -90,6 +138,7 @@ def certify_cmd(
                 "excluded": cert.meta["excluded"],
                 "report": str(Path(out) / "report.html"),
             }
+            | ({"uncertainty": study.as_dict()} if study is not None else {})
         )
         return
     excluded(cert.meta["excluded"])
@@ -144,4 +193,40 @@ def certify_cmd(
             f"{th['gaussian_white_k']:.2f} eq. 13 white, {th['chi2_white_k']:.2f} chi-square white",
             highlight=False,
         )
+    if study is not None:
+        _print_uncertainty(study, confidence)
     console().print(f"report: {Path(out) / 'report.html'}", highlight=False)
+
+
+def _print_uncertainty(study, confidence: float) -> None:
+    """The variants' table and the sentence of a model-uncertainty study."""
+    t = Table(
+        "variant",
+        "flights",
+        "in-window h",
+        "false statics",
+        f"{confidence:.0%} bound /h",
+        "response p95 s",
+        "its own recommended point",
+        "its bound /h",
+        "its response p95 s",
+        title=f"the recommended point ({study.point}) across the model's uncertainty",
+    )
+    for v in [study.nominal, *study.variants, *([study.corner] if study.corner else [])]:
+        p, r = v.at_point, v.recommendation
+        t.add_row(
+            v.label,
+            str(v.flights_ok),
+            f"{v.in_window_h:,.2f}",
+            str(p["false_statics"]),
+            f"{p['rate_upper_per_h']:.3g}",
+            f"{p['response_p95_s']:.1f}",
+            r["point"],
+            f"{r['rate_upper_per_h']:.3g}",
+            f"{r['response_p95_s']:.1f}",
+        )
+    console().print(t)
+    console().print(
+        Text(study.sentence, style="green" if study.holds else "yellow"),
+        f"(wall {study.wall_s / 60:.1f} min)",
+    )

@@ -161,12 +161,27 @@ def scenarios_cmd(
     phases: Annotated[
         bool, typer.Option("--phases", help="Print the pilot's phase transition table.")
     ] = False,
+    model: Annotated[
+        bool,
+        typer.Option(
+            "--model",
+            help="Print the uncertain model parameters a [model] table may override (value, range, "
+            "unit, source, what each shapes).",
+        ),
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help=JSON_HELP)] = False,
 ) -> None:
     """List the built-in scenarios, each with a one-line description.
 
-    --spec prints the scenario file format, --phases the pilot's phase transition table."""
+    --spec prints the scenario file format, --phases the pilot's phase transition table, --model the
+    uncertain model parameters (what `flightmode certify --uncertainty` varies)."""
     from flightmode.errors import FlightmodeError
+
+    if model:
+        from flightmode.cli.model import print_registry
+
+        print_registry(as_json)
+        return
 
     if spec:
         from flightmode.scenarios.spec import spec_text

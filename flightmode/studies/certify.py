@@ -27,6 +27,7 @@ embedded) and ``figures/*.png`` (:mod:`flightmode.viz.certify_report`).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from collections.abc import Callable, Sequence
@@ -41,6 +42,7 @@ from flightmode.errors import InputDataError
 
 if TYPE_CHECKING:
     from flightmode.detector.grid import Grid
+    from flightmode.viz.tornado import TornadoData
 
 SEED000_POINT = RECOMMENDED.grid_point()  # seed 000, Table 9, as a grid point of the sweep
 
@@ -439,9 +441,14 @@ def certify(
     figures: bool = True,
     log: Callable[[str], None] = lambda s: None,
     scheduler: str | None = None,
+    tornado: TornadoData | None = None,
+    uncertainty: dict | None = None,
 ) -> Certification:
     """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``. ``workers``
-    and ``scheduler``: the sweep's Dask cluster (:func:`flightmode.studies.sweep.sweep`)."""
+    and ``scheduler``: the sweep's Dask cluster (:func:`flightmode.studies.sweep.sweep`). ``tornado``
+    and ``uncertainty``: the model-uncertainty study of these flights
+    (:func:`flightmode.studies.uncertainty.uncertainty`), drawn in the report and kept in
+    ``certify.json`` (its ``uncertainty``)."""
     from flightmode.atomic import write_text as atomic_text
     from flightmode.studies.sweep import breakdown, read_sweep, summarise, sweep
 
@@ -512,13 +519,15 @@ def certify(
         ],
         "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors),
     }
+    if uncertainty is not None:
+        meta["uncertainty"] = uncertainty
     cert = Certification(target, summary, front, rec, seed000, th, breakdowns, worst, meta)
     out.mkdir(parents=True, exist_ok=True)
     atomic_text(json.dumps(as_dict(cert), indent=2, default=_jsonable), out / "certify.json")
     if figures:
         from flightmode.viz.certify_report import write_report
 
-        write_report(cert, report_data(cert, result), out)
+        write_report(cert, dataclasses.replace(report_data(cert, result), tornado=tornado), out)
     return cert
 
 
@@ -663,10 +672,10 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
 
 
 def as_dict(cert: Certification) -> dict:
-    import dataclasses
-
     d = dataclasses.asdict(cert)
     d["threshold"] = {k: v for k, v in d["threshold"].items() if k not in ("survival_k", "survival_max")}
+    if "uncertainty" in d["meta"]:  # the model-uncertainty study, beside the verdict it qualifies
+        d["uncertainty"] = d["meta"].pop("uncertainty")
     return d
 
 
