@@ -100,6 +100,7 @@ def cabin_cmd(
     from flightmode.sim.flight.cabin import (
         LANDING_LEVEL_HEIGHT,
         LANDING_RESIDUAL,
+        UNCERTAIN,
         cabin_figures,
         get_cabin_profile,
     )
@@ -122,7 +123,12 @@ def cabin_cmd(
         track.t_s, track.alt_m, track.cabin_pressure_pa, track.ambient_pressure_pa, track.phase_code
     )
     anchor = VENT_ANCHORS.get(track.aircraft)
+    from flightmode.uncertain import value_of
+
+    overrides = run_io.run_scenario(info, str(Path(run_dir) / "run.json")).overrides
+    run_values = {p.name: value_of(p, overrides) for p in UNCERTAIN}  # the run's, beside the ranges
     anchors = {
+        "run_values": run_values,
         "landing_residual_psi": [LANDING_RESIDUAL.low, LANDING_RESIDUAL.high],
         "landing_level_height_ft": [LANDING_LEVEL_HEIGHT.low, LANDING_LEVEL_HEIGHT.high],
         "vent": anchor.text() if anchor is not None else None,
@@ -187,7 +193,12 @@ def cabin_cmd(
     t.add_row(
         "fastest over the whole flight (10 s)",
         f"{f['max_cabin_descent_fpm']:.0f} down, {f['max_cabin_climb_fpm']:.0f} up ft/min",
-        f"{prof.prepress_rate_fpm:.0f} down (pre-pressurising), {prof.release_rate_fpm:.0f} up (release)",
+        f"{prof.prepress_rate_fpm:.0f} down (pre-pressurising), "
+        + (
+            f"{prof.release_rate_fpm:.0f} up (release)"
+            if prof.vent is None
+            else f"the residual vented over {run_values[prof.vent.name]:.0f} s"
+        ),
     )
     t.add_row("largest differential", f"{f['max_differential_psi']:.2f} psi", "")
     t.add_row("hold", limits["hold"], "")
@@ -209,6 +220,7 @@ def _landing_table(run_id: str, aircraft: str, f: dict, anchors: dict) -> Table:
     )
     lo, hi = anchors["landing_residual_psi"]
     hlo, hhi = anchors["landing_level_height_ft"]
+    run = anchors["run_values"]
     t.add_row(
         f"cabin {-f['before_t_s'] / 60:.0f} min before touchdown",
         f"{f['cabin_altitude_before_ft']:,.0f} ft ({f['cabin_pressure_before_hpa']:.1f} hPa), aircraft "
@@ -218,12 +230,13 @@ def _landing_table(run_id: str, aircraft: str, f: dict, anchors: dict) -> Table:
     t.add_row(
         "landing pressure reached",
         f"{f['level_before_touchdown_s']:.0f} s before touchdown, aircraft {f['level_height_ft']:,.0f} ft up",
-        f"before touchdown, lands pressurised (737, 787 FCOM); declared {hlo:,.0f}-{hhi:,.0f} ft",
+        f"before touchdown, lands pressurised (737, 787 FCOM); declared {hlo:,.0f}-{hhi:,.0f} ft "
+        f"(this run: {run['cabin.landing_level_height_ft']:,.0f})",
     )
     t.add_row(
         "residual overpressure at touchdown",
         f"{f['residual_psi']:.3f} psi ({f['residual_hpa']:.2f} hPa)",
-        f"declared {lo:g}-{hi:g} psi",
+        f"declared {lo:g}-{hi:g} psi (this run: {run['cabin.landing_residual_psi']:g})",
     )
     t.add_row(
         "pressure step after touchdown",

@@ -13,7 +13,7 @@ from flightmode.cli.main import app
 
 def test_cabin_prints_the_landing_window_beside_its_anchors(pattern_run, tmp_path):
     from flightmode.runs.run_io import read_track
-    from flightmode.sim.flight.cabin import LANDING_RESIDUAL
+    from flightmode.sim.flight.cabin import LANDING_RESIDUAL, UNCERTAIN
     from flightmode.sim.flight.cabin_landing import VENT_ANCHORS, landing_figures
 
     run, _ = pattern_run
@@ -39,5 +39,7 @@ def test_cabin_prints_the_landing_window_beside_its_anchors(pattern_run, tmp_pat
     assert doc["landing"] == pytest.approx(f, rel=1e-12, nan_ok=True)
     assert doc["landing_anchors"]["landing_residual_psi"] == [LANDING_RESIDUAL.low, LANDING_RESIDUAL.high]
     assert doc["landing_anchors"]["vent"] == VENT_ANCHORS["737"].text()
+    # the run's parameter values beside the ranges: the pattern overrides none
+    assert doc["landing_anchors"]["run_values"] == {p.name: p.value for p in UNCERTAIN}
     # the table prints what the JSON holds (the residual to 3 decimals)
     assert f"{doc['landing']['residual_psi']:.3f} psi" in r.output
