@@ -21,7 +21,9 @@ every phase.
   read), so the range is an assumption.
 - Posture shifts and fidgets: Poisson events at a rate drawn per flight, each a smooth out-and-back
   displacement pulse (:func:`bump_accel`) of a drawn size and duration along a uniformly random
-  direction. Seated people shift posture more the longer they sit and the less comfortable they are
+  direction; its peak acceleration is 4 pi^2 D / T^2 (0.79 m/s^2 for the nominal 2 cm out and back
+  within 1 s; breathing's is (2 pi f)^2 A, 0.3 mg at the nominal 1.5 mm and 14/min, below the
+  sensor's 2.23 mg noise). Seated people shift posture more the longer they sit and the less comfortable they are
   (in-chair movement measured by seat pressure mats: Fenety, Putnam and Walker, "In-chair
   movement: validity, reliability and implications for measuring sitting discomfort", Applied
   Ergonomics 31, 2000; Akkarakittichoke and Janwantanakul, Safety and Health at Work 8(2), 2017,
