@@ -28,6 +28,9 @@ class TornadoData:
     corner_bound: float | None  # the worst plausible corner's bound (None: no corner flown)
     sentence: str
     rows: tuple[dict, ...] = ()  # the variants' table (flightmode.studies.uncertainty._table_row)
+    # seed 000's recommended point: (nominal bound, per bar (bound at low, at high), corner bound);
+    # None when the grid lacks it
+    seed000: tuple[float, tuple[tuple[float | None, float | None], ...], float | None] | None = None
 
 
 def bar_order(data: TornadoData) -> list[int]:
@@ -35,8 +38,45 @@ def bar_order(data: TornadoData) -> list[int]:
     return sorted(range(len(data.bars)), key=lambda i: -abs(data.bars[i][5] - data.bars[i][4]))
 
 
+def _panel(ax, data: TornadoData, order: list[int], x0: float, ends: list, corner: float | None, title: str):
+    """One tornado: the bars of ``ends`` [(bound at low, at high)] around ``x0``."""
+    n = len(order)
+    for row, i in enumerate(reversed(order)):
+        _name, lo, hi, _unit, _b_lo, _b_hi = data.bars[i]
+        for b, colour, end in ((ends[i][0], "tab:blue", lo), (ends[i][1], "tab:orange", hi)):
+            if b is None or not math.isfinite(b):
+                continue
+            ax.barh(row, b - x0, left=x0, color=colour, alpha=0.8, height=0.6)
+            ax.annotate(
+                f"{end:g}",
+                (b, row),
+                xytext=(4 if b >= x0 else -4, 0),
+                textcoords="offset points",
+                ha="left" if b >= x0 else "right",
+                va="center",
+                fontsize=8,
+            )
+    ax.set_yticks(range(n), [data.bars[i][0] for i in reversed(order)], fontsize=8)
+    ax.axvline(x0, color="k", lw=1, label=f"nominal {x0:.3g} /h")
+    ax.axvline(data.target, color="tab:red", ls="--", lw=1, label=f"target {data.target:g} /h")
+    if corner is not None:
+        ax.axvline(corner, color="tab:purple", ls=":", lw=1.5, label=f"worst corner {corner:.3g} /h")
+    ax.barh([], [], color="tab:blue", label="parameter at its low end")
+    ax.barh([], [], color="tab:orange", label="parameter at its high end")
+    vals = [x0, data.target] + [b for e in ends for b in e if b is not None] + ([corner] if corner else [])
+    finite = [v for v in vals if math.isfinite(v)]
+    if finite:
+        lo_x, hi_x = min(finite), max(finite)
+        pad = 0.12 * (hi_x - lo_x) if hi_x > lo_x else 0.1 * max(abs(hi_x), 1e-12)
+        ax.set_xlim(lo_x - pad, hi_x + pad)
+    ax.set_xlabel(f"false statics per in-window flight-hour, {data.confidence:.0%} bound", fontsize=8)
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, loc="lower right")
+
+
 def fig_tornado(data: TornadoData, path: Path) -> None:
-    """The chart (module docstring) as a PNG at ``path``."""
+    """The chart (module docstring) as a PNG at ``path``: the recommended point's tornado, and seed
+    000's recommended point's beside it when the grid holds it."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -45,47 +85,18 @@ def fig_tornado(data: TornadoData, path: Path) -> None:
     from flightmode.atomic import write_with
 
     order = bar_order(data)
-    n = len(order)
-    fig, ax = plt.subplots(figsize=(9.0, 1.2 + 0.55 * max(n, 1)))
+    panels = 1 if data.seed000 is None else 2
+    fig, axes = plt.subplots(
+        1, panels, figsize=(9.0 * panels, 1.4 + 0.55 * max(len(order), 1)), squeeze=False
+    )
     try:
-        x0 = data.nominal_bound
-        for row, i in enumerate(reversed(order)):
-            name, lo, hi, unit, b_lo, b_hi = data.bars[i]
-            for b, colour, end in ((b_lo, "tab:blue", lo), (b_hi, "tab:orange", hi)):
-                ax.barh(row, b - x0, left=x0, color=colour, alpha=0.8, height=0.6)
-                ax.annotate(
-                    f"{end:g}",
-                    (b, row),
-                    xytext=(4 if b >= x0 else -4, 0),
-                    textcoords="offset points",
-                    ha="left" if b >= x0 else "right",
-                    va="center",
-                    fontsize=8,
-                )
-        ax.set_yticks(range(n), [data.bars[i][0] for i in reversed(order)], fontsize=8)
-        ax.axvline(x0, color="k", lw=1, label=f"nominal {x0:.3g} /h")
-        ax.axvline(data.target, color="tab:red", ls="--", lw=1, label=f"target {data.target:g} /h")
-        if data.corner_bound is not None:
-            ax.axvline(
-                data.corner_bound,
-                color="tab:purple",
-                ls=":",
-                lw=1.5,
-                label=f"worst corner {data.corner_bound:.3g} /h",
-            )
-        ax.barh([], [], color="tab:blue", label="parameter at its low end")
-        ax.barh([], [], color="tab:orange", label="parameter at its high end")
-        vals = [x0, data.target] + [b for bar in data.bars for b in bar[4:]]
-        if data.corner_bound is not None:
-            vals.append(data.corner_bound)
-        finite = [v for v in vals if math.isfinite(v)]
-        if finite:
-            lo, hi = min(finite), max(finite)
-            pad = 0.08 * (hi - lo) if hi > lo else 0.1 * max(abs(hi), 1e-12)
-            ax.set_xlim(lo - pad, hi + pad)
-        ax.set_xlabel(f"false statics per in-window flight-hour, {data.confidence:.0%} bound")
-        ax.set_title(f"the bound of {data.point} as each parameter moves", fontsize=9)
-        ax.legend(fontsize=7, loc="lower right")
+        ends = [(b[4], b[5]) for b in data.bars]
+        _panel(
+            axes[0][0], data, order, data.nominal_bound, ends, data.corner_bound, f"recommended: {data.point}"
+        )
+        if data.seed000 is not None:
+            x0, paper_ends, corner = data.seed000
+            _panel(axes[0][1], data, order, x0, list(paper_ends), corner, "seed 000's recommended point")
         fig.tight_layout()
         write_with(Path(path), lambda tmp: fig.savefig(tmp, dpi=110, format="png"), mkdir=True)
     finally:
@@ -100,8 +111,8 @@ def tornado_html(data: TornadoData, png: bytes) -> list[str]:
         f"<div class='verdict'>{e(data.sentence)}</div>",
         f"<p>The bound of the recommended point ({e(data.point)}) with each uncertain model parameter "
         "at each end of its declared range (the same members and seeds), and with every parameter at the "
-        "end that raised it (the worst plausible corner). `flightmode scenarios --model` lists the parameters and "
-        "their sources.</p>",
+        "end that raised it (the worst plausible corner); beside it, seed 000's recommended point's. "
+        "`flightmode scenarios --model` lists the parameters and their sources.</p>",
         f"<img alt='tornado' src='data:image/png;base64,{base64.b64encode(png).decode()}'>",
     ]
     if data.rows:
@@ -115,10 +126,14 @@ def tornado_html(data: TornadoData, png: bytes) -> list[str]:
             ("recommended", "its own recommended point", "{}"),
             ("recommended_bound_per_h", "its bound /h", "{:.3g}"),
             ("recommended_response_p95_s", "its response p95 s", "{:.1f}"),
+            ("seed000_bound_per_h", "seed 000's point: bound /h", "{:.3g}"),
         )
         head = "".join(f"<th>{e(t)}</th>" for _, t, _ in cols)
         body = "".join(
-            "<tr>" + "".join(f"<td>{e(f.format(r[k]))}</td>" for k, _, f in cols) + "</tr>" for r in data.rows
+            "<tr>"
+            + "".join(f"<td>{e('-' if r.get(k) is None else f.format(r[k]))}</td>" for k, _, f in cols)
+            + "</tr>"
+            for r in data.rows
         )
         parts.append(f"<table><tr>{head}</tr>{body}</table>")
     return parts

@@ -210,6 +210,7 @@ def _print_uncertainty(study, confidence: float) -> None:
         "its own recommended point",
         "its bound /h",
         "its response p95 s",
+        "seed 000's point: bound /h",
         title=f"the recommended point ({study.point}) across the model's uncertainty",
     )
     for v in [study.nominal, *study.variants, *([study.corner] if study.corner else [])]:
@@ -224,6 +225,7 @@ def _print_uncertainty(study, confidence: float) -> None:
             r["point"],
             f"{r['rate_upper_per_h']:.3g}",
             f"{r['response_p95_s']:.1f}",
+            "-" if v.seed000 is None else f"{v.seed000['rate_upper_per_h']:.3g}",
         )
     console().print(t)
     console().print(

@@ -14,8 +14,10 @@ plausible corner, and certifies every variant exactly as the nominal:
 - each variant is certified with :func:`flightmode.studies.certify.certify` (the same grid, target
   and sigma^2 source; its sweep computed on its own flights) into ``OUT/uncertainty/<label>/``;
 - per variant: the bound on false statics per in-window flight-hour of the **nominal's recommended
-  point** (what the tornado chart draws, and what decides whether the recommendation holds), and the
-  variant's own recommendation (its point, bound and response at the gate);
+  point** (what the tornado chart draws, and what decides whether the recommendation holds), the
+  variant's own recommendation (its point, bound and response at the gate), and seed 000's
+  recommended point's bound (the paper's verdict with its uncertainty band: the tornado's second
+  panel);
 - the worst plausible corner: every parameter at the end that gave the higher bound (a parameter
   whose ends both leave the bound at or under the nominal's stays nominal);
 - one sentence: "the recommendation holds across the model's uncertainty", or "it flips when NAME
@@ -60,6 +62,7 @@ class Variant:
     in_window_h: float
     at_point: dict  # the nominal recommended point here: false_statics, rate_upper_per_h, response_*_s, ...
     recommendation: dict  # this variant's own: status, point (name), rate_upper_per_h, response_p95_s, text
+    seed000: dict | None = None  # seed 000's recommended point here (as at_point), None if the grid lacks it
 
 
 @dataclass(frozen=True)
@@ -255,6 +258,8 @@ def uncertainty(
                         "high": p.high,
                         "bound_low": ends[p.low].at_point["rate_upper_per_h"],
                         "bound_high": ends[p.high].at_point["rate_upper_per_h"],
+                        "seed000_bound_low": _seed000_bound(ends[p.low]),
+                        "seed000_bound_high": _seed000_bound(ends[p.high]),
                         "shapes": p.shapes,
                     }
                 )
@@ -339,7 +344,12 @@ def _variant(
             "availability": float(r["availability"]),
             "text": rec["text"],
         },
+        None if cert.seed000 is None else _plain(cert.seed000),
     )
+
+
+def _seed000_bound(v: Variant) -> float | None:
+    return None if v.seed000 is None else float(v.seed000["rate_upper_per_h"])
 
 
 def _plain(row: dict) -> dict:
@@ -371,6 +381,13 @@ def tornado_data(result: UncertaintyResult) -> TornadoData:
             for p in result.parameters
         ),
         corner_bound=None if result.corner is None else float(result.corner.at_point["rate_upper_per_h"]),
+        seed000=None
+        if result.nominal.seed000 is None
+        else (
+            float(result.nominal.seed000["rate_upper_per_h"]),
+            tuple((p["seed000_bound_low"], p["seed000_bound_high"]) for p in result.parameters),
+            None if result.corner is None else _seed000_bound(result.corner),
+        ),
         sentence=result.sentence,
         rows=tuple(
             _table_row(v)
@@ -390,6 +407,8 @@ def _table_row(v: Variant) -> dict[str, Any]:
         "recommended": v.recommendation["point"],
         "recommended_bound_per_h": v.recommendation["rate_upper_per_h"],
         "recommended_response_p95_s": v.recommendation["response_p95_s"],
+        "seed000_false_statics": None if v.seed000 is None else v.seed000["false_statics"],
+        "seed000_bound_per_h": _seed000_bound(v),
     }
 
 

@@ -43,7 +43,8 @@ def _v(label: str, overrides: dict, bound: float, events: int = 1) -> Variant:
         "availability": 0.9,
         "text": "",
     }
-    return Variant(label, overrides, "ds", 4, 3.0, at, rec)
+    paper = at | {"false_statics": 10 * events, "rate_upper_per_h": 10 * bound}  # seed 000's point
+    return Variant(label, overrides, "ds", 4, 3.0, at, rec, paper)
 
 
 def test_the_worst_corner_takes_each_parameter_to_the_end_that_raised_the_bound():
@@ -104,6 +105,8 @@ def test_the_tornado_is_drawn_from_plain_data_and_written_atomically(tmp_path):
                 "high": 2.0,
                 "bound_low": 0.6,
                 "bound_high": 1.4,
+                "seed000_bound_low": 6.0,
+                "seed000_bound_high": 14.0,
             },
             {
                 "name": "b",
@@ -113,6 +116,8 @@ def test_the_tornado_is_drawn_from_plain_data_and_written_atomically(tmp_path):
                 "high": 2.0,
                 "bound_low": 0.8,
                 "bound_high": 0.9,
+                "seed000_bound_low": 8.0,
+                "seed000_bound_high": None,  # a grid may lack the paper's point
             },
         ],
         False,
@@ -122,6 +127,7 @@ def test_the_tornado_is_drawn_from_plain_data_and_written_atomically(tmp_path):
     assert data.nominal_bound == 0.8 and data.corner_bound == 1.4 and data.target == 1.0
     assert data.bars[0] == ("a", 0.5, 2.0, "1", 0.6, 1.4)
     assert bar_order(data) == [0, 1]  # the widest swing on top
+    assert data.seed000 == (8.0, ((6.0, 14.0), (8.0, None)), 14.0)  # the paper's point: its own band
     assert [r["variant"] for r in data.rows] == [NOMINAL, "a=0.5", "a=2", "a=2"]
     png = tmp_path / "figures" / "tornado.png"
     fig_tornado(data, png)
