@@ -4,7 +4,14 @@ a flight flies it and stores it (pickle, renamed into place) in the session's sh
 folder, under a lock; the others load it. Before its first test each worker also flies ahead, longest
 first, the built-ins that the selected tests are parametrised over and that no other worker has
 claimed (then their runs), so that the workers fly side by side instead of one waiting on the
-other's lock."""
+other's lock.
+
+Two tiers (pyproject's ``addopts`` and the README): ``pytest`` runs the fast tier, ``-m "not slow"``;
+``pytest -m ""`` runs everything, as CI does. ``slow`` means exactly "flies a whole airliner on a
+route, or drives a browser", and a test not marked slow that asks for a longer flight fails instead of
+slipping into the fast tier: :func:`guard_flight`, called by the flight cache (``fly_cached``,
+``pattern_run``) and by the pipeline's JSBSim ``fly`` itself in this process (a flight in another
+process, a subprocess or a Dask worker, is not seen)."""
 
 from __future__ import annotations
 
@@ -13,6 +20,85 @@ import os
 import pickle
 
 import pytest
+
+# The fast tier's longest flight, as planned: a flight's ``stop_after_s``, or for a whole flight the
+# pipeline's own time limit (sim.flight.simulate.max_duration_s: its ground time and the distance at
+# 120 m/s, plus 3 h of margins). The pattern circuit of any type plans 3 h 0.3 min (no distance, a 20 s
+# gate wait; it flies 20-75 min in 5-15 s of wall time), the shortest route the suite flies (the 106
+# km Birmingham - Manchester hop of tests/datasets) 3 h 21 min, gva-lhr-a320 4 h 51 min: 3 h 5 min
+# admits the circuit and any prefix of up to three hours, and refuses every route.
+FAST_TIER_MAX_PLANNED_S = 3 * 3600.0 + 300.0
+
+_current: dict = {"item": None}  # the test being set up, run or torn down in this process
+_guard_off: list = []  # non-empty while _fly_ahead flies for the slow tests it was asked for
+
+
+def planned_s(plan, stop_after_s=None) -> float:
+    """A flight's planned duration: ``stop_after_s`` when it is stopped early, else the pipeline's
+    time limit for the whole flight."""
+    from flightmode.sim.flight.simulate import max_duration_s
+
+    whole = max_duration_s(plan)
+    return whole if stop_after_s is None else min(float(stop_after_s), whole)
+
+
+def guard_flight(sc, stop_after_s=None) -> None:
+    """Fail the current test, in one line naming it and the flight, when it is not marked slow and the
+    flight it asks for plans more than :data:`FAST_TIER_MAX_PLANNED_S`."""
+    item = _current["item"]
+    if _guard_off or item is None or item.get_closest_marker("slow") is not None:
+        return
+    planned = planned_s(sc.plan, stop_after_s)
+    if planned > FAST_TIER_MAX_PLANNED_S:
+        stop = "whole" if stop_after_s is None else f"stop_after_s={stop_after_s:g}"
+        pytest.fail(
+            f"{item.nodeid} is not marked slow but flies '{sc.name}' ({sc.aircraft}, seed {sc.seed}, "
+            f"{stop}): planned {planned / 60:.0f} min > the fast tier's "
+            f"{FAST_TIER_MAX_PLANNED_S / 60:.0f} min; fly a prefix (stop_after_s) or mark it slow",
+            pytrace=False,
+        )
+
+
+def _guarded(fly):
+    """sim.flight.simulate.fly, checked by :func:`guard_flight` before it flies (the pipeline and
+    the CLI reach JSBSim through it; a Scenario is rebuilt from the plan only for the message)."""
+    import functools
+
+    @functools.wraps(fly)
+    def _fly(plan, *args, stop_after_s=None, **kwargs):
+        guard_flight(_PlanOnly(plan), stop_after_s)
+        return fly(plan, *args, stop_after_s=stop_after_s, **kwargs)
+
+    _fly.guarded = True
+    return _fly
+
+
+@dataclasses.dataclass(frozen=True)
+class _PlanOnly:
+    plan: object
+
+    @property
+    def name(self) -> str:
+        return f"{self.plan.origin.icao}-{self.plan.destination.icao}"
+
+    @property
+    def aircraft(self) -> str:
+        return self.plan.aircraft
+
+    @property
+    def seed(self) -> str:
+        return "?"
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    """Remember the test (before its fixtures: a session fixture may fly for it) and wrap JSBSim's
+    ``fly`` once per process (:func:`_guarded`)."""
+    from flightmode.sim.flight import simulate
+
+    _current["item"] = item
+    if not getattr(simulate.fly, "guarded", False):
+        simulate.fly = _guarded(simulate.fly)
 
 
 @pytest.fixture(scope="session")
@@ -91,15 +177,28 @@ RUN_STAGES = ("fly", "sense", "detect")  # run_cached's default
 @pytest.fixture(scope="session", autouse=True)
 def _fly_ahead(request, _flight_cache_dir):
     """Fly ahead (module docstring): the built-in scenarios the selected tests are parametrised
-    over (``name``), longest route first, each by the first worker to claim it; then their runs
+    over (``name``) in the slow tests, longest route first, each by the first worker to claim it; then their runs
     (``run_cached``'s default stages) whose flight is already stored. Nothing is kept in memory."""
-    from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario, builtin_names
     from flightmode.sim.flight.simulate import max_duration_s
 
     known = set(builtin_names())
-    names = {item.callspec.params.get("name") for item in request.session.items if hasattr(item, "callspec")}
+    names = {
+        item.callspec.params.get("name")
+        for item in request.session.items
+        if hasattr(item, "callspec") and item.get_closest_marker("slow") is not None
+    }  # a test not marked slow that names a built-in route fails in guard_flight: nothing to fly for it
     scenarios = sorted((Scenario.builtin(n) for n in names & known), key=lambda sc: -max_duration_s(sc.plan))
+    _guard_off.append(True)  # flown for the slow tests that asked (the test being set up may not be one)
+    try:
+        _fly_ahead_claims(scenarios, _flight_cache_dir)
+    finally:
+        _guard_off.pop()
+
+
+def _fly_ahead_claims(scenarios, _flight_cache_dir) -> None:
+    from flightmode.runs import pipeline
+
     for sc in scenarios:
         _claim(
             _flight_cache_dir / f"{_flight_key(sc)}.pkl",
@@ -133,6 +232,7 @@ def fly_cached(_flight_cache_dir):
             changes["seed"] = seed
         if changes:
             sc = sc.replace(**changes)
+        guard_flight(sc, stop_after_s)  # before the cache: a flight another test flew still counts
         key = _flight_key(sc, stop_after_s)
         if key not in memo:
             track = _shared(
@@ -180,7 +280,9 @@ def pattern_run(_flight_cache_dir):
     from typer.testing import CliRunner
 
     from flightmode.cli.main import app
+    from flightmode.scenarios.scenario import Scenario
 
+    guard_flight(Scenario.builtin("pattern"))  # whoever flew it first, this test asks for it
     out = _flight_cache_dir / "pattern-cli"
     with FileLock(str(out) + ".lock"):
         if not (out / "output.txt").exists():

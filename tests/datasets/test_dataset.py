@@ -216,6 +216,7 @@ def test_failed_flights_are_retried_once_and_recorded_without_stopping(tmp_path,
     check_request(str(family_file), 1, out, resume=True, flight_timeout_s=10.0)
 
 
+@pytest.mark.slow  # the reference dataset: two route hops gate to gate on Dask workers
 def test_the_manifest_records_how_each_bag_lay_in_flight(reference):
     from flightmode.datasets.make import stowage_of_row
     from flightmode.scenarios.scenario import Scenario

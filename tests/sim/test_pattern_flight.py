@@ -79,8 +79,11 @@ def test_same_seed_is_bit_identical_in_process_and_across_processes(fly_cached):
 
 
 def _turbulent(fly_cached, seed):
+    """The pattern to 720 s, the exact prefix of its whole flight: the patch (liftoff, at 368 s on seed
+    2 and 373 s on seed 4, + 120 s to + 240 s) and 100 s of air after it; the draws are made at the
+    gate."""
     seg = (TurbulenceSegment(start_s=120.0, duration_s=120.0, severity="moderate"),)
-    return fly_cached("pattern", seed=seed, turbulence=seg)
+    return fly_cached("pattern", seed=seed, stop_after_s=720.0, turbulence=seg)
 
 
 def test_another_seed_gives_another_flight_and_air(fly_cached):

@@ -26,6 +26,7 @@ def _station_pa(qnh_hpa: float, elevation_m: float) -> float:
     return qnh_hpa * HPA_PA * (1.0 - LAPSE_KPM * elevation_m / T0_K) ** EXPONENT
 
 
+@pytest.mark.slow  # gva-lhr-a320 gate to gate: the schedule's cruise and its climb and descent
 def test_the_default_flight_has_the_pressure_truth_of_its_schedule(fly_cached):
     sc, tr = fly_cached(DEFAULT_SCENARIO)
     prof = get_cabin_profile(sc.aircraft)
