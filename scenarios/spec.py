@@ -5,7 +5,9 @@ scenarios --spec`` prints it. Validation is strict: unknown sections or keys, wr
 of range, an aircraft with no profile, and airports too close for the cruise asked all raise a
 :class:`~flightmode.errors.ScenarioError` whose one-line message names the file, the key path, the
 value, what is allowed and, for a misspelt name, the nearest valid one. The typed object built from
-a valid document is :class:`flightmode.scenarios.scenario.Scenario`.
+a valid document is :class:`flightmode.scenarios.scenario.Scenario`. An optional ``[model]`` table
+overrides uncertain model parameters (name = number; :mod:`flightmode.scenarios.model` checks it
+against the registry; ``flightmode scenarios --model`` lists them).
 """
 
 from __future__ import annotations

@@ -169,6 +169,7 @@ def test_the_study_on_a_tiny_real_population(tmp_path):
     from flightmode.datasets.make import make_dataset
     from flightmode.detector.grid import grid_from_text
     from flightmode.scenarios.family import Family
+    from flightmode.scenarios.scenario import Scenario
     from flightmode.studies.certify import Target
     from flightmode.studies.uncertainty import uncertainty
 
@@ -184,6 +185,9 @@ def test_the_study_on_a_tiny_real_population(tmp_path):
     for v in study.variants:
         vdir = Path(v.dataset)
         assert vdir.parent == ds / "uncertainty" and v.flights_ok == 2
+        # the overrides travel with each flight's scenario (the manifest's scenario_toml)
+        for row in pq.read_table(vdir / "flights.parquet").to_pylist():
+            assert Scenario.from_toml_text(row["scenario_toml"]).overrides == v.overrides
         for part in ("truth", "samples"):
             a = pq.read_table(ds / part).sort_by([("flight_id", "ascending"), ("t_s", "ascending")])
             b = pq.read_table(vdir / part).sort_by([("flight_id", "ascending"), ("t_s", "ascending")])
