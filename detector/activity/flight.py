@@ -7,8 +7,12 @@ activity marker, scored exactly as the moving-variance detector is.
   (:func:`~flightmode.detector.flight_mode.final_static`), so transmission needs the same sustained
   evidence whatever the detector. The checks' ``mv`` columns hold the detector's figure of merit at
   the closing sample (the same value on the three columns: these detectors give one merit per sample).
-- **Window**: the detectors that have one use ``W_s fs`` samples (a 1 s window at 100 Hz is 100
-  samples; the memory detectors cost O(N^2) and O(N^3) per sample in it: give them short windows).
+- **Window**: the magnitude and spectrum detectors use ``W_s fs`` samples (a 1 s window at 100 Hz is
+  100 samples). The memory detectors (MBGTD, MBCD) use the window the study chose for them, in
+  seconds, times the stream's rate (:data:`STUDY_WINDOW_S`; 0.25-0.31 s, 25-31 samples at 100 Hz):
+  their buffer of the last N readings is what they compare splits of (seed 001, section 2.3.1), and
+  their cost is O(N^2) per sample, so W_s fs (100 samples) would be 16x the study's cost for a
+  detector the study never ran that way. W_s stays their check period.
 - **Threshold**: ``k`` times the figure of merit's median over the unit's own bench recording at rest
   (the 60 s lying still that calibrates sigma^2 for the moving variance, seed 000 section 5.1), the
   counterpart of ``k sigma^2``; for the spectrum detectors, whose merit is in dB above the rest
@@ -31,6 +35,23 @@ from flightmode.detector.flight_mode import Checks, final_static
 from flightmode.errors import DetectorError
 
 DB_DETECTORS = frozenset({"ltsd", "fsd"})
+IMU_RATE_HZ = 50.0  # the rate of the study's IMU, whose signals Tables 10-11 optimise (seed 001, section 4.1)
+# seed 001's best windows for the memory detectors on its real signals, in samples at IMU_RATE_HZ
+# (Table 10, MBGTD; Table 11, MBCD; per input signal), as seconds
+STUDY_WINDOW_S: dict[str, dict[str, float]] = {
+    "mbgtd": {
+        "acc": 13.1833 / IMU_RATE_HZ,
+        "gyr": 13.6833 / IMU_RATE_HZ,
+        "sum": 13.6167 / IMU_RATE_HZ,
+        "product": 13.6500 / IMU_RATE_HZ,
+    },
+    "mbcd": {
+        "acc": 12.6167 / IMU_RATE_HZ,
+        "gyr": 15.2500 / IMU_RATE_HZ,
+        "sum": 15.0500 / IMU_RATE_HZ,
+        "product": 14.5167 / IMU_RATE_HZ,
+    },
+}
 
 
 @dataclass(frozen=True, slots=True)
@@ -46,7 +67,16 @@ class ActivityParams:
 
     @property
     def window(self) -> int:
+        """The check period W_s fs, in samples (and the window of the detectors that take W_s)."""
         return int(round(self.window_s * self.fs_hz))
+
+    @property
+    def detector_window(self) -> int:
+        """The detector's own window in samples: the study's for MBGTD and MBCD (:data:`STUDY_WINDOW_S`
+        times the rate), else W_s fs."""
+        if self.name in STUDY_WINDOW_S and self.signal in STUDY_WINDOW_S[self.name]:
+            return int(round(STUDY_WINDOW_S[self.name][self.signal] * self.fs_hz))
+        return self.window
 
     @property
     def checks_needed(self) -> int:  # as DetectorParams.checks_needed (eq. 8)
@@ -60,6 +90,11 @@ class ActivityParams:
             raise DetectorError(
                 f"--window-s {self.window_s:g}: {self.window} sample(s) at {self.fs_hz:g} Hz; "
                 "a window needs at least 2"
+            )
+        if not self.detector_window >= 2:
+            raise DetectorError(
+                f"{self.name}: the study's window is {STUDY_WINDOW_S[self.name][self.signal]:g} s, "
+                f"{self.detector_window} sample(s) at {self.fs_hz:g} Hz; a window needs at least 2"
             )
         if not (self.k > 0 and math.isfinite(self.k)):
             raise DetectorError(f"--k {self.k!r}: the threshold is k times the rest level, k > 0")
@@ -79,7 +114,7 @@ def _kwargs(p: ActivityParams, rest: dict) -> dict:
     d = registry.get(p.name)
     kw: dict = {"fs_hz": p.fs_hz}
     if p.name != "frd":
-        kw["window"] = p.window
+        kw["window"] = p.detector_window
     if d.signals:
         kw["signal"] = p.signal
     if p.name in ("amd", "shod"):
@@ -116,14 +151,14 @@ def rest_figures(p: ActivityParams, bench_acc_g: np.ndarray, bench_gyr_dps: np.n
         )
     x = flexible_signal(p.signal, acc, bench_gyr_dps) if d.signals else None
     if p.name == "mbcd":
-        rest["bandwidth"] = 1.06 * float(np.std(x)) * p.window**-0.2  # Silverman (1986) eq. 3.28
+        rest["bandwidth"] = 1.06 * float(np.std(x)) * p.detector_window**-0.2  # Silverman (1986) eq. 3.28
     if p.name in DB_DETECTORS:
         rest["noise_spectrum"] = _rest_spectrum(x, p.window, max(1, p.window // 2))
     merit = d.detect(t, acc, bench_gyr_dps, threshold=0.0, **_kwargs(p, rest)).merit
     merit = merit[np.isfinite(merit)]
     if merit.size == 0:
         raise DetectorError(
-            f"{p.name}: the bench recording ({n} samples) is shorter than one window ({p.window})"
+            f"{p.name}: the bench recording ({n} samples) is shorter than one window ({p.detector_window})"
         )
     rest["merit_median"] = float(np.median(merit))
     rest["threshold"] = threshold_of(p.name, rest["merit_median"], p.k)

@@ -16,17 +16,33 @@ weight w_lk = exp(-(x_l - x_k)^2 / (2 lambda^2)) of eq. (12) (its normalising co
 1 / (N sqrt(2 pi) lambda) cancels in the ratio of eq. (13)). Both merits are >= 0 (MBCD: the split
 j = N alone gives -log(mean w) >= 0 since w <= 1), so the threshold is >= 0.
 
-Cost. Per window, MBGTD is O(N^2): two running sums over the N x N distance matrix give every
-C_ij. MBCD is O(N^3): N^2 splits times N log terms, each a range sum of kernel weights extended one
-sample at a time (the log of a range sum does not factor further); the seed's naive form is O(N^4).
-Everything is vectorised over the windows: a block of windows is laid out window-last, (N, N, B),
-and every step is one NumPy operation over the B windows; the Python loops run over the indices
-inside one window only (N for MBGTD, N (N - 1) / 2 for MBCD), never over samples. Blocks bound the
-memory (and keep the arrays cache-sized).
+Cost: O(N^2) per sample for both (N^2 / 2 splits; the splits themselves are what eq. 10 and 14
+maximise over, so no exact form is cheaper), computed incrementally along the stream. The memory is
+the buffer of the last N readings (section 2.3.1, "a buffer which is filled with the last N sensor
+readings"); nothing older enters a merit. Write a split of the buffer ending at sample e by h = N - j
+(the second window is x_{e-h} .. x_e) and g = j - i (the first window's length). Both numerators
+are sums over the second window's samples l of a term that depends on l and on the first window only:
 
-MBCD works in the log domain (``np.logaddexp``): with a narrow kernel the weights of
-distant samples underflow to 0 in double precision (d > 38 lambda), and a range sum of them would
-give log(0) = -inf. In the log domain S_ij stays finite and exact.
+    eq. (9)   sum_{l=j}^{N} R_l,  R_l = sum_{k=i}^{j-1} d_kl
+    eq. (13)  sum_{l=j}^{N} log sum_{k=i}^{j-1} w_lk   (the denominator's part)
+
+and R_l, for the sample l and the first window g samples long ending h - (e - l) + 1 samples before l,
+does not depend on where the buffer ends. So each sample's R (or log R) is computed once, for every
+(h, g) with h + g <= N - 1, as N - 1 running sums over the samples before it (np.cumsum), and the
+numerator of split (h, g) at sample e is the diagonal sum R[e - h, 0, g] + R[e - h + 1, 1, g] + ... +
+R[e, h, g], accumulated oldest first, row after row (:func:`_diagonal_sums`). The numerator's part of
+eq. (13), sum_{l=j}^{N} log sum_{k=j}^{N} w_lk, depends on j and e only: for each l its kernel sum
+over the second window is 1 (w_ll) + a running sum backwards + a running sum forwards, N^2 / 2 logs
+per sample. Every sum is accumulated in one fixed order whatever the block, so a merit is a function
+of its window's samples only, to the bit. The loops run over the offsets inside a window (N), never
+over samples; blocks of windows (BLOCK_ELEMENTS) bound the memory and keep the arrays cache-sized.
+Written as printed, both cost O(N^4) per window; the previous vectorised form here was O(N^2)
+(MBGTD) and O(N^3) (MBCD) per sample.
+
+MBCD's first-window sums are taken in the plain domain and, where one falls below TINY (its terms
+may have underflowed: with a narrow kernel the weights of distant samples are 0 in double precision,
+d > 38 lambda, and log(0) = -inf), again in the log domain as a running ``np.logaddexp``: S_ij stays
+finite and exact. The second window's sums contain w_ll = 1 and never underflow.
 
 Where the seed is garbled or silent:
 
@@ -45,8 +61,6 @@ Where the seed is garbled or silent:
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 
 from flightmode.detector.activity.common import (
@@ -60,88 +74,132 @@ from flightmode.detector.activity.common import (
     signal_needs_gyro,
 )
 
-BLOCK_ELEMENTS = 1 << 16  # windows per block x N^2: 512 KiB float arrays, cache-sized (2x faster than 8 MiB)
+BLOCK_ELEMENTS = 1 << 18  # windows per block x N^2: 2 MiB float arrays (on a flight, 1 << 16 is 1.5x slower)
+TINY = 1e-280  # a kernel range sum below this is taken again in the log domain (see _log_ranges)
 
 
-@lru_cache(maxsize=16)
-def _split_masks(n: int):
-    """For 0-based splits (i, j), 0 <= i < j <= n - 1: the valid-split mask (n, n), the sizes of the
-    first window (j - i) and of the second (n - j)."""
-    i = np.arange(n)[:, None]
-    j = np.arange(n)[None, :]
-    valid = i < j
-    out = (valid, np.where(valid, j - i, 1), np.broadcast_to(n - j, (n, n)).copy())
-    for a in out:
-        a.flags.writeable = False  # cached: shared by every call
-    return out
+def _band(x: np.ndarray, n: int, s: int, e: int) -> np.ndarray:
+    """The differences x_l - x_{l-1-m}, m = 0 .. n - 2, of every sample l that the windows ending at
+    s .. e - 1 (0-based, s >= n - 1) need: (e - s + n - 2, n - 1), row r is sample l = s - n + 2 + r.
+    Samples before x's start are NaN (they only ever reach splits outside a window)."""
+    lo = s - (2 * n - 3)
+    xb = x[max(0, lo) : e]
+    if lo < 0:
+        xb = np.concatenate([np.full(-lo, np.nan), xb])
+    sw = np.lib.stride_tricks.sliding_window_view(xb, n)
+    return sw[:, -1:] - sw[:, -2::-1]
 
 
-def _windows(x: np.ndarray, n: int):
-    """Blocks of full windows of a 1-D array, window-last: (index of the block's first window, (n, B)
-    array w with w[k, m] = x[first + m + k]), B x n^2 at most BLOCK_ELEMENTS."""
-    m = x.shape[0] - n + 1
+def _diagonal_sums(q: np.ndarray, n: int) -> np.ndarray:
+    """In place: q[r, h, g-1] += q[r - 1, h - 1, g-1], h = 1 .. n - 2 in turn, so that q[r, h] becomes
+    the sum q[r - h, 0] + q[r - h + 1, 1] + ... + q[r, h] of one split's range terms over the samples
+    l = e - h .. e, oldest first (module docstring). Entries h + g > n - 1 (no such split) are left as
+    they are; rows whose chain would start before the block are dropped: (rows - n + 2, n - 1, n - 1)."""
+    for h in range(1, n - 1):
+        k = n - 1 - h
+        np.add(q[1:, h, :k], q[:-1, h - 1, :k], out=q[1:, h, :k])
+    return q[n - 2 :]
+
+
+def _blocks(m: int, n: int):
+    """(s, e): the windows ending at samples s .. e - 1, B x N^2 at most BLOCK_ELEMENTS."""
     b = max(1, BLOCK_ELEMENTS // (n * n))
-    for s in range(0, m, b):
-        e = min(m, s + b)
-        yield s, x[np.arange(n)[:, None] + np.arange(s, e)]
+    for s in range(n - 1, m, b):
+        yield s, min(m, s + b)
 
 
 # ---------------------------------------------------------------- MBGTD, eq. (9)-(10)
 def mbgtd_merits(x: np.ndarray, window: int) -> np.ndarray:
-    """V of every full window of a 1-D signal: (len(x) - window + 1,). Window-last layout, as
-    :func:`mbcd_merits`."""
+    """V of every full window of a 1-D signal: (len(x) - window + 1,), O(N^2) per sample (module
+    docstring): R[l, h, g] = sum_{k = l-h-g}^{l-h-1} |x_l - x_k|, one running sum per h; its diagonal
+    sums are eq. (9)'s numerators; each divided by (j - i)(N - j + 1) = g (h + 1)."""
     n = window
-    valid, size1, size2 = _split_masks(n)
-    count = (size1 * size2).astype(float)[:, :, None]  # (j - i)(N - j + 1) in the seed's 1-based indices
-    for_split = valid[:, :, None]
-    out = np.empty(x.shape[0] - n + 1)
-    for s, w in _windows(x, n):
-        d = np.abs(w[:, None, :] - w[None, :, :])  # d[k, l] = |x_k - x_l|
-        # r[k, j] = sum_{l=j}^{N-1} d_kl, accumulated from l = N-1 down
-        r = np.empty_like(d)
-        r[:, n - 1] = d[:, n - 1]
-        for j in range(n - 2, -1, -1):
-            np.add(r[:, j + 1], d[:, j], out=r[:, j])
-        # t[i, j] = sum_{k=i}^{j-1} r[k, j] (for j > i), accumulated from k = j-1 down
-        t = np.zeros_like(d)
-        for i in range(n - 2, -1, -1):
-            np.add(r[i, i + 1 :], t[i + 1, i + 1 :], out=t[i, i + 1 :])
-        c = np.where(for_split, t / count, -np.inf)  # seed 001, eq. (9)
-        out[s : s + w.shape[1]] = c.max(axis=(0, 1))  # seed 001, eq. (10)
+    h = np.arange(n - 1)[:, None]
+    g = np.arange(1, n)[None, :]
+    count = (g * (h + 1)).astype(float)  # (j - i)(N - j + 1), seed 001, eq. (9)
+    out = np.empty(max(0, x.shape[0] - n + 1))
+    for s, e in _blocks(x.shape[0], n):
+        d = np.abs(_band(x, n, s, e))  # d_kl, the distance of two scalars
+        r = np.full((d.shape[0], n - 1, n - 1), -np.inf)  # -inf: no split there
+        for hh in range(n - 1):
+            np.cumsum(d[:, hh:], axis=1, out=r[:, hh, : n - 1 - hh])
+        c = _diagonal_sums(r, n)
+        np.divide(c, count, out=c)  # C_ij, seed 001, eq. (9)
+        out[s - n + 1 : e - n + 1] = c.reshape(c.shape[0], -1).max(axis=1)  # seed 001, eq. (10)
     return out
 
 
 # ---------------------------------------------------------------- MBCD, eq. (12)-(14)
-def mbcd_merits(x: np.ndarray, window: int, bandwidth: float) -> np.ndarray:
-    """V of every full window of a 1-D signal: (len(x) - window + 1,).
+def _log_ranges(logw: np.ndarray, w: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(Q, back): Q[r, h, g-1] = log sum_{m=h}^{h+g-1} w[r, m] (the first window's kernel sum of eq.
+    13 for the sample of row r; +inf where h + g > n - 1, no such split), and back[r, g] =
+    sum_{m=0}^{g-1} w[r, m] (back[r, 0] = 0).
 
-    Arrays are laid out window-last, (N, N, B), so that every step is one vector operation over the B
-    windows of a block: the loops run over the indices inside a window only."""
+    The sums run in the plain domain (a running sum per h); a sum below TINY, where terms may have
+    underflowed (d > 38 lambda), is taken again as a running np.logaddexp of the log weights, so Q
+    stays finite and exact. The choice is made per entry from that entry's own sum, so a merit depends
+    on its window's samples only (batch and stream agree bit for bit). A running sum of terms >= 0
+    never decreases, so the sums below TINY are a prefix of each (r, h): the log-domain pass runs over
+    exactly those, longest first, one column at a time over every (r, h) still in its prefix."""
+    rows = w.shape[0]
+    q = np.full((rows, n - 1, n - 1), np.inf)
+    for h in range(n - 1):
+        np.cumsum(w[:, h:], axis=1, out=q[:, h, : n - 1 - h])
+    back = np.zeros((rows, n - 1))
+    back[:, 1:] = q[:, 0, : n - 2]
+    count = (q < TINY).sum(axis=2)  # (rows, h): the length of the prefix below TINY (NaN: not below)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        np.log(q, out=q)
+        rr, hh = np.nonzero(count)
+        if rr.size:
+            c = count[rr, hh]
+            order = np.argsort(-c, kind="stable")
+            rr, hh, c = rr[order], hh[order], c[order]
+            longest = int(c[0])
+            v = logw[rr[:, None], np.minimum(hh[:, None] + np.arange(longest), n - 2)]  # each prefix
+            live = np.searchsorted(-c, -np.arange(longest), side="left")  # live[j]: how many have c > j
+            exact = np.empty_like(v)
+            exact[:, 0] = v[:, 0]
+            for j in range(1, longest):
+                k = int(live[j])
+                np.logaddexp(exact[:k, j - 1], v[:k, j], out=exact[:k, j])
+            pi, ji = np.nonzero(np.arange(longest)[None, :] < c[:, None])
+            q[rr[pi], hh[pi], ji] = exact[pi, ji]
+    return q, back
+
+
+def mbcd_merits(x: np.ndarray, window: int, bandwidth: float) -> np.ndarray:
+    """V of every full window of a 1-D signal: (len(x) - window + 1,), O(N^2) per sample (module
+    docstring): S_ij = A_j - D_ij + (N - j + 1)(log(j - i) - log(N - j + 1)), eq. (13), with A_j the
+    second window's log kernel sums and D_ij the diagonal sums of the first window's."""
     n = window
-    valid, size1, size2 = _split_masks(n)
-    # the constant part of eq. (13): sum over the N - j terms l of log(1/(N-j)) - log(1/(j-i))
-    const = np.where(valid, size2 * (np.log(size1) - np.log(size2)), 0.0)[:, :, None]
-    m_win = x.shape[0] - n + 1
-    out = np.empty(m_win)
-    for s, w in _windows(x, n):
-        e = s + w.shape[1]
-        z = (w[:, None, :] - w[None, :, :]) / bandwidth
+    h = np.arange(n - 1)[:, None]
+    g = np.arange(1, n)[None, :]
+    # the constant part of eq. (13): N - j + 1 = h + 1 terms of log(1/(h + 1)) - log(1/g)
+    const = np.where(h + g <= n - 1, (h + 1) * (np.log(g) - np.log(h + 1)), 0.0)
+    out = np.empty(max(0, x.shape[0] - n + 1))
+    for s, e in _blocks(x.shape[0], n):
+        z = _band(x, n, s, e) / bandwidth
         logw = -0.5 * z * z  # log w_lk, seed 001, eq. (12) (decaying; its constant cancels in eq. 13)
-        # num[l, j] = log sum_{k=j}^{N-1} w_lk: the second window's kernel sum, accumulated from k = N-1 down
-        num = np.empty_like(logw)
-        num[:, n - 1] = logw[:, n - 1]
-        for k in range(n - 2, -1, -1):
-            np.logaddexp(num[:, k + 1], logw[:, k], out=num[:, k])
-        acc = np.zeros((n, n, e - s))  # acc[i, j] = sum over l >= j of (num - den), l in increasing order
-        den = np.empty((n, e - s))
-        for l in range(1, n):
-            for k in range(l):  # extend the first window to end at k: den[i] = log sum_{k'=i}^{k} w_lk'
-                if k:
-                    np.logaddexp(den[:k], logw[l, k], out=den[:k])
-                den[k] = logw[l, k]
-                acc[: k + 1, k + 1] += num[l, k + 1] - den[: k + 1]  # the term l of S_{i, j = k + 1}
-        sij = np.where(valid[:, :, None], acc + const, -np.inf)  # seed 001, eq. (13)
-        out[s:e] = sij.max(axis=(0, 1))  # seed 001, eq. (14)
+        w = np.exp(logw)
+        rows = w.shape[0]
+        q, back = _log_ranges(logw, w, n)
+        d = _diagonal_sums(q, n)  # sum_{l=j}^{N} log sum_{k=i}^{j-1} w_lk, (E, h, g - 1)
+        # fwd[r, u] = sum_{t=1}^{u} w_{l, l+t} for the sample l of row r (the kernel is symmetric)
+        ahead = np.zeros((rows, n - 1))
+        for t in range(1, n - 1):
+            ahead[: rows - t, t] = w[t:, t - 1]
+        fwd = np.cumsum(ahead, axis=1)
+        # a[E, h] = sum_{l=j}^{N} log sum_{k=j}^{N} w_lk, j = N - h: l = e - u (u = 0 .. h) and its sum
+        # over k = e - h .. e = (w_ll = 1 + the h - u samples before l) + the u samples after l
+        back += 1.0
+        a = np.zeros((d.shape[0], n - 1))
+        for u in range(n - 1):
+            ll = slice(n - 2 - u, rows - u)
+            a[:, u:] += np.log(back[ll, : n - 1 - u] + fwd[ll, u][:, None])
+        np.subtract(a[:, :, None], d, out=d)
+        d += const  # S_ij, seed 001, eq. (13)
+        out[s - n + 1 : e - n + 1] = d.reshape(d.shape[0], -1).max(axis=1)  # seed 001, eq. (14)
     return out
 
 

@@ -36,9 +36,9 @@ Choices where the seed is silent:
   deviation and n the window. LTSD's envelope order is the detector's default (6 frames).
 - Standard deviations are sample standard deviations (ddof = 1).
 
-Cost, per 120 s run at 50 Hz with the default grid: a few seconds, most of it MBCD (O(N^3) per sample)
-and the spectrum detectors at shift 1. The memory detectors' windows stay <= 20 samples by default
-(MBGTD is O(N^2), MBCD O(N^3) per sample; the seed's best windows, Tables 4-5, are 6-13 samples).
+Cost, per 120 s run at 50 Hz with the default grid: a few seconds, most of it MBCD and the spectrum
+detectors at shift 1. The memory detectors' windows stay <= 20 samples by default (both are O(N^2)
+per sample; the seed's best windows, Tables 4-5, are 6-13 samples).
 
 Reproducibility: run i uses the generator of ``SeedSequence(seed, spawn_key=(i,))`` (the i-th child
 of ``SeedSequence(seed)``), whatever the order or the worker it runs on; the recording and the bench
@@ -75,7 +75,7 @@ class Grid:
     magnitude_windows: tuple[int, ...] = (3, 5, 10, 20, 40, 80, 120)  # AMVD, AMD, ARED, SHOD
     spectrum_windows: tuple[int, ...] = (8, 16, 32)  # LTSD, FSD frame length
     spectrum_shifts: tuple[int, ...] = (1, 2, 4, 8, 16)  # only shift <= window is used
-    memory_windows: tuple[int, ...] = (4, 8, 12, 16, 20)  # MBGTD, MBCD: keep <= 20 (O(N^2), O(N^3))
+    memory_windows: tuple[int, ...] = (4, 8, 12, 16, 20)  # MBGTD, MBCD: keep <= 20 (O(N^2) per sample)
     thresholds: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
     def check(self) -> None:
