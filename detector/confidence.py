@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from flightmode.detector.moving_variance import DetectorError
 
 
@@ -51,3 +53,22 @@ def proportion_upper_bound(k: int, n: int, confidence: float = 0.95) -> float:
 
 
 __all__ = ["rate_upper_bound", "hours_needed", "proportion_upper_bound"]
+
+
+def rate_and_response(events: int, hours: float, responses, confidence: float = 0.95) -> dict:
+    """A population's false statics and gate responses in the figures every table here prints: in-window
+    hours, events, their rate and exact upper bound per flight-hour, response p50 / p95 / max (a NaN
+    response, nothing to answer, is left out; inf, never answered, counts as infinitely slow) and the
+    number of flights never answered."""
+    resp = np.asarray(responses, float)
+    resp = resp[~np.isnan(resp)]
+    return {
+        "in_window_h": hours,
+        "false_statics": events,
+        "rate_per_h": events / hours if hours > 0 else math.nan,
+        "rate_upper_per_h": rate_upper_bound(events, hours, confidence) if hours > 0 else math.nan,
+        "response_p50_s": float(np.percentile(resp, 50, method="higher")) if resp.size else math.nan,
+        "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan,
+        "response_max_s": float(resp.max()) if resp.size else math.nan,
+        "no_response": int(np.isinf(resp).sum()),
+    }

@@ -126,15 +126,15 @@ def tradeoff_on_track(
     recording cut into bursts of the same length, and the detector at each ``m``."""
     import dataclasses
 
+    import flightmode
     from flightmode.eobs.duty_cycle import calibrate_sigma2_bursts
-    from flightmode.runs import pipeline
     from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, eobs_preset
 
     rows = []
     for interval in intervals_s:
         preset = eobs_preset(float(interval), byte_count, odr_per_axis_hz)
-        streams = pipeline.streams_of(scenario.seed)
-        rec = pipeline.sense(
+        streams = flightmode.Streams(scenario.seed)
+        rec = flightmode.sense(
             track, scenario.carrier, preset, streams.child("sensor"), overrides=scenario.overrides
         )
         n = preset.burst_samples

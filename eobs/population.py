@@ -27,11 +27,11 @@ def tradeoff_flight(
     odr_per_axis_hz: float,
 ) -> list[dict]:
     """One flight's rows (:func:`flightmode.eobs.flight.tradeoff_on_track` on its full-rate truth)."""
+    from flightmode import Scenario
+    from flightmode.datasets import flight_track
     from flightmode.eobs.flight import tradeoff_on_track
-    from flightmode.scenarios.scenario import Scenario
-    from flightmode.studies.sweep import full_truth_track
 
-    track = full_truth_track(dataset, row)
+    track = flight_track(dataset, row)
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
     in_window_h = float(np.count_nonzero(track.in_flight_window)) / track.fs_hz / 3600.0
     out = []
@@ -61,7 +61,7 @@ def check_request(
     datasets, intervals_s, byte_count: int, ms, k: float, odr_per_axis_hz: float
 ) -> list[tuple]:
     """(dataset, row) of every successful flight, after checking the request (one-line errors)."""
-    from flightmode.datasets.make import ok_flights
+    from flightmode.datasets import ok_flights
     from flightmode.errors import DetectorError
     from flightmode.sim.sensor.accelerometer import eobs_preset
 
@@ -113,7 +113,7 @@ def tradeoff_population(
 def summarise(rows: list[dict], confidence: float = 0.95) -> list[dict]:
     """Per (interval, burst, m): flights, in-window hours, false statics, their rate and exact upper
     bound per flight-hour, response p50 / p95 / max at the gate, samples per hour per axis."""
-    from flightmode.studies.sweep import rate_and_response
+    from flightmode.detector.confidence import rate_and_response
 
     groups: dict[tuple, list[dict]] = {}
     for r in rows:

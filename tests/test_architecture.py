@@ -65,6 +65,16 @@ PLANTS = {
         {"nav/frames.py": "from flightmode.detector import flight_mode\n"},
         "sideways import: nav/frames.py",
     ),
+    # the e-obs toolkit reaching past the public API into the run pipeline's module
+    "past the API": (
+        {"eobs/tag.py": "def _planted():\n    from flightmode.runs import pipeline\n"},
+        "past the public API: eobs/tag.py",
+    ),
+    # a room below using the face (its lazy names would load the pipeline from the physics)
+    "face from below": (
+        {"sim/sensor/gyroscope.py": "import flightmode\n"},
+        "upward import: sim/sensor/gyroscope.py",
+    ),
     # a cycle between two base modules, one half lazy
     "cycle": (
         {

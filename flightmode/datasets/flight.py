@@ -11,6 +11,7 @@ draws it, so a flight's detection here equals its row in a sweep.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from flightmode.errors import InputDataError, did_you_mean
@@ -70,3 +71,19 @@ def flight_stream(dataset: str | Path, flight: str | int) -> tuple[dict, dict]:
 
 
 __all__ = ["flight_info", "flight_stream", "manifest_row"]
+
+
+def flight_track(dataset: str | Path, row: dict):
+    """A dataset flight's FlightTrack, rebuilt from its full-rate truth (``--truth full``; the Parquet
+    metadata carries what run.json would: :data:`flightmode.runs.run_io.TRACK_INFO_KEY`)."""
+    import pyarrow.parquet as pq
+
+    from flightmode.runs import run_io
+
+    t = pq.read_table(Path(dataset) / row["truth_file"])
+    if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
+        raise InputDataError(
+            f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "
+            "dataset, or not --truth full); make the dataset with `flightmode dataset ... --truth full`"
+        )
+    return run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))

@@ -131,10 +131,11 @@ def flight_streams(dataset: str, row: dict, sensors: Sequence[str] | None):
         cols, _ = read_samples(Path(dataset) / row["samples_file"])
         yield row.get("sensor_preset"), cols, row["scenario_toml"]
         return
+    from flightmode.datasets.flight import flight_track
     from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
-    track = full_truth_track(dataset, row)
+    track = flight_track(dataset, row)
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
     for preset in sensors:
         sc2 = sc.replace(sensor={"preset": preset, "odr_hz": None})
@@ -157,22 +158,6 @@ def flight_streams(dataset: str, row: dict, sensors: Sequence[str] | None):
         if rec.gyro_dps is not None:
             cols["gyro_dps"] = rec.gyro_dps
         yield preset, cols, sc2.to_toml()
-
-
-def full_truth_track(dataset: str | Path, row: dict):
-    """A dataset flight's FlightTrack, rebuilt from its full-rate truth (``--truth full``; the Parquet
-    metadata carries what run.json would: :data:`flightmode.runs.run_io.TRACK_INFO_KEY`)."""
-    import pyarrow.parquet as pq
-
-    from flightmode.runs import run_io
-
-    t = pq.read_table(Path(dataset) / row["truth_file"])
-    if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
-        raise InputDataError(
-            f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "
-            "dataset, or not --truth full); make the dataset with `flightmode dataset ... --truth full`"
-        )
-    return run_io.track_from_table(t, json.loads(t.schema.metadata[run_io.TRACK_INFO_KEY]))
 
 
 def sweep_flight(
@@ -588,27 +573,6 @@ def read_sweep(path: str | Path) -> SweepResult:
     return SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
 
 
-def rate_and_response(events: int, hours: float, responses, confidence: float = 0.95) -> dict:
-    """A population's false statics and gate responses in the figures every table here prints: in-window
-    hours, events, their rate and exact upper bound per flight-hour, response p50 / p95 / max (a NaN
-    response, nothing to answer, is left out; inf, never answered, counts as infinitely slow) and the
-    number of flights never answered."""
-    from flightmode.detector.confidence import rate_upper_bound
-
-    resp = np.asarray(responses, float)
-    resp = resp[~np.isnan(resp)]
-    return {
-        "in_window_h": hours,
-        "false_statics": events,
-        "rate_per_h": events / hours if hours > 0 else math.nan,
-        "rate_upper_per_h": rate_upper_bound(events, hours, confidence) if hours > 0 else math.nan,
-        "response_p50_s": float(np.percentile(resp, 50, method="higher")) if resp.size else math.nan,
-        "response_p95_s": float(np.percentile(resp, 95, method="higher")) if resp.size else math.nan,
-        "response_max_s": float(resp.max()) if resp.size else math.nan,
-        "no_response": int(np.isinf(resp).sum()),
-    }
-
-
 def summarise(
     table, confidence: float = 0.95, target_rate_per_h: float | None = None, by_sensor: bool = False
 ) -> list[dict]:
@@ -617,7 +581,7 @@ def summarise(
     share of all truly static time reported static), and the hours still needed for
     ``target_rate_per_h``. ``by_sensor``: a point per sensor preset too (a sweep with ``--sensor``
     re-senses the same flights: their hours must not add up across presets)."""
-    from flightmode.detector.confidence import hours_needed
+    from flightmode.detector.confidence import hours_needed, rate_and_response
 
     keys = list(POINT_KEYS) + (["sensor_preset"] if by_sensor else [])
     df = table.select(

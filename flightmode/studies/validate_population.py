@@ -83,16 +83,17 @@ def check_request(dataset: str | Path, paper_flight: int = 1) -> tuple[list[dict
 def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
     """One dataset flight's checks: ``{"flight_id", "aircraft", "checks": [Check, ...]}``, or with
     ``"error"`` (the exception's type and message) instead of checks if it cannot be validated."""
+    from flightmode.datasets.flight import flight_track
     from flightmode.datasets.make import stowage_of_row
     from flightmode.runs import pipeline
     from flightmode.runs.run_io import read_samples
     from flightmode.scenarios.scenario import Scenario
-    from flightmode.studies.sweep import full_truth_track, sigma2_of_flight
+    from flightmode.studies.sweep import sigma2_of_flight
     from flightmode.studies.validate import seed000_checks, sensor_noise_psd, track_checks
 
     head = {"flight_id": row["flight_id"], "aircraft": row["aircraft"]}
     try:
-        track = full_truth_track(dataset, row)
+        track = flight_track(dataset, row)
         sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']} (scenario_toml)")
         checks = track_checks(track, sc.plan)
         columns, _ = read_samples(Path(dataset) / row["samples_file"])
