@@ -1,8 +1,8 @@
 """Acceptance of seed 000's recommended detector (Table 9: NMV, W_s 1 s, T_sigma 4 sigma^2,
 T_th 4 s) on every built-in flight, as ``flightmode.run`` runs it (the scenario's sensor, sigma^2 from
 the bench calibration of the unit): no final static inside the in-flight window, and a final static
-within 10 s of the bag truly coming to rest after the flight (slow: each flight is flown once per
-session)."""
+within 10 s of the bag truly coming to rest after the flight (the routes slow: each flight is flown
+once per session)."""
 
 from __future__ import annotations
 
@@ -11,8 +11,9 @@ import pytest
 from flightmode.scenarios.scenario import builtin_names
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name", builtin_names())
+@pytest.mark.parametrize(
+    "name", [pytest.param(n, marks=() if n == "pattern" else pytest.mark.slow) for n in builtin_names()]
+)  # the routes slow; the pattern circuit's, the fast tier's shared run
 def test_recommended_detector_is_silent_in_flight_and_answers_after(name, run_cached):
     r = run_cached(name)
     e, rec = r.detection, r.recording

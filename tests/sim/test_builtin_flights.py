@@ -1,4 +1,5 @@
-"""The built-in airliner scenarios flown gate to gate (slow: 15-90 s of wall time each).
+"""The built-in airliner scenarios flown gate to gate (slow: 15-90 s of wall time each; the fast tier
+checks the default flight's takeoff on its first minutes).
 
 Kinematics are checked against OpenAP WRAP (real-traffic ranges from ADS-B, per type; Sun et al., "WRAP", 2019):
 liftoff speed, takeoff acceleration, initial climb rate, cruise altitude, final-approach vertical rate,
@@ -83,6 +84,24 @@ def test_flies_gate_to_gate_within_real_traffic_ranges(name, fly_cached, record_
     nose_g = nz[(since > 1.0) & (since <= 3.0)].max()
     rough_g = np.abs(nz[(since > 5.0) & (since < 15.0)] - 1.0).max()
     assert nose_g - 1.0 <= main_g - 1.0 + rough_g, (nose_g, main_g, rough_g)
+
+
+def test_the_default_flights_takeoff_is_within_real_traffic_ranges(fly_cached):
+    """The fast tier's check of this module: the default flight's first 1,100 s (its exact prefix:
+    liftoff at 994 s, 1,500 ft some 45 s later), its takeoff figures computed as flight_metrics
+    computes them and held to the same WRAP ranges as the whole flight's above."""
+    from flightmode.sim.flight.aircraft.registry import get_profile
+    from flightmode.sim.flight.flight_metrics import initial_climb_vs_mps, takeoff_accel_mps2
+
+    sc, tr = fly_cached("gva-lhr-a320", stop_after_s=1100.0)
+    w = _wrap(get_profile(sc.aircraft).wrap_type)
+    i_lo = int(np.searchsorted(tr.t_s, tr.event_time("liftoff")))
+    for value, spec in (
+        (float(tr.ground_speed_mps[i_lo]), w.takeoff_speed()),
+        (takeoff_accel_mps2(tr), w.takeoff_acceleration()),
+        (initial_climb_vs_mps(tr, sc.plan), w.initclimb_vs()),
+    ):
+        assert spec["minimum"] <= value <= spec["maximum"], (value, spec)
 
 
 @pytest.mark.slow

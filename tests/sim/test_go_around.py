@@ -36,7 +36,6 @@ def _go_around_climb_fpm(track, sc) -> float:
     return row.value
 
 
-@pytest.mark.slow
 def test_boeing_reduced_go_around_thrust_holds_the_737_fcoms_climb_rate(fly_cached):
     """The 737 pattern's ordered go-around: the first push of TO/GA advances the thrust "toward the
     reduced go-around N1 to produce 1000 to 2000 fpm rate of climb" (737 FCOM). At climb thrust (the
