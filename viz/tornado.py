@@ -39,30 +39,43 @@ def bar_order(data: TornadoData) -> list[int]:
 
 
 def _panel(ax, data: TornadoData, order: list[int], x0: float, ends: list, corner: float | None, title: str):
-    """One tornado: the bars of ``ends`` [(bound at low, at high)] around ``x0``."""
+    """One tornado: the bars of ``ends`` [(bound at low, at high)] around ``x0``; the longer of a
+    parameter's two bars is drawn first (the shorter stays visible on it), the end with the lower
+    bound labelled on the left, the other on the right."""
+    from matplotlib.patches import Patch
+
+    colours = ("tab:blue", "tab:orange")  # the low end, the high end
     n = len(order)
     for row, i in enumerate(reversed(order)):
         _name, lo, hi, _unit, _b_lo, _b_hi = data.bars[i]
-        for b, colour, end in ((ends[i][0], "tab:blue", lo), (ends[i][1], "tab:orange", hi)):
-            if b is None or not math.isfinite(b):
-                continue
-            ax.barh(row, b - x0, left=x0, color=colour, alpha=0.8, height=0.6)
+        pairs = [(b, colours[k], end) for k, (b, end) in enumerate(((ends[i][0], lo), (ends[i][1], hi)))]
+        pairs = [q for q in pairs if q[0] is not None and math.isfinite(q[0])]
+        for b, colour, _ in sorted(pairs, key=lambda q: -abs(q[0] - x0)):
+            ax.barh(row, b - x0, left=x0, color=colour, alpha=0.85, height=0.6)
+        for rank, (b, _, end) in enumerate(sorted(pairs, key=lambda q: q[0])):
+            right = rank == len(pairs) - 1 and (len(pairs) == 1 or b >= x0)
             ax.annotate(
                 f"{end:g}",
                 (b, row),
-                xytext=(4 if b >= x0 else -4, 0),
+                xytext=(4 if right else -4, 0),
                 textcoords="offset points",
-                ha="left" if b >= x0 else "right",
+                ha="left" if right else "right",
                 va="center",
                 fontsize=8,
             )
     ax.set_yticks(range(n), [data.bars[i][0] for i in reversed(order)], fontsize=8)
-    ax.axvline(x0, color="k", lw=1, label=f"nominal {x0:.3g} /h")
-    ax.axvline(data.target, color="tab:red", ls="--", lw=1, label=f"target {data.target:g} /h")
+    handles = [
+        ax.axvline(x0, color="k", lw=1, label=f"nominal {x0:.3g} /h"),
+        ax.axvline(data.target, color="tab:red", ls="--", lw=1, label=f"target {data.target:g} /h"),
+    ]
     if corner is not None:
-        ax.axvline(corner, color="tab:purple", ls=":", lw=1.5, label=f"worst corner {corner:.3g} /h")
-    ax.barh([], [], color="tab:blue", label="parameter at its low end")
-    ax.barh([], [], color="tab:orange", label="parameter at its high end")
+        handles.append(
+            ax.axvline(corner, color="tab:purple", ls=":", lw=1.5, label=f"worst corner {corner:.3g} /h")
+        )
+    handles += [
+        Patch(color=colours[0], label="parameter at its low end"),
+        Patch(color=colours[1], label="at its high end"),
+    ]
     vals = [x0, data.target] + [b for e in ends for b in e if b is not None] + ([corner] if corner else [])
     finite = [v for v in vals if math.isfinite(v)]
     if finite:
@@ -71,7 +84,7 @@ def _panel(ax, data: TornadoData, order: list[int], x0: float, ends: list, corne
         ax.set_xlim(lo_x - pad, hi_x + pad)
     ax.set_xlabel(f"false statics per in-window flight-hour, {data.confidence:.0%} bound", fontsize=8)
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(handles=handles, fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
 
 
 def fig_tornado(data: TornadoData, path: Path) -> None:
@@ -87,7 +100,7 @@ def fig_tornado(data: TornadoData, path: Path) -> None:
     order = bar_order(data)
     panels = 1 if data.seed000 is None else 2
     fig, axes = plt.subplots(
-        1, panels, figsize=(9.0 * panels, 1.4 + 0.55 * max(len(order), 1)), squeeze=False
+        panels, 1, figsize=(10.0, (1.5 + 0.5 * max(len(order), 1)) * panels), squeeze=False
     )
     try:
         ends = [(b[4], b[5]) for b in data.bars]
@@ -96,7 +109,7 @@ def fig_tornado(data: TornadoData, path: Path) -> None:
         )
         if data.seed000 is not None:
             x0, paper_ends, corner = data.seed000
-            _panel(axes[0][1], data, order, x0, list(paper_ends), corner, "seed 000's recommended point")
+            _panel(axes[1][0], data, order, x0, list(paper_ends), corner, "seed 000's recommended point")
         fig.tight_layout()
         write_with(Path(path), lambda tmp: fig.savefig(tmp, dpi=110, format="png"), mkdir=True)
     finally:

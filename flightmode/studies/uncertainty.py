@@ -142,7 +142,8 @@ def sentence_of(
     v = max(single, key=lambda v: v.at_point["rate_upper_per_h"])
     if len(v.overrides) == 1:
         ((name, value),) = v.overrides.items()
-        where = f"{name} is at {value:g} {registry_units.get(name, '')}".rstrip()
+        unit = registry_units.get(name, "")
+        where = f"{name} is at {value:g}" + ("" if unit in ("", "1") else f" {unit}")  # "1": a factor
     else:
         where = (
             "every parameter is at its worst end together ("
