@@ -28,14 +28,15 @@ are sums over the second window's samples l of a term that depends on l and on t
 
 and R_l, for the sample l and the first window g samples long ending h - (e - l) + 1 samples before l,
 does not depend on where the buffer ends. So each sample's R (or log R) is computed once, for every
-(h, g) with h + g <= N - 1, as N - 1 running sums over the samples before it (np.cumsum), and the
+(h, g) with h + g <= N - 1, as running sums over the samples before it (m = h first), and the
 numerator of split (h, g) at sample e is the diagonal sum R[e - h, 0, g] + R[e - h + 1, 1, g] + ... +
 R[e, h, g], accumulated oldest first, row after row (:func:`_diagonal_sums`). The numerator's part of
 eq. (13), sum_{l=j}^{N} log sum_{k=j}^{N} w_lk, depends on j and e only: for each l its kernel sum
 over the second window is 1 (w_ll) + a running sum backwards + a running sum forwards, N^2 / 2 logs
 per sample. Every sum is accumulated in one fixed order whatever the block, so a merit is a function
-of its window's samples only, to the bit. The loops run over the offsets inside a window (N), never
-over samples; blocks of windows (BLOCK_ELEMENTS) bound the memory and keep the arrays cache-sized.
+of its window's samples only, to the bit. Arrays are laid out window-last, (g, h, samples): the loops
+run over the offsets inside a window (N), each step one vector operation over the block's samples,
+never over samples; blocks of windows (BLOCK_ELEMENTS) bound the memory.
 Written as printed, both cost O(N^4) per window; the previous vectorised form here was O(N^2)
 (MBGTD) and O(N^3) (MBCD) per sample.
 
@@ -74,31 +75,44 @@ from flightmode.detector.activity.common import (
     signal_needs_gyro,
 )
 
-BLOCK_ELEMENTS = 1 << 18  # windows per block x N^2: 2 MiB float arrays (on a flight, 1 << 16 is 1.5x slower)
+BLOCK_ELEMENTS = (
+    1 << 20
+)  # windows per block x N^2: 8 MiB arrays (on a flight 1 << 16 is 2.3x slower, 1 << 21 alike)
 TINY = 1e-280  # a kernel range sum below this is taken again in the log domain (see _log_ranges)
 
 
 def _band(x: np.ndarray, n: int, s: int, e: int) -> np.ndarray:
     """The differences x_l - x_{l-1-m}, m = 0 .. n - 2, of every sample l that the windows ending at
-    s .. e - 1 (0-based, s >= n - 1) need: (e - s + n - 2, n - 1), row r is sample l = s - n + 2 + r.
-    Samples before x's start are NaN (they only ever reach splits outside a window)."""
+    s .. e - 1 (0-based, s >= n - 1) need, window-last: (n - 1, e - s + n - 2), column r is sample
+    l = s - n + 2 + r. Samples before x's start are NaN (they only ever reach splits outside a window)."""
     lo = s - (2 * n - 3)
     xb = x[max(0, lo) : e]
     if lo < 0:
         xb = np.concatenate([np.full(-lo, np.nan), xb])
     sw = np.lib.stride_tricks.sliding_window_view(xb, n)
-    return sw[:, -1:] - sw[:, -2::-1]
+    return np.ascontiguousarray((sw[:, -1:] - sw[:, -2::-1]).T)
+
+
+def _running_sums(v: np.ndarray, n: int) -> np.ndarray:
+    """q[g-1, h, r] = sum_{m=h}^{h+g-1} v[m, r], added from m = h on (np.cumsum's order), for the
+    splits h + g <= n - 1 (the other entries are left unset and never read): (n - 1, n - 1, R)."""
+    q = np.empty((n - 1, n - 1, v.shape[1]))
+    q[0] = v
+    for gi in range(1, n - 1):
+        k = n - 1 - gi
+        np.add(q[gi - 1, :k], v[gi : gi + k], out=q[gi, :k])
+    return q
 
 
 def _diagonal_sums(q: np.ndarray, n: int) -> np.ndarray:
-    """In place: q[r, h, g-1] += q[r - 1, h - 1, g-1], h = 1 .. n - 2 in turn, so that q[r, h] becomes
-    the sum q[r - h, 0] + q[r - h + 1, 1] + ... + q[r, h] of one split's range terms over the samples
-    l = e - h .. e, oldest first (module docstring). Entries h + g > n - 1 (no such split) are left as
-    they are; rows whose chain would start before the block are dropped: (rows - n + 2, n - 1, n - 1)."""
+    """In place: q[g-1, h, r] += q[g-1, h - 1, r - 1], h = 1 .. n - 2 in turn, so that q[g-1, h, r]
+    becomes the sum q[g-1, 0, r - h] + q[g-1, 1, r - h + 1] + ... + q[g-1, h, r] of one split's range
+    terms over the samples l = e - h .. e, oldest first (module docstring). Columns whose chain would
+    start before the block are dropped: (n - 1, n - 1, R - n + 2)."""
     for h in range(1, n - 1):
         k = n - 1 - h
-        np.add(q[1:, h, :k], q[:-1, h - 1, :k], out=q[1:, h, :k])
-    return q[n - 2 :]
+        np.add(q[:k, h, 1:], q[:k, h - 1, :-1], out=q[:k, h, 1:])
+    return q[:, :, n - 2 :]
 
 
 def _blocks(m: int, n: int):
@@ -111,60 +125,46 @@ def _blocks(m: int, n: int):
 # ---------------------------------------------------------------- MBGTD, eq. (9)-(10)
 def mbgtd_merits(x: np.ndarray, window: int) -> np.ndarray:
     """V of every full window of a 1-D signal: (len(x) - window + 1,), O(N^2) per sample (module
-    docstring): R[l, h, g] = sum_{k = l-h-g}^{l-h-1} |x_l - x_k|, one running sum per h; its diagonal
-    sums are eq. (9)'s numerators; each divided by (j - i)(N - j + 1) = g (h + 1)."""
+    docstring): R[l, h, g] = sum_{k = l-h-g}^{l-h-1} |x_l - x_k| as running sums, their diagonal sums
+    eq. (9)'s numerators, each divided by (j - i)(N - j + 1) = g (h + 1)."""
     n = window
-    h = np.arange(n - 1)[:, None]
-    g = np.arange(1, n)[None, :]
-    count = (g * (h + 1)).astype(float)  # (j - i)(N - j + 1), seed 001, eq. (9)
     out = np.empty(max(0, x.shape[0] - n + 1))
     for s, e in _blocks(x.shape[0], n):
-        d = np.abs(_band(x, n, s, e))  # d_kl, the distance of two scalars
-        r = np.full((d.shape[0], n - 1, n - 1), -np.inf)  # -inf: no split there
-        for hh in range(n - 1):
-            np.cumsum(d[:, hh:], axis=1, out=r[:, hh, : n - 1 - hh])
-        c = _diagonal_sums(r, n)
-        np.divide(c, count, out=c)  # C_ij, seed 001, eq. (9)
-        out[s - n + 1 : e - n + 1] = c.reshape(c.shape[0], -1).max(axis=1)  # seed 001, eq. (10)
+        num = _diagonal_sums(_running_sums(np.abs(_band(x, n, s, e)), n), n)  # d_kl = |x_k - x_l|
+        best = np.full(num.shape[2], -np.inf)
+        for gi in range(n - 1):
+            k = n - 1 - gi
+            count = ((gi + 1) * np.arange(1, k + 1, dtype=float))[:, None]  # (j - i)(N - j + 1)
+            c = num[gi, :k] / count  # C_ij, seed 001, eq. (9)
+            np.maximum(best, c.max(axis=0), out=best)  # seed 001, eq. (10)
+        out[s - n + 1 : e - n + 1] = best
     return out
 
 
 # ---------------------------------------------------------------- MBCD, eq. (12)-(14)
 def _log_ranges(logw: np.ndarray, w: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """(Q, back): Q[r, h, g-1] = log sum_{m=h}^{h+g-1} w[r, m] (the first window's kernel sum of eq.
-    13 for the sample of row r; +inf where h + g > n - 1, no such split), and back[r, g] =
-    sum_{m=0}^{g-1} w[r, m] (back[r, 0] = 0).
+    """(Q, back): Q[g-1, h, r] = log sum_{m=h}^{h+g-1} w[m, r] (the first window's kernel sum of eq.
+    13 for the sample of column r; h + g <= n - 1), and back[g, r] = sum_{m=0}^{g-1} w[m, r]
+    (back[0] = 0).
 
-    The sums run in the plain domain (a running sum per h); a sum below TINY, where terms may have
-    underflowed (d > 38 lambda), is taken again as a running np.logaddexp of the log weights, so Q
-    stays finite and exact. The choice is made per entry from that entry's own sum, so a merit depends
-    on its window's samples only (batch and stream agree bit for bit). A running sum of terms >= 0
-    never decreases, so the sums below TINY are a prefix of each (r, h): the log-domain pass runs over
-    exactly those, longest first, one column at a time over every (r, h) still in its prefix."""
-    rows = w.shape[0]
-    q = np.full((rows, n - 1, n - 1), np.inf)
-    for h in range(n - 1):
-        np.cumsum(w[:, h:], axis=1, out=q[:, h, : n - 1 - h])
-    back = np.zeros((rows, n - 1))
-    back[:, 1:] = q[:, 0, : n - 2]
-    count = (q < TINY).sum(axis=2)  # (rows, h): the length of the prefix below TINY (NaN: not below)
+    The sums run in the plain domain; a sum below TINY, where terms may have underflowed
+    (d > 38 lambda), is taken again as a running np.logaddexp of the log weights, so Q stays finite
+    and exact. The choice is made per entry from that entry's own sum, so a merit depends on its
+    window's samples only (batch and stream agree bit for bit). A running sum of terms >= 0 never
+    decreases, so where a sum is below TINY so is the one before it, already in the log domain."""
+    q = _running_sums(w, n)
+    back = np.zeros_like(w)
+    back[1:] = q[: n - 2, 0]
     with np.errstate(divide="ignore", invalid="ignore"):
-        np.log(q, out=q)
-        rr, hh = np.nonzero(count)
-        if rr.size:
-            c = count[rr, hh]
-            order = np.argsort(-c, kind="stable")
-            rr, hh, c = rr[order], hh[order], c[order]
-            longest = int(c[0])
-            v = logw[rr[:, None], np.minimum(hh[:, None] + np.arange(longest), n - 2)]  # each prefix
-            live = np.searchsorted(-c, -np.arange(longest), side="left")  # live[j]: how many have c > j
-            exact = np.empty_like(v)
-            exact[:, 0] = v[:, 0]
-            for j in range(1, longest):
-                k = int(live[j])
-                np.logaddexp(exact[:k, j - 1], v[:k, j], out=exact[:k, j])
-            pi, ji = np.nonzero(np.arange(longest)[None, :] < c[:, None])
-            q[rr[pi], hh[pi], ji] = exact[pi, ji]
+        for gi in range(n - 1):
+            k = n - 1 - gi
+            low = q[gi, :k] < TINY
+            np.log(q[gi, :k], out=q[gi, :k])
+            if low.any():
+                if gi == 0:
+                    np.copyto(q[0], logw, where=low)
+                else:
+                    np.logaddexp(q[gi - 1, :k], logw[gi : gi + k], out=q[gi, :k], where=low)
     return q, back
 
 
@@ -173,33 +173,36 @@ def mbcd_merits(x: np.ndarray, window: int, bandwidth: float) -> np.ndarray:
     docstring): S_ij = A_j - D_ij + (N - j + 1)(log(j - i) - log(N - j + 1)), eq. (13), with A_j the
     second window's log kernel sums and D_ij the diagonal sums of the first window's."""
     n = window
-    h = np.arange(n - 1)[:, None]
-    g = np.arange(1, n)[None, :]
-    # the constant part of eq. (13): N - j + 1 = h + 1 terms of log(1/(h + 1)) - log(1/g)
-    const = np.where(h + g <= n - 1, (h + 1) * (np.log(g) - np.log(h + 1)), 0.0)
+    h = np.arange(n - 1)
     out = np.empty(max(0, x.shape[0] - n + 1))
     for s, e in _blocks(x.shape[0], n):
         z = _band(x, n, s, e) / bandwidth
         logw = -0.5 * z * z  # log w_lk, seed 001, eq. (12) (decaying; its constant cancels in eq. 13)
         w = np.exp(logw)
-        rows = w.shape[0]
+        cols = w.shape[1]
         q, back = _log_ranges(logw, w, n)
-        d = _diagonal_sums(q, n)  # sum_{l=j}^{N} log sum_{k=i}^{j-1} w_lk, (E, h, g - 1)
-        # fwd[r, u] = sum_{t=1}^{u} w_{l, l+t} for the sample l of row r (the kernel is symmetric)
-        ahead = np.zeros((rows, n - 1))
+        d = _diagonal_sums(q, n)  # sum_{l=j}^{N} log sum_{k=i}^{j-1} w_lk, (g - 1, h, E)
+        # fwd[u, r] = sum_{t=1}^{u} w_{l, l+t} for the sample l of column r (the kernel is symmetric)
+        ahead = np.zeros_like(w)
         for t in range(1, n - 1):
-            ahead[: rows - t, t] = w[t:, t - 1]
-        fwd = np.cumsum(ahead, axis=1)
-        # a[E, h] = sum_{l=j}^{N} log sum_{k=j}^{N} w_lk, j = N - h: l = e - u (u = 0 .. h) and its sum
+            ahead[t, : cols - t] = w[t - 1, t:]
+        fwd = np.cumsum(ahead, axis=0)
+        # a[h, E] = sum_{l=j}^{N} log sum_{k=j}^{N} w_lk, j = N - h: l = e - u (u = 0 .. h) and its sum
         # over k = e - h .. e = (w_ll = 1 + the h - u samples before l) + the u samples after l
         back += 1.0
-        a = np.zeros((d.shape[0], n - 1))
+        a = np.zeros((n - 1, cols - n + 2))
         for u in range(n - 1):
-            ll = slice(n - 2 - u, rows - u)
-            a[:, u:] += np.log(back[ll, : n - 1 - u] + fwd[ll, u][:, None])
-        np.subtract(a[:, :, None], d, out=d)
-        d += const  # S_ij, seed 001, eq. (13)
-        out[s - n + 1 : e - n + 1] = d.reshape(d.shape[0], -1).max(axis=1)  # seed 001, eq. (14)
+            ll = slice(n - 2 - u, cols - u)
+            a[u:] += np.log(back[: n - 1 - u, ll] + fwd[u, ll])
+        best = np.full(a.shape[1], -np.inf)
+        for gi in range(n - 1):
+            k = n - 1 - gi
+            # the constant part of eq. (13): N - j + 1 = h + 1 terms of log(1/(h + 1)) - log(1/g)
+            const = ((h[:k] + 1) * (np.log(gi + 1) - np.log(h[:k] + 1)))[:, None]
+            sij = np.subtract(a[:k], d[gi, :k])
+            sij += const  # S_ij, seed 001, eq. (13)
+            np.maximum(best, sij.max(axis=0), out=best)  # seed 001, eq. (14)
+        out[s - n + 1 : e - n + 1] = best
     return out
 
 
