@@ -17,8 +17,8 @@ GRID_HELP = {
     "method": "Methods, a comma list: nmv, emv (the moving-variance paper), nmv+baro, emv+baro (the redundant "
     "rule with the samples' barometer) and the activity-detector study's amvd, amd, ared, shod, frd, ltsd, fsd, "
     "mbgtd, mbcd (ared and shod read the gyroscope; the flexible ones take :acc, :gyr, :sum or :product, e.g. "
-    "fsd:sum) (threshold k x the merit at rest; the memory detectors cost O(N^2), O(N^3) per sample: short "
-    "windows).",
+    "fsd:sum) (threshold k x the merit at rest; the memory detectors mbgtd and mbcd keep the study's own "
+    "window of samples, O(N^2) per sample, whatever W_s).",
     "weight": "EMV weighting factors, e.g. 1,5,10 (paired with each EMV method).",
     "window_s": "Windows W_s, s (list or start:stop:step).",
     "k": "Amplitude thresholds T_sigma = k sigma^2.",
