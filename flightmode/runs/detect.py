@@ -97,11 +97,10 @@ def pressure_params_of(cols: dict, info: dict | None, source, settings: DetectSe
     return pp
 
 
-def _moving_variance(cols, info, source, m, s: DetectSettings, fs: float) -> Detection:
-    from flightmode.detector.evaluation import evaluate
+def moving_variance_params(m, s: DetectSettings, fs: float):
+    """The moving-variance detector's parameters (validated) for method ``m`` at ``fs`` Hz, as the
+    settings ``s`` give them: shared by the accelerometer rule and the redundant one."""
     from flightmode.detector.flight_mode import DetectorParams
-    from flightmode.detector.recommended import labels_of
-    from flightmode.runs.pipeline import stream_sigma2
 
     p = DetectorParams(
         fs_hz=fs,
@@ -112,27 +111,27 @@ def _moving_variance(cols, info, source, m, s: DetectSettings, fs: float) -> Det
         weight=s.weight,
     )
     p.validate()
+    return p
+
+
+def _moving_variance(cols, info, source, m, s: DetectSettings, fs: float) -> Detection:
+    from flightmode.detector.evaluation import evaluate
+    from flightmode.detector.recommended import labels_of
+    from flightmode.runs.pipeline import stream_sigma2
+
+    p = moving_variance_params(m, s, fs)
     s2, s2_source = stream_sigma2(s.sigma2_from, cols, info, p.window)
     e = evaluate(cols["t_s"], cols["acc_g"], labels_of(cols), p, s2)
     return Detection(m.name, m.kind, fs, e, s2_source, p)
 
 
 def _redundant(cols, info, source, m, s: DetectSettings, fs: float) -> Detection:
-    from flightmode.detector.flight_mode import DetectorParams
     from flightmode.detector.pressure import evaluate_redundant
     from flightmode.detector.recommended import labels_of
     from flightmode.runs.pipeline import stream_sigma2
 
     pp = pressure_params_of(cols, info, source, s)
-    p = DetectorParams(
-        fs_hz=fs,
-        window_s=s.window_s,
-        k_sigma=s.k,
-        time_threshold_s=s.time_threshold_s,
-        method=m.base,
-        weight=s.weight,
-    )
-    p.validate()
+    p = moving_variance_params(m, s, fs)
     s2, s2_source = stream_sigma2(s.sigma2_from, cols, info, p.window)
     t, new = cols["t_s"], cols["baro_new"]
     red = evaluate_redundant(t, cols["acc_g"], t[new], cols["baro_pa"][new], labels_of(cols), p, s2, pp)
