@@ -44,24 +44,60 @@ def fly_scenario(name: str):
     return sc, track, t
 
 
-def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
-    """The baseline of the flight benchmarks: the scenario's JSBSim model (loaded through flightmode's
-    adapter: the same private copy, edits and settings) placed at the origin and stepped with bare
-    ``fdm.run()`` ``steps`` times, no property reads, no pilot; loading is not timed. Best of
-    ``repeats``."""
+MODELS = ("stock", "edited")
+STATES = ("parked", "climb")
+
+
+def bare_aircraft(scenario, model: str = "edited", state: str = "parked"):
+    """The scenario's JSBSim aircraft loaded through flightmode's adapter (the private copy and its
+    settings), ready to be stepped bare. ``model``: ``"edited"`` (flightmode's edits, as the flight flies
+    it: sim/flight/jsbsim/model_edits.py) or ``"stock"`` (the same private copy, no edits). ``state``:
+    ``"parked"`` (at rest at the origin's gate position, brakes on, JSBSim's ground trim, as the flight
+    starts) or ``"climb"`` (in the air at 10,000 ft, 250 kt, a 3 degree climb path, gear and flaps up,
+    engines running, trimmed by JSBSim's full trim; stepped untouched it keeps climbing for the whole
+    timed stretch: about 1,000 ft/min over 60,000 steps)."""
     from flightmode.sim.flight.aircraft.registry import get_profile
     from flightmode.sim.flight.jsbsim.adapter import JSBSimAircraft
     from flightmode.sim.flight.jsbsim.model_edits import edits_for
 
+    if model not in MODELS or state not in STATES:
+        raise ValueError(f"model {model!r} / state {state!r}: allowed {MODELS} / {STATES}")
     plan = scenario.plan
     prof = get_profile(plan.aircraft)
+    edits = edits_for(prof) if model == "edited" else ()
+    ac = JSBSimAircraft(plan.aircraft, 1.0 / plan.fdm_hz, prof.n_engines, edits=edits)
+    o = plan.origin
+    if state == "parked":
+        ac.init_on_ground(o.lat_deg, o.lon_deg, o.elevation_m, o.heading_deg)
+        return ac
+    fdm = ac.fdm
+    fdm["ic/lat-geod-deg"] = o.lat_deg
+    fdm["ic/long-gc-deg"] = o.lon_deg
+    fdm["ic/terrain-elevation-ft"] = 0.0
+    fdm["ic/h-sl-ft"] = 10_000.0
+    fdm["ic/vc-kts"] = 250.0
+    fdm["ic/gamma-deg"] = 3.0
+    fdm["ic/psi-true-deg"] = o.heading_deg
+    fdm.run_ic()
+    fdm["propulsion/set-running"] = -1
+    fdm["gear/gear-cmd-norm"] = 0.0
+    fdm["fcs/flap-cmd-norm"] = 0.0
+    for i in range(prof.n_engines):
+        fdm[f"fcs/throttle-cmd-norm[{i}]"] = 0.9
+    fdm["simulation/do_simple_trim"] = 1  # full trim; JSBSim raises if it fails
+    return ac
+
+
+def bare_stepping_s(
+    scenario, steps: int, repeats: int = 3, *, model: str = "edited", state: str = "parked"
+) -> float:
+    """The baseline of the flight benchmarks: the scenario's JSBSim model (:func:`bare_aircraft`: by
+    default flightmode's edited private copy, parked at the origin) stepped with bare ``fdm.run()``
+    ``steps`` times, no property reads, no pilot; loading and trimming are not timed. Best of
+    ``repeats``."""
 
     def bare() -> float:
-        ac = JSBSimAircraft(plan.aircraft, 1.0 / plan.fdm_hz, prof.n_engines, edits=edits_for(prof))
-        ac.init_on_ground(
-            plan.origin.lat_deg, plan.origin.lon_deg, plan.origin.elevation_m, plan.origin.heading_deg
-        )
-        run = ac.fdm.run
+        run = bare_aircraft(scenario, model, state).fdm.run
         t0 = time.perf_counter()
         for _ in range(steps):
             run()
@@ -70,22 +106,60 @@ def bare_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
     return min(bare() for _ in range(repeats))
 
 
-def in_flight_stepping_s(scenario) -> tuple[float, int]:
-    """(seconds inside JSBSim's ``fdm.run``, steps) over one whole flight of ``scenario`` flown as
-    ``flightmode.run`` flies it: the part of the fly stage that is JSBSim's own. Each step is timed on its
-    own (the timer's calls are outside the sum), so the flight this measures is slower than an untimed
-    one; what it sums is not."""
+def step_cost_table(scenario, steps: int = 60_000, repeats: int = 3) -> dict[tuple[str, str], float]:
+    """Bare JSBSim stepping in microseconds per step, (model, state) -> us, for the stock and the edited
+    model, parked and in a steady climb (:func:`bare_aircraft`), ``steps`` steps each, best of
+    ``repeats`` (the four cases taken in turn, round by round, so a slow stretch of the machine
+    touches them alike)."""
+    cases = [(m, s) for m in MODELS for s in STATES]
+    best_s = dict.fromkeys(cases, float("inf"))
+    for _ in range(repeats):
+        for m, s in cases:
+            best_s[m, s] = min(best_s[m, s], bare_stepping_s(scenario, steps, 1, model=m, state=s))
+    return {c: t / steps * 1e6 for c, t in best_s.items()}
+
+
+def timer_overhead_s(n: int = 200_000) -> float:
+    """What one ``t0 = clock(); ...; total += clock() - t0`` adds to the sum around an empty body
+    (s), least of three: subtracted per step from the in-flight sum."""
+    clock = time.perf_counter
+    best_s = float("inf")
+    for _ in range(3):
+        total = 0.0
+        for _ in range(n):
+            t0 = clock()
+            total += clock() - t0
+        best_s = min(best_s, total / n)
+    return best_s
+
+
+def in_flight_stepping(scenario) -> dict:
+    """JSBSim's own stepping inside one whole flight of ``scenario`` flown as ``flightmode.run`` flies
+    it (``pipeline.fly``): the part of the fly stage that is JSBSim's. The flight's aircraft has its
+    FGFDMExec wrapped so that each ``fdm.run()`` is timed on its own, split by whether the gear
+    touched the ground before the step (``gear/wow``, read outside the timed span). The timer's own
+    cost per step (:func:`timer_overhead_s`) is taken off the sums, so they compare with bare stepping
+    (:func:`step_cost_table`: parked with the ground steps, climb with the airborne ones). The
+    flight this measures is slower than an untimed one; what it sums is not.
+
+    Returns ``ground_s``, ``ground_steps``, ``air_s``, ``air_steps``, ``total_s``, ``steps`` and the
+    ``track``; a :class:`RuntimeError` if the steps timed are not the flight's own (its samples plus
+    the gear's settling before t = 0), i.e. the wrapper did not sit inside this flight."""
     from flightmode.runs import pipeline
     from flightmode.sim.flight.jsbsim import adapter as jsbsim_adapter
+    from flightmode.sim.flight.simulate import SETTLE_S
 
-    total = [0.0, 0]
+    sums = {True: [0.0, 0], False: [0.0, 0]}  # airborne? -> [s, steps]
     clock = time.perf_counter
+    wrapped = []
 
     class TimedFDM:
         """The FGFDMExec with ``run`` timed; everything else passed through."""
 
         def __init__(self, fdm):
             self._fdm = fdm
+            self._run = fdm.run
+            self._wow = fdm.get_property_manager().get_node("gear/wow", False).get_double_value
 
         def __getattr__(self, name):
             return getattr(self._fdm, name)
@@ -97,10 +171,12 @@ def in_flight_stepping_s(scenario) -> tuple[float, int]:
             self._fdm[key] = value
 
         def run(self):
+            acc = sums[self._wow() < 0.5]
+            run = self._run
             t0 = clock()
-            out = self._fdm.run()
-            total[0] += clock() - t0
-            total[1] += 1
+            out = run()
+            acc[0] += clock() - t0
+            acc[1] += 1
             return out
 
     init = jsbsim_adapter.JSBSimAircraft.__init__
@@ -108,10 +184,28 @@ def in_flight_stepping_s(scenario) -> tuple[float, int]:
     def timed_init(self, *args, **kwargs):
         init(self, *args, **kwargs)
         self.fdm = TimedFDM(self.fdm)
+        wrapped.append(self)
 
+    overhead = timer_overhead_s()
     jsbsim_adapter.JSBSimAircraft.__init__ = timed_init
     try:
-        pipeline.fly(scenario, pipeline.streams_of(scenario.seed).child("flight"))
+        track = pipeline.fly(scenario, pipeline.streams_of(scenario.seed).child("flight"))
     finally:
         jsbsim_adapter.JSBSimAircraft.__init__ = init
-    return total[0], total[1]
+    steps = sums[True][1] + sums[False][1]
+    expected = track.n + int(SETTLE_S * scenario.plan.fdm_hz)
+    if len(wrapped) != 1 or steps != expected:
+        raise RuntimeError(
+            f"timed {steps} steps on {len(wrapped)} aircraft; the flight is one aircraft, {expected} steps"
+        )
+    (air_s, air_n), (ground_s, ground_n) = sums[True], sums[False]
+    return {
+        "ground_s": ground_s - overhead * ground_n,
+        "ground_steps": ground_n,
+        "air_s": air_s - overhead * air_n,
+        "air_steps": air_n,
+        "total_s": ground_s + air_s - overhead * steps,
+        "steps": steps,
+        "timer_overhead_us": overhead * 1e6,
+        "track": track,
+    }

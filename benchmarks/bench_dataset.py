@@ -1,6 +1,18 @@
 """Benchmark: `flightmode dataset` throughput on Dask, and its overhead per flight.
 
     python benchmarks/bench_dataset.py [N] [FAMILY]
+    python benchmarks/bench_dataset.py rate [N] [FAMILY]     (default 6 members of airline-mix)
+
+``rate``: in-window flight-hours per core-hour of the family's first N members made as ``flightmode
+dataset`` makes them (fly, sense, detect, write; ``make_dataset`` with 2 workers on this machine's 2
+cores, core-hours = wall time x 2), beside the limit bare JSBSim sets: 3,600 s / (bare seconds per step
+x steps per flight-hour), the steps per flight-hour being the flight's FDM rate (the plan's ``fdm_hz``,
+as sim/flight/simulate.py steps it) x 3,600. The bare seconds per step: the members' edited models
+(benchmarks/_bench.py ``step_cost_table``), parked for their ground time and in a climb for their
+airborne time, weighted by each member's steps. Reported: the figure, the limit and figure / limit
+(target >= 0.6).
+
+Without ``rate``:
 
 All in the same run, on the family's first N members (default 6 of ``regional-hops``):
 
@@ -21,7 +33,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from _bench import report, timed
+from _bench import report, step_cost_table, timed
 
 
 def _mb(root: Path, part: str) -> float:
@@ -75,5 +87,92 @@ def main(n: int = 6, family: str = "regional-hops") -> dict:
     return res
 
 
+def _in_window_s(path: Path) -> float:
+    """Seconds of a samples file inside the in-flight window (pushback start to engines off)."""
+    import numpy as np
+    import pyarrow.parquet as pq
+
+    t = pq.read_table(path, columns=["t_s", "in_flight_window"])
+    ts = t["t_s"].to_numpy()
+    win = t["in_flight_window"].to_numpy()
+    return float(np.count_nonzero(win) * np.median(np.diff(ts)))
+
+
+def rate(n: int = 6, family: str = "airline-mix", workers: int = 2) -> dict:
+    import flightmode
+    from flightmode.datasets.make import make_dataset
+    from flightmode.scenarios.family import Family
+
+    fam = Family.resolve(family)
+    members = list(fam.members(n))
+    flightmode.run(members[0], stages=("fly",))  # warm: imports, JSBSim's model files cached
+    with tempfile.TemporaryDirectory() as d:
+        rows, t_wall = timed(lambda: make_dataset(fam, n, Path(d) / "ds", workers=workers))
+        ok = [r for r in rows.values() if r["status"] == "ok"]
+        in_window_h = sum(_in_window_s(Path(d) / "ds" / r["samples_file"]) for r in ok) / 3600.0
+        timings = [json.loads(line) for line in (Path(d) / "ds" / "timings.jsonl").read_text().splitlines()]
+    busy_s = sum(t["wall_s"] for t in timings)  # the workers' time inside fly_member, summed
+    longest_s = max(t["wall_s"] for t in timings)
+    g2g_h = sum(r["gate_to_gate_s"] for r in ok) / 3600.0
+    # bare stepping of each aircraft type's edited model, parked and climbing (after the dataset:
+    # the machine is quiet again)
+    by_type = {}
+    for m in members:
+        by_type.setdefault(m.plan.aircraft, m)
+    costs = {a: step_cost_table(m, steps=30_000) for a, m in by_type.items()}
+    fdm_hz = {m.plan.fdm_hz for m in members}
+    if len(fdm_hz) != 1:
+        raise ValueError(f"members fly at several FDM rates {sorted(fdm_hz)}: one limit needs one")
+    (hz,) = fdm_hz
+    steps = ground = air = 0.0
+    cost_s = 0.0
+    for r in ok:
+        ac = members[r["index"]].plan.aircraft
+        air_steps = r["airborne_s"] * hz
+        ground_steps = (r["gate_to_gate_s"] - r["airborne_s"]) * hz
+        c = costs[ac]
+        cost_s += (ground_steps * c["edited", "parked"] + air_steps * c["edited", "climb"]) * 1e-6
+        steps += air_steps + ground_steps
+        ground += ground_steps
+        air += air_steps
+    s_per_step = cost_s / steps
+    limit = 3600.0 / (s_per_step * hz * 3600.0)
+    core_h = t_wall * workers / 3600.0
+    figure = in_window_h / core_h
+    res = {
+        "family": fam.name,
+        "members (first N)": n,
+        "flights ok": len(ok),
+        "aircraft": ", ".join(sorted(m.plan.aircraft for m in members)),
+        "workers": workers,
+        "wall s (cluster start included)": t_wall,
+        "core-hours (wall x workers)": core_h,
+        "gate-to-gate flight-hours": g2g_h,
+        "in-window flight-hours": in_window_h,
+        "airborne share of steps": air / steps,
+        "FDM rate Hz": hz,
+        "steps per flight-hour": hz * 3600.0,
+        **{
+            f"bare us/step {a} edited parked / climb": f"{c['edited', 'parked']:.3f} / {c['edited', 'climb']:.3f}"
+            for a, c in costs.items()
+        },
+        "bare us/step (members' mix)": s_per_step * 1e6,
+        "limit: flight-hours per core-hour": limit,
+        "in-window flight-hours per core-hour": figure,
+        "gate-to-gate flight-hours per core-hour": g2g_h / core_h,
+        "figure / limit (target >= 0.6)": figure / limit,
+        "workers busy in flights, share of core-hours": busy_s / (t_wall * workers),
+        "longest flight s (one worker)": longest_s,
+        "in-window flight-hours per busy core-hour": in_window_h / (busy_s / 3600.0),
+        "busy figure / limit": in_window_h / (busy_s / 3600.0) / limit,
+    }
+    report(res)
+    print(f"target: figure / limit >= 0.6 -> {'met' if figure / limit >= 0.6 else 'NOT met'}")
+    return res
+
+
 if __name__ == "__main__":
-    main(*(int(a) if i == 0 else a for i, a in enumerate(sys.argv[1:3])))
+    if sys.argv[1:2] == ["rate"]:
+        rate(*(int(a) if i == 0 else a for i, a in enumerate(sys.argv[2:4])))
+    else:
+        main(*(int(a) if i == 0 else a for i, a in enumerate(sys.argv[1:3])))
