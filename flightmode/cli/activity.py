@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from flightmode.cli.common import JSON_HELP, WORKERS_HELP, console, emit_json, sub_app
+from flightmode.cli.common import JSON_HELP, WORKERS_HELP, CountingBar, console, emit_json, sub_app
 from flightmode.errors import ScenarioError
 
 activity_app = sub_app("The activity-detector study: nine (in)activity detectors on synthesized records.")
@@ -31,22 +31,12 @@ def activity_synth_cmd(
 
     Every detector and input signal grid-searched for accuracy, ROC/AUC at its best window; Tables
     1-6 and 13 printed beside the paper's."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
     from flightmode.detector.activity import montecarlo as mc
 
     if n < 1:
         raise ScenarioError(f"--n {n}: the number of runs must be a positive integer")
-    with Progress(
-        TextColumn("runs"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console(),
-        disable=as_json,
-    ) as bar:
-        task = bar.add_task("runs", total=n)
-        res = mc.run_montecarlo(n, seed=seed, workers=workers, on_run=lambda i: bar.update(task, advance=1))
+    with CountingBar("runs", n, quiet=as_json) as bar:
+        res = mc.run_montecarlo(n, seed=seed, workers=workers, on_run=bar.advance)
     written = mc.write_results(res, out) if out is not None else {}
     if as_json:
         emit_json(

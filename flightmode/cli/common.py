@@ -119,3 +119,45 @@ def emit_json(obj) -> None:
 
 JSON_HELP = "Print the results as one JSON document on stdout (the numbers of the table) instead."
 WORKERS_HELP = "Dask worker processes (1: in this process, no cluster)."
+
+
+class CountingBar:
+    """A progress bar counting ``label`` (runs, flights) up to a total known now or later: the one
+    bar of the commands that map over flights or runs. ``quiet`` hides it (``--json``);
+    ``stderr``/``transient``: drawn on standard error and erased when done."""
+
+    def __init__(
+        self,
+        label: str,
+        total: int | None = None,
+        *,
+        quiet: bool = False,
+        stderr: bool = False,
+        transient: bool = False,
+    ):
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+        self.bar = Progress(
+            TextColumn(label),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TimeElapsedColumn(),
+            console=err_console() if stderr else console(),
+            disable=quiet,
+            transient=transient,
+        )
+        self.task = self.bar.add_task(label, total=total)
+
+    def __enter__(self) -> CountingBar:
+        self.bar.__enter__()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.bar.__exit__(*exc)
+
+    def total(self, n: int) -> None:
+        self.bar.update(self.task, total=n)
+
+    def advance(self, *_: object) -> None:
+        """One more done (any arguments, e.g. the index a callback passes, are ignored)."""
+        self.bar.advance(self.task)

@@ -10,7 +10,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from flightmode.cli.common import JSON_HELP, WORKERS_HELP, console, emit_json, sub_app
+from flightmode.cli.common import JSON_HELP, WORKERS_HELP, CountingBar, console, emit_json, sub_app
 from flightmode.errors import ScenarioError
 
 eobs_app = sub_app(
@@ -139,22 +139,13 @@ def eobs_tradeoff_cmd(
 
     Samples per hour against false statics per flight-hour and the response at the gate, per ACC
     interval and number of quiet bursts."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from flightmode.detector.grid import parse_axis
     from flightmode.eobs.population import summarise, tradeoff_population
 
     intervals = parse_axis(interval_s, "--interval-s")
     ms = tuple(int(x) for x in parse_axis(bursts, "--bursts"))
-    with Progress(
-        TextColumn("flights"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console(),
-        disable=as_json,
-    ) as bar:
-        task = bar.add_task("flights", total=None)
+    with CountingBar("flights", quiet=as_json) as bar:
         rows = tradeoff_population(
             [str(d) for d in datasets],
             intervals,
@@ -163,8 +154,8 @@ def eobs_tradeoff_cmd(
             k,
             odr_hz,
             workers,
-            on_start=lambda n: bar.update(task, total=n),
-            on_flight=lambda n: bar.advance(task),
+            on_start=bar.total,
+            on_flight=bar.advance,
         )
     if out is not None:
         import pyarrow as pa

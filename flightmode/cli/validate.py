@@ -9,7 +9,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from flightmode.cli.common import JSON_HELP, WORKERS_HELP, console, emit_json, err_console
+from flightmode.cli.common import JSON_HELP, WORKERS_HELP, CountingBar, console, emit_json, err_console
 
 CHECKS_FILE = "checks.parquet"  # what `flightmode validate DATASET --out DIR` writes into DIR
 
@@ -91,23 +91,11 @@ def _validate_dataset(
     dataset: Path, paper_flight: int, as_json: bool, strict: bool, workers: int, out: Path | None
 ) -> None:
     """`flightmode validate DATASET`: every flight's checks, one table per aircraft type."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
     from flightmode.studies import validate_population as vp
 
     ok, _ = vp.check_request(dataset, paper_flight)
-    with Progress(
-        TextColumn("flights"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=err_console(),
-        transient=True,
-    ) as bar:
-        task = bar.add_task("flights", total=len(ok))
-        results, not_flown = vp.validate_dataset(
-            dataset, paper_flight, workers, on_done=lambda _: bar.update(task, advance=1)
-        )
+    with CountingBar("flights", len(ok), stderr=True, transient=True) as bar:
+        results, not_flown = vp.validate_dataset(dataset, paper_flight, workers, on_done=bar.advance)
     if out is not None:
         from flightmode.atomic import write_parquet
 
