@@ -119,6 +119,35 @@ def step_cost_table(scenario, steps: int = 60_000, repeats: int = 3) -> dict[tup
     return {c: t / steps * 1e6 for c, t in best_s.items()}
 
 
+def _table_of(name: str, steps: int, repeats: int, barrier) -> dict:
+    """One process's step-cost table of the built-in or family member ``name`` (a pickled scenario would
+    do as well; the name keeps the child's imports its own), started with the others at ``barrier``."""
+    from flightmode.scenarios.scenario import Scenario
+
+    sc = Scenario.resolve(name) if isinstance(name, str) else name
+    bare_aircraft(sc, "stock", "parked")  # load once before the common start (JSBSim's files cached)
+    barrier.wait()
+    return step_cost_table(sc, steps=steps, repeats=repeats)
+
+
+def concurrent_step_cost_table(scenario, procs: int, steps: int = 30_000, repeats: int = 3) -> dict:
+    """:func:`step_cost_table` measured in ``procs`` processes at once (started together at a barrier),
+    the slowest process's figure for each case: what bare JSBSim costs a step when every core steps
+    an aircraft, as a dataset's workers do. On a machine whose cores slow each other down (shared caches,
+    memory bandwidth, a hypervisor's scheduling) it is above the one-process table; the limit a
+    ``procs``-worker dataset can reach is set by it."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    ctx = mp.get_context("spawn")
+    with ctx.Manager() as manager:
+        barrier = manager.Barrier(procs)
+        with ProcessPoolExecutor(max_workers=procs, mp_context=ctx) as pool:
+            futs = [pool.submit(_table_of, scenario, steps, repeats, barrier) for _ in range(procs)]
+            tables = [f.result() for f in futs]
+    return {c: max(t[c] for t in tables) for c in tables[0]}
+
+
 def timer_overhead_s(n: int = 200_000) -> float:
     """What one ``t0 = clock(); ...; total += clock() - t0`` adds to the sum around an empty body
     (s), least of three: subtracted per step from the in-flight sum."""

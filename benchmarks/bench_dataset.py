@@ -10,7 +10,9 @@ x steps per flight-hour), the steps per flight-hour being the flight's FDM rate 
 as sim/flight/simulate.py steps it) x 3,600. The bare seconds per step: the members' edited models
 (benchmarks/_bench.py ``step_cost_table``), parked for their ground time and in a climb for their
 airborne time, weighted by each member's steps. Reported: the figure, the limit and figure / limit
-(target >= 0.6).
+(target >= 0.6); and beside them the same bare stepping measured in as many processes at once as there
+are workers (``_bench.concurrent_step_cost_table``), the limit the workers can reach on this machine
+when its cores slow each other down, and the figure against it.
 
 Without ``rate``:
 
@@ -33,7 +35,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from _bench import report, step_cost_table, timed
+from _bench import concurrent_step_cost_table, report, step_cost_table, timed
 
 
 def _mb(root: Path, part: str) -> float:
@@ -120,23 +122,27 @@ def rate(n: int = 6, family: str = "airline-mix", workers: int = 2) -> dict:
     for m in members:
         by_type.setdefault(m.plan.aircraft, m)
     costs = {a: step_cost_table(m, steps=30_000) for a, m in by_type.items()}
+    # the same, stepped in `workers` processes at once: the limit the workers themselves can reach here
+    costs_together = {a: concurrent_step_cost_table(m, workers) for a, m in by_type.items()}
     fdm_hz = {m.plan.fdm_hz for m in members}
     if len(fdm_hz) != 1:
         raise ValueError(f"members fly at several FDM rates {sorted(fdm_hz)}: one limit needs one")
     (hz,) = fdm_hz
     steps = ground = air = 0.0
-    cost_s = 0.0
+    cost_s = cost_together_s = 0.0
     for r in ok:
         ac = members[r["index"]].plan.aircraft
         air_steps = r["airborne_s"] * hz
         ground_steps = (r["gate_to_gate_s"] - r["airborne_s"]) * hz
-        c = costs[ac]
+        c, ct = costs[ac], costs_together[ac]
         cost_s += (ground_steps * c["edited", "parked"] + air_steps * c["edited", "climb"]) * 1e-6
+        cost_together_s += (ground_steps * ct["edited", "parked"] + air_steps * ct["edited", "climb"]) * 1e-6
         steps += air_steps + ground_steps
         ground += ground_steps
         air += air_steps
     s_per_step = cost_s / steps
     limit = 3600.0 / (s_per_step * hz * 3600.0)
+    limit_together = 3600.0 / (cost_together_s / steps * hz * 3600.0)
     core_h = t_wall * workers / 3600.0
     figure = in_window_h / core_h
     res = {
@@ -161,6 +167,9 @@ def rate(n: int = 6, family: str = "airline-mix", workers: int = 2) -> dict:
         "in-window flight-hours per core-hour": figure,
         "gate-to-gate flight-hours per core-hour": g2g_h / core_h,
         "figure / limit (target >= 0.6)": figure / limit,
+        f"bare us/step (members' mix), {workers} processes at once": cost_together_s / steps * 1e6,
+        f"limit with {workers} processes stepping at once": limit_together,
+        "figure / that limit": figure / limit_together,
         "workers busy in flights, share of core-hours": busy_s / (t_wall * workers),
         "longest flight s (one worker)": longest_s,
         "in-window flight-hours per busy core-hour": in_window_h / (busy_s / 3600.0),
