@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flightmode.detector.flight_mode import Checks, DetectorParams, detect, final_static
+from flightmode.detector.flight_mode import Checks, DetectorParams, axis_thresholds, detect, final_static
 from flightmode.detector.moving_variance import moving_variance
 from flightmode.errors import DetectorError
 from flightmode.intervals import true_runs
@@ -160,7 +160,8 @@ def pfa_table(
     n = int(in_w.sum())
     rows = []
     for k in ks:
-        below_all = c.mv < float(k) * np.asarray(sigma2)[None, :]
+        # eq. 7 against k sigma_i^2 per axis, or eq. 12's common threshold (params.threshold)
+        below_all = c.mv < axis_thresholds(dataclasses.replace(params, k_sigma=float(k)), sigma2)[None, :]
         temp = below_all.all(axis=1)  # eq. 7
         below = below_all[in_w]
         pa = below.mean(axis=0) if n else np.full(3, math.nan)
@@ -219,7 +220,7 @@ def turn_on_response(t_s, acc_g, params: DetectorParams, sigma2, weights=(1.0, 5
         mv = moving_variance(
             np.asarray(acc_g, float), p.window, method, w, p.emv_initial_k * np.asarray(sigma2)
         )
-        below = np.flatnonzero(np.all(mv < p.k_sigma * np.asarray(sigma2)[None, :], axis=1))
+        below = np.flatnonzero(np.all(mv < axis_thresholds(p, sigma2)[None, :], axis=1))
         rows.append(
             {
                 "method": method,

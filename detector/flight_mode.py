@@ -35,6 +35,10 @@ class DetectorParams:
     method: str = POINT.method
     weight: float = POINT.weight  # EMV weighting factor
     emv_initial_k: float = 10.0  # EMV starts from 10 sigma^2 (Fig. 18)
+    # "per-axis": T^i = k sigma_i^2 on each axis (ours, the default); "common": one T_sigma for the
+    # three axes, as seed 000 eq. (12) writes it (T^x = T^y = T^z = T_sigma, the axes' static
+    # variances being "approximately equal"), here k times the mean of the three sigma_i^2
+    threshold: str = "per-axis"
 
     @property
     def window(self) -> int:
@@ -55,6 +59,22 @@ class DetectorParams:
             raise DetectorError(f"k = {self.k_sigma}: the threshold k sigma^2 needs k > 0")
         if not self.time_threshold_s > 0:
             raise DetectorError(f"time threshold {self.time_threshold_s} s: must be > 0")
+        if self.threshold not in THRESHOLD_MODES:
+            raise DetectorError(
+                f"threshold {self.threshold!r}: one of {', '.join(THRESHOLD_MODES)} (seed 000 eq. 12 is 'common')"
+            )
+
+
+THRESHOLD_MODES = ("per-axis", "common")
+
+
+def axis_thresholds(params: DetectorParams, sigma2: np.ndarray) -> np.ndarray:
+    """T_sigma per axis (g^2): k sigma_i^2 ("per-axis"), or seed 000 eq. (12)'s one common threshold
+    k mean(sigma_i^2) on all three axes ("common")."""
+    s2 = np.asarray(sigma2, float).reshape(-1)
+    if params.threshold == "common":
+        return np.full(s2.shape, params.k_sigma * float(s2.mean()))  # seed 000, eq. (12)
+    return params.k_sigma * s2  # eq. (7) with T^i = k sigma_i^2
 
 
 @dataclass(frozen=True, slots=True)
@@ -136,7 +156,7 @@ class FlightModeDetector:
             raise DetectorError(f"sigma^2 must be three positive per-axis variances, got {sigma2}")
         self.p = params
         self.sigma2 = sigma2
-        self.thresholds = params.k_sigma * sigma2  # eq. 12: T_sigma = k sigma^2
+        self.thresholds = axis_thresholds(params, sigma2)  # eq. 7, 12: T_sigma = k sigma^2
         self._new_engine()
         self._t_last = None
         self._n = 0  # samples seen (global index of the next one)

@@ -29,12 +29,15 @@ with these to the spread Table 2 implies (tests/sim/test_noise_colour.py).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 from scipy.linalg import toeplitz
 from scipy.optimize import brentq
 from scipy.special import erfc
 from scipy.stats import chi2, norm
+
+from flightmode.errors import DetectorError
 
 
 def nmv_moments(n: int) -> tuple[float, float]:
@@ -157,3 +160,59 @@ def pm_saddlepoint(lam: np.ndarray, t: float) -> float:
     w = math.sqrt(2.0 * (s * t - k0))
     v = s * math.sqrt(k2)
     return float(norm.sf(w) + norm.pdf(w) * (1.0 / v - 1.0 / w))
+
+
+def k_of_pm_gaussian(pm: float, mu: float = 1.0, sigma_mv: float = 0.14) -> float:
+    """Seed 000 eq. (13) inverted: the threshold k (units of sigma^2) whose Gaussian P_M is ``pm``,
+    k = mu + sigma_MV Phi^-1(1 - P_M); mu, sigma_MV: the static MV's mean and spread (sigma^2)."""
+    if not 0.0 < pm < 1.0:
+        raise DetectorError(f"P_M = {pm:g}: a probability in (0, 1)")
+    return float(mu + sigma_mv * norm.isf(pm))
+
+
+def k_of_pm_acov(pm: float, acov: np.ndarray, n: int) -> float:
+    """The threshold k (units of acov[0], the noise variance sigma^2) with exact P(MV >= k sigma^2) =
+    ``pm`` for the N-sample NMV of a Gaussian process with autocovariance ``acov`` (:func:`pm_acov`)."""
+    if not 0.0 < pm < 0.5:
+        raise DetectorError(f"P_M = {pm:g}: the exact threshold needs 0 < P_M < 0.5 (above the MV mean)")
+    s2 = float(np.asarray(acov, float)[0])
+    mean = float(_mv_weights(acov, n).sum())
+    lo, hi = mean * (1.0 + 1e-5), mean
+    while pm_acov(hi * 2.0, acov, n) > pm:
+        hi *= 2.0
+    hi *= 2.0
+    f = lambda t: math.log(pm_acov(t, acov, n)) - math.log(pm)  # noqa: E731
+    return float(brentq(f, lo, hi, xtol=1e-9 * mean)) / s2
+
+
+def threshold_for_pfa(
+    k_of_pm: Callable[[float], float],
+    pfa_of_k: Callable[[float], float],
+    pm_start: float,
+    pfa_max: float,
+    pm_step: float = 10.0,
+    pm_max: float = 0.5,
+) -> dict:
+    """Seed 000 section 5.1.1's loop: set P_M, compute the MV threshold k(P_M) (step 4), derive the
+    P_FA it gives and, "if not [below the maximum value], then P_M is increased and a new MV
+    threshold is computed", until P_FA <= ``pfa_max`` or P_M would pass ``pm_max``.
+
+    ``k_of_pm``: P_M -> k (e.g. :func:`k_of_pm_gaussian`, :func:`k_of_pm_acov`, or an empirical
+    survival function inverted); ``pfa_of_k``: k -> P_FA (eq. 14 on a flight's dynamic checks, e.g.
+    from :func:`flightmode.detector.evaluation.pfa_table`). P_M grows by ``pm_step`` each round (the
+    paper gives no step; a decade per round is Table 2's grain). Returns {"met", "pm", "k", "pfa",
+    "steps": [{"pm", "k", "pfa"}, ...]}; when not met, the last step tried (the lowest k)."""
+    if not 0.0 < pm_start < pm_max < 1.0:
+        raise DetectorError(f"P_M start {pm_start:g} and maximum {pm_max:g}: need 0 < start < max < 1")
+    if not pm_step > 1.0:
+        raise DetectorError(f"P_M step {pm_step:g}: must be > 1 (P_M is increased each round)")
+    steps = []
+    i = 0
+    while True:
+        pm = pm_start * pm_step**i
+        k = float(k_of_pm(pm))
+        pfa = float(pfa_of_k(k))
+        steps.append({"pm": pm, "k": k, "pfa": pfa})
+        if pfa <= pfa_max or pm * pm_step > pm_max:
+            return {"met": pfa <= pfa_max, "pm": pm, "k": k, "pfa": pfa, "steps": steps}
+        i += 1

@@ -41,7 +41,8 @@ Groups and anchors:
   2 sigma^2 and 2.5 sigma^2 rows imply 0.398 and 0.348; within 30 %), Fig. 6's vibration lines in
   10-30 Hz (10 dB over the sensor's noise), and Tables 4 / 5's per-axis fractions of in-flight checks
   under 3 / 4 / 5 sigma^2 and their product P_FA^t, each within one order of magnitude of the paper's
-  cell, over the paper's "dynamic" part of the series (the in-flight window without the engines'
+  cell, and their P_FA = (P_FA^t)^(T_th / W_s) at T_th 3 and 4 s (eq. 14) within T_th / W_s orders
+  (one order on P_FA^t raised to that power), over the paper's "dynamic" part of the series (the in-flight window without the engines'
   run-down after fuel cut-off: :func:`dynamic_part`) (``paper_flight`` 1:
   Table 4, Geneva-London; 2: Table 5, the calm flight). A run of n in-flight checks cannot resolve a
   fraction far below 1/n, so the paper's cell is compared with the run's 95 % Clopper-Pearson
@@ -59,6 +60,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flightmode.detector.seed000 import PFA_KS, PFA_TTHS, TABLES_4_5
 from flightmode.errors import InputDataError
 from flightmode.units import FT_M
 
@@ -797,11 +799,9 @@ TABLE2_SPREAD = {2.0: 0.398, 2.5: 0.348}
 TABLE2_TOLERANCE = 0.30  # the issue: within 30 %
 # seed 000 Table 4 (flight 1) and Table 5 (flight 2): per-axis fraction of in-flight checks under
 # k sigma^2 (NMV, W = 1 s) and P_FA^t, for k = 3, 4, 5
-PAPER_TABLES = {
-    1: {"x": (5e-2, 8e-2, 1e-1), "y": (7e-4, 2e-3, 4e-3), "z": (9e-7, 2e-6, 2e-4), "t": (2e-10, 3e-10, 8e-8)},
-    2: {"x": (3e-1, 6e-1, 7e-1), "y": (1e-2, 1e-1, 4e-1), "z": (7e-3, 7e-2, 2e-1), "t": (2e-5, 4e-3, 6e-2)},
-}
-TABLE_KS = (3.0, 4.0, 5.0)
+# and P_FA = (P_FA^t)^(T_th / W_s) at T_th 3 and 4 s (eq. 14): the one copy is detector.seed000.TABLES_4_5
+PAPER_TABLES = {1: TABLES_4_5[4], 2: TABLES_4_5[5]}
+TABLE_KS = PFA_KS
 
 
 def dynamic_part(labels: dict) -> dict:
@@ -1113,6 +1113,23 @@ def seed000_checks(
                 )
             )
         )
+        # the P_FA rows: eq. 14, P_FA = (P_FA^t)^(T_th / W_s), at the paper's T_th 3 and 4 s. Its interval is
+        # P_FA^t's raised to the same power, and so is the tolerance: one order on P_FA^t is T_th / W_s
+        # orders on P_FA (the paper's cells span 1e-42 to 1e-4, where a run's P_FA^t interval is the
+        # only thing measured)
+        for j, tth in enumerate(PFA_TTHS):
+            e = tth / params.window_s
+            row = _order_check(
+                "seed 000",
+                f"Table {table} P_FA at {k:g} sigma^2, T_th {tth:g} s",
+                r["P_FA_t"] ** e,
+                (lo_t**e, hi_t**e),
+                paper["P_FA"][i][j],
+                f" ((P_FA^t)^{e:g}, eq. 14)",
+                src,
+                where,
+            )
+            out.append(judge(replace(row, lo=-e, hi=e)))
     return out
 
 
