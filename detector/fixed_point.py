@@ -224,7 +224,11 @@ class FixedNMV:
         mark = np.full(m, -1)
         mark[at] = j
         last = np.maximum.accumulate(mark)
-        dec = np.where(last >= 0, final[np.maximum(last, 0)], self._decision)
+        dec = (
+            np.where(last >= 0, final[np.maximum(last, 0)], self._decision)
+            if j.size
+            else (np.full(m, self._decision))
+        )
         if j.size:
             self._decision = bool(final[-1])
         self._tail = h[-(n_win - 1) :] if h.shape[0] >= n_win - 1 else h
