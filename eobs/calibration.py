@@ -20,6 +20,12 @@ the note's letters A-F to those keys for a given tag number, swapping E and F fo
 :class:`Calibration` always holds positive slopes along the tag's own axes, and :func:`to_g` turns
 old tags' Y into the newer tags' right-handed frame only when asked (``frame='right-handed'``).
 
+Units: section 6's formula ends in m/s^2, ``a_i = (n_i - n_i,zerog) * c_i * g`` with the note's own
+g = 9.81 m/s^2 (section 6's table, "Standard gravitational acceleration on the Earth's surface",
+and section 3). :func:`to_g` stops at g; :func:`to_mps2` goes on to m/s^2 with the note's 9.81 by
+default (:data:`EOBS_G_MPS2`), or any other g, e.g. ``scipy.constants.g`` (9.80665, the standard
+gravity the rest of flightmode uses: 0.034 % smaller, far inside the tags' +-5 % gain spread).
+
 Nominal constants (zero 2048; 0.0022 g/count for tags > 2241, 0.001 / 0.0027 for older tags by their
 sensitivity setting: section 6) are used when no calibration is given, with a
 :class:`NominalCalibrationWarning` and ``nominal=True`` on the result: section 3 warns "the whole
@@ -58,6 +64,7 @@ from flightmode.eobs.tag import (
 )
 from flightmode.errors import InputDataError, SensorError, did_you_mean
 
+EOBS_G_MPS2 = 9.81  # seed 003 section 6's table (and section 3): "g = 9.81 m/s^2"
 RECORDING_KEYS = ("+x", "-x", "+y", "-y", "+z", "-z")  # the tag's own axis at +1 g / -1 g
 # seed 003 chapter 3's images, in section 7's order A-F, for tags from 2242: (axis, g on it)
 ORIENTATIONS = {
@@ -209,6 +216,37 @@ def to_g(
     if frame == "right-handed" and "Y" in burst.axes:
         acc[:, burst.axes.index("Y")] *= y_sign(number)
     return AccelerationG(acc, burst.axes, frame, nominal)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class AccelerationMps2:
+    """A burst in m/s^2: (n, n_axes) along ``axes`` in ``frame``; ``g_mps2`` the g it was scaled by;
+    ``nominal`` as :class:`AccelerationG`'s."""
+
+    acc_mps2: np.ndarray
+    axes: str
+    frame: str
+    nominal: bool
+    g_mps2: float
+
+
+def to_mps2(
+    burst: AccBurst,
+    calibration: Calibration | None = None,
+    *,
+    tag_number: int | None = None,
+    sensitivity: str | None = None,
+    frame: str = "tag",
+    g_mps2: float = EOBS_G_MPS2,
+) -> AccelerationMps2:
+    """Counts to m/s^2 as seed 003 section 6 writes it: ``a_i = (n_i - n_i,zerog) * c_i * g``, with
+    the note's g = 9.81 m/s^2 unless ``g_mps2`` is given (module docstring); the other arguments
+    as :func:`to_g`'s."""
+    if not (math.isfinite(g_mps2) and g_mps2 > 0):
+        raise SensorError(f"g = {g_mps2!r} m/s^2: must be a positive number (the note's is {EOBS_G_MPS2})")
+    a = to_g(burst, calibration, tag_number=tag_number, sensitivity=sensitivity, frame=frame)
+    nominal = a.nominal or (calibration is not None and calibration.nominal)  # a nominal Calibration passed
+    return AccelerationMps2(a.acc_g * g_mps2, a.axes, a.frame, nominal, float(g_mps2))  # section 6
 
 
 # ------------------------------------------------------------------------------------------------ TOML

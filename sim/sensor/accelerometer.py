@@ -12,7 +12,7 @@ an integer multiple of the output data rate (ODR):
 1. per-unit cross-axis coupling and zero-g offset: ``a' = (I + C) a + o`` (C off-diagonal);
 2. (the per-unit sensitivity ``lsb (1 + s)`` enters at quantisation, step 6);
 3. the part's anti-alias low-pass (``bandwidth_hz``; a 2nd-order Butterworth, ``sosfilt``), or none
-   (e-obs: seed 003 section 1 says it has no anti-alias filter, so vibration aliases);
+   (e-obs: seed 003 section 8 says it has no anti-alias filter, so vibration aliases);
 4. sampling at the ODR (every k-th internal sample: whatever the filter let through aliases);
 5. output noise, sigma ``noise_g`` per axis: white, or white plus a first-order Gauss-Markov part
    (the section "Coloured noise" below), independent between axes;
@@ -187,7 +187,7 @@ PRESETS: dict[str, AccelerometerPreset] = {
     ),
     # e-obs GPS-acceleration tag (seed 003): 12-bit ADC 0..4095, zero-g about 2048 per axis,
     # a = (n - n0) * 0.0022 g for tags numbered > 2241 (section 6), so the range is about +-4.5 g;
-    # no anti-alias filter (section 1); sampling frequency is per axis. The calibration spread of
+    # no anti-alias filter (section 8); sampling frequency is per axis. The calibration spread of
     # the zero-g count (+-40 counts, i.e. +-88 mg) and the gain (+-5 %) is our assumption, to be
     # replaced by the six-orientation calibration of section 7. Bursts: 3.3 s of 3 axes at 10 Hz
     # every 60 s here; eobs_preset sets them from the ACC settings (sec. 9). Its noise stays white:
@@ -420,6 +420,14 @@ def eobs_burst(byte_count: int, n_axes: int, newer_firmware: bool = True) -> tup
     Memory is used in 64-byte blocks of which 54, then 63 per further block, hold data; each sample
     takes 1.5 bytes; the data bytes top out at 747 (firmware up to rv4_s1) or 1188 (rv5 and later).
     Returns (samples per axis, data bytes, memory bytes used).
+
+    The table is followed here, not section 10's text: section 10 says "the effective maximum of ACC
+    BYTECOUNT is 756 for older devices ... and 1197 for newer devices", and its continuous-sampling
+    example sets 1197, where section 9's table already reaches the largest burst (1188 bytes, 792
+    samples) from a setting of 1135 on rv5 (and 747 bytes from 694 up to rv4_s1). 756 is the end of
+    rv5's row 694-756 and 1197 = 1135 + 62 the end a 63-wide row from 1135 would have: neither is where
+    the maximum starts. Any setting from 1135 (694) up gives the same burst, so the example's 1197 and
+    its 792 samples still agree with the table.
     """
     if byte_count < 0 or n_axes not in (1, 2, 3):
         raise SensorError(f"e-obs burst: byte count must be >= 0 and axes 1-3 (got {byte_count}, {n_axes})")
