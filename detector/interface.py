@@ -10,8 +10,14 @@ A detector is made by a *factory* ``make(fs_hz, channels, **params) -> Detector`
   (m, len(channels)) in the same channels (the bench recording of the unit, or the stream's static
   samples before the flight, as ``--sigma2-from`` says): a detector calibrates on it as a tracker
   calibrates on the bench.
-- A factory may say which channels it reads with an attribute ``channels`` (a tuple of names); the
-  harness's default is the three accelerometer axes.
+- other keywords the harness offers when the factory names them (:data:`CONTEXT`): ``lsb_g`` (the
+  accelerometer's resolution in g, None when unknown: a variance floor for a quantised sensor),
+  ``baro_fs_hz`` (the barometer's own reading rate: ``pressure_pa`` holds each reading until the next)
+  and ``arrival_ground_pa`` (the destination's expected ground pressure when the route is known).
+  A ``--param`` of the same name wins.
+- A factory may say which channels it reads with an attribute ``channels`` (a tuple of names), or,
+  when they depend on its parameters, a function ``channels_for(**params)``; the harness's default
+  is the three accelerometer axes.
 
 ``Detector.push(t_s, x)`` takes consecutive chunks (``t_s`` shape (n,) in seconds, ``x`` shape
 (n, len(channels))) and returns one decision per sample (True: at rest, the radio may transmit). An
@@ -38,6 +44,8 @@ GROUP = "flightmode.detectors"
 ACC_CHANNELS = ("acc_x_g", "acc_y_g", "acc_z_g")
 GYRO_CHANNELS = ("gyro_x_dps", "gyro_y_dps", "gyro_z_dps")
 CHANNELS = (*ACC_CHANNELS, *GYRO_CHANNELS, "pressure_pa")
+# keywords the harness passes to a factory that names them (module docstring); ``rest`` is the first
+CONTEXT = ("rest", "lsb_g", "baro_fs_hz", "arrival_ground_pa")
 
 
 @runtime_checkable
@@ -66,6 +74,23 @@ class Loaded:
     def takes_rest(self) -> bool:
         """The factory takes the unit's rest recording (a keyword ``rest``)."""
         return takes_rest(self.factory)
+
+    def channels_for(self, params: dict) -> tuple[str, ...]:
+        """The channels the detector reads with these parameters: the factory's ``channels_for(**params)``
+        when it has one, else :attr:`channels`."""
+        fn = getattr(self.factory, "channels_for", None)
+        if not callable(fn):
+            return self.channels
+        try:
+            ch = tuple(str(c) for c in fn(**params))
+        except DetectorError:
+            raise
+        except Exception as e:
+            raise DetectorError(
+                f"detector {self.name}: channels_for({_kw(params)}) raised {type(e).__name__}: {e}"
+            ) from None
+        check_channels(ch, f"detector {self.name}")
+        return ch
 
 
 def _entry_points() -> dict:
@@ -101,13 +126,17 @@ def check_channels(channels: Sequence[str], what: str) -> None:
         raise DetectorError(f"{what}: a channel is named twice in {list(channels)}")
 
 
-def load(spec: str) -> Loaded:
+def load(spec: str, what: str = "--detector") -> Loaded:
     """The factory named by ``spec``: an entry point of the group ``flightmode.detectors`` (``nmv``,
-    ``mbcd``, a plugin's name), or ``package.module:attr`` (a module on the path). A DetectorError
-    says which and why (unknown name with the nearest, a module that does not import, no such
-    attribute, not callable)."""
+    ``mbcd``, a plugin's name; a name in other case when only one matches), or
+    ``package.module:attr`` (a module on the path). A DetectorError says which and why (unknown name
+    with the nearest, a module that does not import, no such attribute, not callable); ``what``
+    names the option in it."""
     spec = str(spec).strip()
     eps = _entry_points()
+    if spec not in eps:
+        same = [n for n in eps if n.lower() == spec.lower()]
+        spec = same[0] if len(same) == 1 else spec
     if spec in eps:
         ep = eps[spec]
         try:
@@ -123,19 +152,20 @@ def load(spec: str) -> Loaded:
             module = importlib.import_module(mod)
         except Exception as e:
             raise DetectorError(
-                f"--detector {spec}: module {mod!r} does not import ({type(e).__name__}: {e}); "
+                f"{what} {spec}: module {mod!r} does not import ({type(e).__name__}: {e}); "
                 "give package.module:factory on the Python path"
             ) from None
         factory = module
         for part in attr.split("."):
             if not part or not hasattr(factory, part):
-                raise DetectorError(f"--detector {spec}: module {mod!r} has no {attr!r}")
+                raise DetectorError(f"{what} {spec}: module {mod!r} has no {attr!r}")
             factory = getattr(factory, part)
         source = spec
     else:
         raise DetectorError(
-            f"--detector {spec!r}: not a registered detector ({', '.join(sorted(eps))}) nor "
-            f"package.module:factory{did_you_mean(spec, tuple(eps))}"
+            f"{what} {spec!r}: use 'nmv' or 'emv' (seed 000) or one of seed 001's detectors or another "
+            f"registered one ({', '.join(sorted(eps))}), or package.module:make for a detector of "
+            f"your own{did_you_mean(spec.lower(), tuple(eps))}"
         )
     if not callable(factory):
         raise DetectorError(
@@ -144,12 +174,53 @@ def load(spec: str) -> Loaded:
     return Loaded(spec, factory, source, _channels_of(factory, spec))
 
 
+def _signature(factory: Any):
+    try:
+        return inspect.signature(factory).parameters
+    except (TypeError, ValueError):
+        return None
+
+
+def accepts(factory: Any, name: str) -> bool:
+    """True when ``factory`` has a parameter called ``name`` (not merely ``**params``)."""
+    sig = _signature(factory)
+    return sig is not None and name in sig and sig[name].kind is not inspect.Parameter.VAR_KEYWORD
+
+
 def takes_rest(factory: Any) -> bool:
     """True when ``factory`` has a parameter called ``rest`` (the harness then passes the rest recording)."""
-    try:
-        return "rest" in inspect.signature(factory).parameters
-    except (TypeError, ValueError):
-        return False
+    return accepts(factory, "rest")
+
+
+def parameters(factory: Any) -> tuple[str, ...] | None:
+    """The parameters a user may set on ``factory`` (its keywords after ``fs_hz`` and ``channels``,
+    without the harness's :data:`CONTEXT`); None when it takes any (``**params``) or has no signature."""
+    sig = _signature(factory)
+    if sig is None or any(p.kind is inspect.Parameter.VAR_KEYWORD for p in sig.values()):
+        return None
+    names = [
+        n
+        for n, p in sig.items()
+        if p.kind in (inspect.Parameter.KEYWORD_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    ]
+    return tuple(n for n in names[2:] if n not in CONTEXT)
+
+
+def check_params(loaded: Loaded, params: dict) -> None:
+    """A DetectorError for a parameter the factory does not take, naming those it takes."""
+    allowed = parameters(loaded.factory)
+    if allowed is None:
+        return
+    for key in params:
+        if key not in allowed:
+            raise DetectorError(
+                f"detector {loaded.name}: no parameter {key!r} (it takes "
+                f"{', '.join(allowed) or 'none'}){did_you_mean(key, allowed)}"
+            )
+
+
+def _kw(params: dict) -> str:
+    return ", ".join(f"{k}={v!r}" for k, v in params.items())
 
 
 def parse_params(items: Sequence[str]) -> dict:
@@ -175,12 +246,22 @@ def parse_params(items: Sequence[str]) -> dict:
     return out
 
 
-def build(loaded: Loaded, fs_hz: float, channels: Sequence[str], params: dict, rest: Any = None) -> Detector:
-    """Call the factory (with ``rest`` when it takes one). Whatever the factory raises becomes a
-    DetectorError naming the detector and the parameters; so does a result with no ``push``."""
+def build(
+    loaded: Loaded, fs_hz: float, channels: Sequence[str], params: dict, rest: Any = None, **context: Any
+) -> Detector:
+    """Call the factory with ``params`` (each one it takes: :func:`check_params`), ``rest`` when it
+    takes one, and each of ``context`` (:data:`CONTEXT`) it names and ``params`` does not set.
+    Whatever the factory raises becomes a DetectorError naming the detector and the parameters; so
+    does a result with no ``push``."""
+    check_params(loaded, params)
     kwargs = dict(params)
     if loaded.takes_rest:
         kwargs["rest"] = rest
+    for key, value in context.items():
+        if key not in CONTEXT:
+            raise DetectorError(f"build: {key!r} is not a context keyword ({', '.join(CONTEXT)})")
+        if key not in kwargs and accepts(loaded.factory, key):
+            kwargs[key] = value
     try:
         det = loaded.factory(float(fs_hz), list(channels), **kwargs)
     except DetectorError:
@@ -188,7 +269,7 @@ def build(loaded: Loaded, fs_hz: float, channels: Sequence[str], params: dict, r
     except Exception as e:
         raise DetectorError(
             f"detector {loaded.name}: make(fs_hz={fs_hz:g}, channels={list(channels)}, "
-            f"{', '.join(f'{k}={v!r}' for k, v in params.items())}) raised {type(e).__name__}: {e}"
+            f"{_kw(params)}) raised {type(e).__name__}: {e}"
         ) from None
     if not callable(getattr(det, "push", None)):
         raise DetectorError(
@@ -237,8 +318,9 @@ def decisions(name: str, det: Detector, t_s: Any, x: Any, chunk: int | None = No
     x = np.asarray(x, float)
     n = t_s.shape[0]
     try:
-        if chunk is None and callable(getattr(det, "decide", None)):
-            return _call(name, det.decide, t_s, x, 0)
+        decide = getattr(det, "decide", None)
+        if chunk is None and callable(decide):
+            return _call(name, decide, t_s, x, 0)
         step = n if chunk is None else max(1, int(chunk))
         parts = [_call(name, det.push, t_s[i : i + step], x[i : i + step], i) for i in range(0, n, step)]
         return np.concatenate(parts) if parts else np.zeros(0, bool)
@@ -246,6 +328,12 @@ def decisions(name: str, det: Detector, t_s: Any, x: Any, chunk: int | None = No
         close = getattr(det, "close", None)
         if callable(close):
             close()
+
+
+def checked_push(name: str, det: Detector, t_s: Any, x: Any, start: int = 0):
+    """``det.push(t_s, x)`` checked as :func:`decisions` checks it (``start``: the global index of the
+    chunk's first sample, for the messages): a bool array (n,) or a DetectorError."""
+    return _call(name, det.push, t_s, x, start)
 
 
 def _call(name: str, fn: Callable, t_s: Any, x: Any, start: int):
@@ -296,16 +384,21 @@ def stream_matrix(cols: dict, channels: Sequence[str], source: str = "the stream
 __all__ = [
     "ACC_CHANNELS",
     "CHANNELS",
+    "CONTEXT",
     "GROUP",
     "GYRO_CHANNELS",
     "Detector",
     "Factory",
     "Loaded",
+    "accepts",
     "build",
     "check_channels",
+    "check_params",
+    "checked_push",
     "decisions",
     "load",
     "names",
+    "parameters",
     "parse_params",
     "stream_matrix",
     "takes_rest",

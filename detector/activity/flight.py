@@ -107,8 +107,9 @@ class ActivityParams:
             raise DetectorError(f"--signal {self.signal!r}: {self.name} takes {', '.join(d.signals)}")
 
 
-def _kwargs(p: ActivityParams, rest: dict) -> dict:
-    """The detector's own keyword parameters for these flight-mode parameters and rest figures."""
+def detector_kwargs(p: ActivityParams, rest: dict) -> dict:
+    """The detector's own keyword parameters for these flight-mode parameters and rest figures (the
+    streaming class's and the batch function's, besides ``threshold``)."""
     from flightmode.detector.activity import registry
 
     d = registry.get(p.name)
@@ -154,7 +155,7 @@ def rest_figures(p: ActivityParams, bench_acc_g: np.ndarray, bench_gyr_dps: np.n
         rest["bandwidth"] = 1.06 * float(np.std(x)) * p.detector_window**-0.2  # Silverman (1986) eq. 3.28
     if p.name in DB_DETECTORS:
         rest["noise_spectrum"] = _rest_spectrum(x, p.window, max(1, p.window // 2))
-    merit = d.detect(t, acc, bench_gyr_dps, threshold=0.0, **_kwargs(p, rest)).merit
+    merit = d.detect(t, acc, bench_gyr_dps, threshold=0.0, **detector_kwargs(p, rest)).merit
     merit = merit[np.isfinite(merit)]
     if merit.size == 0:
         raise DetectorError(
@@ -184,7 +185,9 @@ def activity_checks(
     from flightmode.detector.activity import registry
 
     p.validate()
-    res = registry.get(p.name).detect(t_s, acc_g, gyr_dps, threshold=rest["threshold"], **_kwargs(p, rest))
+    res = registry.get(p.name).detect(
+        t_s, acc_g, gyr_dps, threshold=rest["threshold"], **detector_kwargs(p, rest)
+    )
     periods, index, after_reset = _periods(res.marker.shape[0], p.window)
     return _checks(t_s, res.marker, res.merit, periods, index, after_reset, p.checks_needed)
 
@@ -240,7 +243,9 @@ def evaluate_activity_grid(
             name, fs_hz=fs_hz, window_s=w, k=ks[0], time_threshold_s=time_thresholds_s[0], signal=signal
         )
         rest = rest_figures(base, bench_acc_g, bench_gyr_dps)
-        merit = d.detect(t_s, acc_g, gyr_dps, threshold=rest["threshold"], **_kwargs(base, rest)).merit
+        merit = d.detect(
+            t_s, acc_g, gyr_dps, threshold=rest["threshold"], **detector_kwargs(base, rest)
+        ).merit
         periods, index, after_reset = _periods(merit.shape[0], base.window)
         for k in ks:
             thr = threshold_of(name, rest["merit_median"], k)
@@ -276,6 +281,7 @@ __all__ = [
     "ActivityParams",
     "rest_figures",
     "activity_checks",
+    "detector_kwargs",
     "evaluate_activity",
     "evaluate_activity_grid",
     "threshold_of",

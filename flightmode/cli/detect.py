@@ -10,10 +10,24 @@ from rich.text import Text
 
 from flightmode.cli.common import JSON_HELP, console, emit_json
 
-METHOD_HELP = (
-    "nmv or emv (the moving-variance paper's detector), nmv+baro or emv+baro (the redundant rule with "
-    "the samples' barometer), or one of the activity-detector study's: amvd, amd, ared, shod, frd, ltsd, "
-    "fsd, mbgtd, mbcd (ared and shod read the gyroscope)."
+METHOD_HELP = "The same as --detector (kept for the built-ins' names)."
+DETECTOR_HELP = (
+    "A registered detector: nmv or emv (the moving-variance paper's detector), nmv+baro or emv+baro "
+    "(the redundant rule with the samples' barometer), two-source (any two detectors, OR to suspend, "
+    "AND to resume), one of the activity-detector study's: amvd, amd, ared, shod, frd, ltsd, fsd, mbgtd, "
+    "mbcd (ared and shod read the gyroscope), a plugin's entry point; or package.module:make, a "
+    "detector of your own (docs/detectors.md). Default nmv."
+)
+# the named options that are parameters of the built-ins (--param sets any parameter)
+NAMED_PARAMS = (
+    "window_s",
+    "k",
+    "time_threshold_s",
+    "weight",
+    "signal",
+    "baro_rate_pa_s",
+    "baro_margin_hpa",
+    "baro_hold_s",
 )
 
 
@@ -26,25 +40,56 @@ def detect_cmd(
         str | None,
         typer.Option("--flight", help="A dataset's flight: its id (000003) or index (3); default the first."),
     ] = None,
-    method: Annotated[str, typer.Option("--method", help=METHOD_HELP)] = "nmv",
-    window_s: Annotated[float, typer.Option("--window-s", help="Window W_s and check period, s.")] = 1.0,
+    detector: Annotated[str | None, typer.Option("--detector", help=DETECTOR_HELP)] = None,
+    method: Annotated[str | None, typer.Option("--method", help=METHOD_HELP)] = None,
+    detector_cmd: Annotated[
+        str | None,
+        typer.Option(
+            "--detector-cmd",
+            help='A program that decides over a pipe: "PROGRAM ARGS" reads a JSON header line and one '
+            "line per sample on stdin, writes one 0/1 line per sample (docs/detectors.md).",
+        ),
+    ] = None,
+    framing: Annotated[
+        str, typer.Option("--framing", help="--detector-cmd's samples: csv lines or f64 (binary float64).")
+    ] = "csv",
+    param: Annotated[
+        list[str] | None,
+        typer.Option("--param", help="A detector parameter key=value (a TOML value); repeat for more."),
+    ] = None,
+    channels: Annotated[
+        str | None,
+        typer.Option(
+            "--channels",
+            help="The channels the detector reads, comma-separated (acc_x_g, acc_y_g, acc_z_g, gyro_x_dps, "
+            "gyro_y_dps, gyro_z_dps, pressure_pa); default the detector's own.",
+        ),
+    ] = None,
+    chunk: Annotated[
+        int | None,
+        typer.Option("--chunk", help="Push the stream in chunks of N samples (default: all at once)."),
+    ] = None,
+    window_s: Annotated[
+        float | None, typer.Option("--window-s", help="Window W_s and check period, s (default 1).")
+    ] = None,
     k: Annotated[
-        float,
+        float | None,
         typer.Option(
             "--k",
-            help="Amplitude threshold T_sigma = k sigma^2 (the activity detectors: k times the merit at rest).",
+            help="Amplitude threshold T_sigma = k sigma^2 (the activity detectors: k times the merit at rest); "
+            "default 4.",
         ),
-    ] = 4.0,
+    ] = None,
     signal: Annotated[
-        str,
+        str | None,
         typer.Option("--signal", help="The flexible activity detectors' input: acc, gyr, sum or product."),
-    ] = "acc",
+    ] = None,
     time_threshold_s: Annotated[
-        float, typer.Option("--time-threshold-s", help="Time threshold T_th, s.")
-    ] = 4.0,
+        float | None, typer.Option("--time-threshold-s", help="Time threshold T_th, s (default 4).")
+    ] = None,
     weight: Annotated[
-        float, typer.Option("--weight", help="EMV weighting factor (1, 5, 10 in the paper).")
-    ] = 1.0,
+        float | None, typer.Option("--weight", help="EMV weighting factor (1, 5, 10 in the paper).")
+    ] = None,
     sigma2_from: Annotated[
         str,
         typer.Option(
@@ -83,23 +128,47 @@ def detect_cmd(
 
     The recording is a run folder, a samples.parquet file, or one flight of a dataset (its bench
     calibration regenerated from the manifest's scenario and seed). A flight flown with a gyroscope
-    has it on the bench too, so ared and shod run with the defaults. Movebank e-obs files: flightmode
-    eobs detect."""
+    has it on the bench too, so ared and shod run with the defaults. Any detector of the interface
+    runs: a registered name, package.module:make, or a program over a pipe (--detector-cmd); one of
+    your own is scored from its per-sample decisions. Movebank e-obs files: flightmode eobs detect."""
     from flightmode.datasets.flight import flight_stream
     from flightmode.datasets.make import is_dataset
+    from flightmode.detector.interface import parse_params
+    from flightmode.errors import DetectorError
     from flightmode.runs.detect import DetectSettings, detect_stream
     from flightmode.runs.run_io import read_samples
 
+    named = dict(
+        zip(
+            NAMED_PARAMS,
+            (window_s, k, time_threshold_s, weight, signal, baro_rate_pa_s, baro_margin_hpa, baro_hold_s),
+        )
+    )
+    params = parse_params(param or [])
+    for key, value in named.items():
+        if value is None:
+            continue
+        if key in params:
+            raise DetectorError(f"--{key.replace('_', '-')} and --param {key}: given twice; give it once")
+        params[key] = value
+    given = [
+        n for n, v in (("--detector", detector), ("--method", method), ("--detector-cmd", detector_cmd)) if v
+    ]
+    if len(given) > 1:
+        raise DetectorError(f"{' and '.join(given)}: give one detector (--method is --detector's other name)")
+    if chunk is not None and chunk < 1:
+        raise DetectorError(f"--chunk {chunk}: a chunk holds at least 1 sample")
+    if detector_cmd is not None:
+        from flightmode.detector.pipe import load_cmd
+
+        spec: object = load_cmd(detector_cmd, framing=framing)
+    else:
+        spec = detector or method or "nmv"
     settings = DetectSettings(
-        window_s=window_s,
-        k=k,
-        time_threshold_s=time_threshold_s,
-        weight=weight,
-        signal=signal,
+        params=params,
         sigma2_from=sigma2_from,
-        baro_rate_pa_s=baro_rate_pa_s,
-        baro_margin_hpa=baro_margin_hpa,
-        baro_hold_s=baro_hold_s,
+        channels=tuple(c.strip() for c in channels.split(",") if c.strip()) if channels else None,
+        chunk=chunk,
     )
     info: dict | None
     if is_dataset(source):
@@ -110,17 +179,21 @@ def detect_cmd(
             raise typer.BadParameter(f"{source} is not a dataset folder", param_hint="--flight")
         cols, info = read_samples(source)
         label = str(source)
-    d = detect_stream(cols, info, source, method, settings)
+    d = detect_stream(cols, info, source, spec, settings, "--method" if method else "--detector")
     if as_json:
         emit_json(
             {
                 "source": label,
                 "method": d.method,
+                "detector": d.source,
+                "channels": list(d.channels),
+                "params": d.detector_params,
                 "fs_hz": d.fs_hz,
                 "calibration_source": d.calibration_source,
             }
             | {"rest": d.rest}
             | {"evaluation": d.evaluation.summary()}
+            | {"decisions": d.decision_evaluation.summary()}
         )
         return
     from flightmode.cli import detector_report as dr
@@ -131,22 +204,24 @@ def detect_cmd(
         dr.print_redundant(out, d.evaluation, d.calibration_source)
         return
     if d.kind == "activity":
-        from flightmode.detector.activity import registry
-
-        a = registry.get(d.method)
+        a, ap = d.detector.info, d.detector.params
         out.print(Text(label, style="bold"), highlight=False)
         dr.print_evaluation(
             out,
             d.evaluation,
             d.calibration_source,
-            title=f"{a.title} ({a.equations}) with seed 000's decision rule: W_s {window_s:g} s, "
-            f"threshold {k:g} x the rest level, T_th {time_threshold_s:g} s",
+            title=f"{a.title} ({a.equations}) with seed 000's decision rule: W_s {ap.window_s:g} s, "
+            f"threshold {ap.k:g} x the rest level, T_th {ap.time_threshold_s:g} s",
             calibration=[
                 ("rest level of the merit (median)", f"{d.rest['merit_median']:.4g} {a.merit_unit}"),
                 ("threshold", f"{d.rest['threshold']:.4g} {a.merit_unit}"),
                 ("rest from", d.calibration_source),
             ],
         )
+        return
+    if d.kind != "moving_variance":  # any other detector: scored from its per-sample decisions
+        out.print(Text(label, style="bold"), highlight=False)
+        dr.print_decisions(out, d)
         return
     sensor = (info or {}).get("sensor")
     out.print(

@@ -1,7 +1,7 @@
 """Detector figures for the command line, formatted only: an evaluation (per-recording scores) as Rich
 tables, and with ``tables`` seed 000's Table 2, 3, 4/5 forms and the turn-on response of Fig. 18
-(computed by :mod:`flightmode.detector.evaluation` and :mod:`flightmode.detector.statistics`). Used
-by ``flightmode detect``."""
+(computed by :mod:`flightmode.detector.evaluation` and :mod:`flightmode.detector.statistics`), and any
+detector's per-sample scores (:func:`print_decisions`). Used by ``flightmode detect``."""
 
 from __future__ import annotations
 
@@ -147,6 +147,38 @@ def print_tables(console: Console, t_s, acc_g, labels: dict, p: DetectorParams, 
         )
     console.print(t)
     return out
+
+
+def print_decisions(console: Console, d) -> None:
+    """A detector scored from its per-sample decisions (:class:`flightmode.runs.detect.Detection`
+    with its :class:`~flightmode.detector.decisions.DecisionEvaluation`), then its false-static events."""
+    e = d.decision_evaluation
+    params = ", ".join(f"{k}={v!r}" for k, v in d.detector_params.items()) or "its defaults"
+    t = Table(
+        title=f"detector {d.method} ({d.source}{': ' + d.title if d.title else ''}), {params}; "
+        f"channels {', '.join(d.channels)}; scored per sample",
+        show_header=False,
+    )
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    if d.calibration_source:
+        t.add_row("rest recording", d.calibration_source)
+    t.add_row("samples (in the in-flight window)", f"{e.samples:,} ({e.in_flight_samples:,})")
+    t.add_row("false-static events in flight", f"{e.false_static_count} ({e.false_static_s:g} s in all)")
+    t.add_row("suspension after pushback", _s(e.suspend_s))
+    t.add_row("response after the flight", "never" if e.response_s is None else f"{e.response_s:.1f} s")
+    t.add_row("static time missed outside the window", f"{e.missed_static_s:g} s")
+    t.add_row("accuracy / correlation vs sensor_static", f"{e.accuracy:.4f} / {e.correlation:.4f}")
+    console.print(t)
+    if e.false_static_events:
+        ft = Table(title="false-static events (transmission allowed while the aircraft moves)")
+        for c in ("t (s)", "duration (s)", "phase"):
+            ft.add_column(c)
+        for ev_ in e.false_static_events[:15]:
+            ft.add_row(f"{ev_['t_s']:.0f}", f"{ev_['duration_s']:g}", ev_["phase"])
+        if e.false_static_count > 15:
+            ft.add_row("...", f"{e.false_static_count - 15} more", "")
+        console.print(ft)
 
 
 def _s(x) -> str:
