@@ -19,7 +19,7 @@ import sys
 
 import typer
 
-from flightmode.cli import activity, certify, common, detect, eobs, flights, fly, look, study, validate
+from flightmode.cli import activity, certify, common, detect, eobs, flights, fly, look, seeds, study, validate
 from flightmode.cli.fly import DEFAULT_SCENARIO
 
 __all__ = ["DEFAULT_SCENARIO", "app"]
@@ -56,6 +56,7 @@ COMMANDS = (
     ("detect", detect.detect_cmd, DETECT, "flightmode detect flights/ --flight 3 --method emv --weight 5"),
     ("sweep", study.sweep_cmd, DETECT, "flightmode sweep flights/ --k 3:6:0.5 --workers 2"),
     ("certify", certify.certify_cmd, DETECT, "flightmode certify flights/ --target-fa-per-h 1e-4"),
+    ("seeds", seeds.seeds_cmd, DETECT, "flightmode seeds 000"),
     ("sense", fly.sense_cmd, SENSORS, "flightmode sense runs/pattern-s1/ --sensor lis302dl,lis302dl-8g"),
 )
 for _name, _fn, _panel, _example in COMMANDS:

@@ -48,7 +48,7 @@ def test_help_groups_the_commands_in_the_order_a_user_works():
     assert at == sorted(at), at
     # each command under its panel, in the order a user meets them
     order = ["scenarios", "family", "fly", "dataset", "view", "path", "cabin", "validate", "detect", "sweep"]
-    order += ["certify", "activity", "sense", "eobs"]
+    order += ["certify", "seeds", "activity", "sense", "eobs"]
     lines = [
         ln.split()[0]
         for ln in text.split("Commands:")[1].splitlines()
