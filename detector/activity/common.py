@@ -299,6 +299,33 @@ class WindowedStream:
         raise NotImplementedError
 
 
+# ---------------------------------------------------------------- causal or centred
+ALIGNMENTS = ("causal", "centred")
+
+
+def centre_merit(merit: np.ndarray, lag: int) -> np.ndarray:
+    """A causal merit moved ``lag`` samples earlier: ``out[k] = merit[k + lag]``, NaN (active) for
+    the last ``lag`` samples, whose centred window runs past the end of the stream.
+
+    The detectors here are causal (module docstring): the merit of sample k is that of the window
+    ending at k. Seed 001 writes V(n) as a function of "the frame at instant n" (section 2.1.1, eq.
+    1) without saying where n sits in its frame, and its one explicit window is symmetric: the
+    long-term envelope of eq. (6) takes the frames n - N .. n + N. The centred reading gives sample
+    k the merit of the window centred on it, which is the causal merit ``lag`` samples later (a
+    batch operation: a stream can only have it ``lag`` samples late). ``lag`` per detector is
+    :func:`flightmode.detector.activity.montecarlo.merit_lag`."""
+    m = np.asarray(merit, dtype=float)
+    lag = int(lag)
+    if lag < 0:
+        raise DetectorError(f"lag = {lag}: a causal merit is centred by moving it earlier (lag >= 0)")
+    if lag == 0:
+        return m.copy()
+    out = np.full(m.shape, np.nan)
+    if lag < m.shape[0]:
+        out[: m.shape[0] - lag] = m[lag:]
+    return out
+
+
 def run_batch(stream, t_s, acc_g, gyr_dps, window: int | None) -> ActivityResult:
     """The batch front end: the whole stream pushed as one chunk (``window`` checked against its
     length first)."""

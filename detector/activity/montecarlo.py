@@ -53,7 +53,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from flightmode.detector.activity.synth import DEFAULT_RANGES, Ranges
+from flightmode.detector.activity.synth import ACTIVITIES, DEFAULT_RANGES, Ranges
 from flightmode.errors import DetectorError, did_you_mean
 
 SIGNALS = ("acc", "gyr", "sum", "product")
@@ -72,11 +72,36 @@ class Grid:
 
     detectors: tuple[str, ...] = ("amvd", "amd", "ared", "shod", "frd", "ltsd", "fsd", "mbgtd", "mbcd")
     signals: tuple[str, ...] = SIGNALS
-    magnitude_windows: tuple[int, ...] = (3, 5, 10, 20, 40, 80, 120)  # AMVD, AMD, ARED, SHOD
-    spectrum_windows: tuple[int, ...] = (8, 16, 32)  # LTSD, FSD frame length
-    spectrum_shifts: tuple[int, ...] = (1, 2, 4, 8, 16)  # only shift <= window is used
-    memory_windows: tuple[int, ...] = (4, 8, 12, 16, 20)  # MBGTD, MBCD: keep <= 20 (O(N^2) per sample)
+    # Wide enough that the seed's best windows (Tables 1-5, in samples at its 50 Hz: 3.4 for LTSD-Sum
+    # up to 97 +- 10 for AMD) and the shifts (1.3 for LTSD-Sum up to 17 for FSD-Ang) lie inside, with
+    # room beyond them (steps of about sqrt 2). The previous, narrower grid is :meth:`narrow`: its edges
+    # held the best window of ARED, SHOD (3, the minimum) and FSD, LTSD (8-32, shift 1) in most runs.
+    magnitude_windows: tuple[int, ...] = (2, 3, 4, 6, 8, 11, 16, 22, 32, 45, 64, 90, 128, 181, 256)
+    spectrum_windows: tuple[int, ...] = (2, 3, 4, 6, 8, 11, 16, 22, 32)  # LTSD, FSD frame length
+    spectrum_shifts: tuple[int, ...] = (1, 2, 3, 4, 6, 8, 12, 16, 24, 32)  # only shift <= window is used
+    memory_windows: tuple[int, ...] = (3, 4, 6, 8, 11, 16, 22, 32)  # MBGTD, MBCD: O(N^2) per sample
     thresholds: tuple[tuple[str, tuple[float, ...]], ...] = ()
+
+    @classmethod
+    def narrow(cls, **kw) -> Grid:
+        """The grid of the N = 500 study in docs/seed001_tables_n500.txt (before issue 53)."""
+        return cls(
+            magnitude_windows=(3, 5, 10, 20, 40, 80, 120),
+            spectrum_windows=(8, 16, 32),
+            spectrum_shifts=(1, 2, 4, 8, 16),
+            memory_windows=(4, 8, 12, 16, 20),
+            **kw,
+        )
+
+    def edges(self, detector: str) -> dict:
+        """The grid's extremes for a detector: {"window": (lo, hi), "shift": (lo, hi) or None}; FRD
+        has neither (None, None)."""
+        if detector == "frd":
+            return {"window": None, "shift": None}
+        pts = self.points(detector)
+        ws = [w for w, _ in pts]
+        ss = [s for _, s in pts if s is not None]
+        return {"window": (min(ws), max(ws)), "shift": (min(ss), max(ss)) if ss else None}
 
     def check(self) -> None:
         from flightmode.detector.activity import registry
@@ -149,12 +174,36 @@ class MonteCarloConfig:
     acc_range_g: float = 3.0
     gyr_range_dps: float = 500.0
     ranges: Ranges = DEFAULT_RANGES
+    activities: tuple[str, ...] = ACTIVITIES  # the synthesizer's mix (drawn uniformly)
     bench_s: float = 20.0  # the still recording the noise figures come from
     grid: Grid = field(default_factory=Grid)
     roc_points: int = 101  # FPR grid of the averaged ROC curves
+    # "causal": the merit of sample k is that of the window ending at k (the detectors' own, a stream's);
+    # "centred": that of the window centred on k (common.centre_merit, merit_lag).
+    alignment: str = "causal"
+    # MBCD's Parzen width lambda (eq. 12): None = Silverman's rule on the bench (module docstring), or
+    # one fixed value in the signal's unit for every input (a sensitivity option: section 2.3.2 calls
+    # lambda "the standard deviation of the distribution" without saying which distribution)
+    mbcd_bandwidth: float | None = None
 
     def check(self) -> None:
+        from flightmode.detector.activity.common import ALIGNMENTS
+
         self.grid.check()
+        if self.alignment not in ALIGNMENTS:
+            raise DetectorError(
+                f"alignment = {self.alignment!r}: use one of {', '.join(ALIGNMENTS)}"
+                f"{did_you_mean(str(self.alignment), ALIGNMENTS)}"
+            )
+        if self.mbcd_bandwidth is not None and not (
+            math.isfinite(self.mbcd_bandwidth) and self.mbcd_bandwidth > 0
+        ):
+            raise DetectorError(f"mbcd_bandwidth = {self.mbcd_bandwidth!r}: must be finite and > 0 (or None)")
+        bad = [a for a in self.activities if a not in ACTIVITIES]
+        if not self.activities or bad:
+            raise DetectorError(
+                f"activities = {self.activities!r}: give one or more of {', '.join(ACTIVITIES)}"
+            )
         if not (isinstance(self.roc_points, int) and self.roc_points >= 2):
             raise DetectorError(f"roc_points = {self.roc_points!r}: need an integer >= 2")
         longest = max(
@@ -259,7 +308,7 @@ def _run_generator(seed: int, index: int) -> np.random.Generator:
     return np.random.Generator(np.random.PCG64(np.random.SeedSequence(int(seed), spawn_key=(int(index),))))
 
 
-def _bench_figures(bench, d, signal, window, shift) -> dict:
+def _bench_figures(bench, d, signal, window, shift, bandwidth=None) -> dict:
     """The detector's noise figures from the still bench recording (module docstring)."""
     from flightmode.detector.activity.common import flexible_signal
     from flightmode.detector.activity.spectrum import amplitude_spectra
@@ -274,9 +323,36 @@ def _bench_figures(bench, d, signal, window, shift) -> dict:
         frames = np.lib.stride_tricks.sliding_window_view(x, window)[::shift]
         kw["noise_spectrum"] = amplitude_spectra(frames).mean(axis=0)
     if d.name == "mbcd":
-        x = flexible_signal(signal, bench.acc_g, bench.gyr_dps)
-        kw["bandwidth"] = 1.06 * float(np.std(x)) * window**-0.2  # Silverman (1986) eq. 3.28
+        if bandwidth is not None:
+            kw["bandwidth"] = float(bandwidth)
+        else:
+            x = flexible_signal(signal, bench.acc_g, bench.gyr_dps)
+            kw["bandwidth"] = 1.06 * float(np.std(x)) * window**-0.2  # Silverman (1986) eq. 3.28
     return kw
+
+
+LTSD_ORDER = 6  # the LTSE order the study runs LTSD at (spectrum.detect_ltsd's default)
+
+
+def merit_lag(detector: str, window: int | None, shift: int | None, order: int = LTSD_ORDER) -> int:
+    """How many samples the causal merit of ``detector`` lags the centre of the data it describes,
+    rounded down (the ``lag`` of :func:`~flightmode.detector.activity.common.centre_merit`):
+
+    - AMVD, AMD, ARED, SHOD, MBGTD, MBCD: the window ends at k, its centre is (window - 1) / 2
+      samples earlier (seed 001, eq. 1-4, 9-14: V(n) of "the frame at instant n").
+    - LTSD, FSD: the merit held at sample k is that of frame m - order, m the last frame ending at
+      or before k (spectrum module docstring); frame n's centre is n shift + (window - 1) / 2, and the
+      hold adds (shift - 1) / 2 on average: order shift + (window + shift - 2) / 2. Centred, the
+      envelope spans frames n - order .. n + order about the sample's own frame, as eq. (6) writes it.
+    - FRD: 0. It has no window (Table 6); its filters' delay is not a window's (left causal).
+    """
+    if detector == "frd" or window is None:
+        return 0
+    if detector in SPECTRUM:
+        s = int(shift or 1)
+        o = order if detector == "ltsd" else 0
+        return int(o * s + (int(window) + s - 2) // 2)
+    return int((int(window) - 1) // 2)
 
 
 @dataclass(frozen=True, slots=True)
@@ -308,12 +384,15 @@ def grid_search(
     fs_hz: float,
     thresholds=None,
     figures=None,
+    alignment: str = "causal",
 ) -> GridBest:
     """Detector ``name`` (input ``signal``, None for a fixed-input detector) at every (window, shift)
     of ``points`` (None where it takes none), run once per point with ``figures(window, shift)`` (its
     noise figures: a dict of keyword arguments) and scored at every threshold (exact when
-    ``thresholds`` is None) against the boolean ``truth`` (seed 001, section 3.1.2)."""
+    ``thresholds`` is None) against the boolean ``truth`` (seed 001, section 3.1.2). ``alignment``
+    "centred" scores the merit of the window centred on each sample (:func:`merit_lag`)."""
     from flightmode.detector.activity import registry
+    from flightmode.detector.activity.common import centre_merit
 
     d = registry.get(name)
     y = np.asarray(truth).astype(bool)
@@ -324,6 +403,8 @@ def grid_search(
             if v is not None:
                 kw[key] = v
         merit = d.detect(t_s, acc_g, gyr_dps, threshold=0.0, **kw).merit
+        if alignment == "centred":
+            merit = centre_merit(merit, merit_lag(name, window, shift))
         s = sweep(merit, y, thresholds)
         acc, corr = s.accuracy, s.correlation
         k = int(np.argmax(acc))  # the first best: the lowest threshold
@@ -339,6 +420,7 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
     {(detector, signal): TPR at the config's FPR grid}}. Pure: the same (index, seed, config) give the
     same result in any process."""
     from flightmode.detector.activity import registry
+    from flightmode.detector.activity.scales import to_paper_scale
     from flightmode.detector.activity.synth import still_recording, synthesize
     from flightmode.streams import as_streams
 
@@ -351,10 +433,17 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
         "acc_range_g": config.acc_range_g,
         "gyr_range_dps": config.gyr_range_dps,
     }
-    rec = synthesize(streams.rng("recording"), config.duration_s, ranges=config.ranges, **sensor)
+    rec = synthesize(
+        streams.rng("recording"),
+        config.duration_s,
+        ranges=config.ranges,
+        activities=tuple(config.activities),
+        **sensor,
+    )
     bench = still_recording(streams.rng("bench"), config.bench_s, **sensor)
     truth = rec.marker.astype(bool)
     fpr_grid = np.linspace(0.0, 1.0, config.roc_points)
+    sigma_acc_g = float(np.sqrt(np.mean(np.var(bench.acc_g, axis=0))))  # as _bench_figures has it
     rows, roc = [], {}
     for name, signal in config.grid.cases():
         d = registry.get(name)
@@ -369,7 +458,8 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
             config.grid.points(name),
             fs_hz=config.fs_hz,
             thresholds=thresholds,
-            figures=lambda w, s, d=d, sig=signal: _bench_figures(bench, d, sig, w, s),
+            figures=lambda w, s, d=d, sig=signal: _bench_figures(bench, d, sig, w, s, config.mbcd_bandwidth),
+            alignment=config.alignment,
         )
         fpr, tpr = roc_curve(b.merit, truth, thresholds)  # the threshold swept at the best window (and shift)
         roc[(name, signal)] = roc_on_grid(fpr, tpr, fpr_grid)
@@ -382,6 +472,7 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
                 "correlation": b.correlation,
                 "correlation_max": b.correlation_max,
                 "threshold": b.threshold,
+                "threshold_paper": to_paper_scale(name, signal, b.threshold, sigma_acc_g),
                 "window": math.nan if b.window is None else float(b.window),
                 "shift": math.nan if b.shift is None else float(b.shift),
                 "auc": auc(fpr, tpr),
@@ -791,6 +882,9 @@ def summary(result: MonteCarloResult) -> list[dict]:
         # the best threshold is often flat over decades (any value in a wide gap between the merits of
         # still and active samples is best): the median is the steadier summary beside the mean
         row["threshold_median"] = float(np.median([r["threshold"] for r in mine]))
+        tp = [r.get("threshold_paper", math.nan) for r in mine]
+        row["threshold_paper_mean"], row["threshold_paper_std"] = _ms(tp)
+        row["threshold_paper_median"] = float(np.median(tp)) if not np.all(np.isnan(tp)) else math.nan
         rows.append(row)
     order = sorted(
         range(len(rows)), key=lambda i: -rows[i]["auc_mean"] if np.isfinite(rows[i]["auc_mean"]) else np.inf

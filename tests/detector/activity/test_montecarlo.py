@@ -227,11 +227,14 @@ def test_the_cli_runs_the_study_and_prints_the_paper_beside_it(tmp_path):
 
     from flightmode.cli.main import app
 
-    r = CliRunner().invoke(
-        app, ["activity", "synth", "--n", "1", "--workers", "1", "--out", str(tmp_path / "mc")]
-    )
+    args = ["activity", "synth", "--n", "1", "--workers", "1", "--grid", "narrow", "--window", "centred"]
+    r = CliRunner().invoke(app, [*args, "--compare", "--out", str(tmp_path / "mc")])
     assert r.exit_code == 0, r.output
     assert "MBCD-Acc." in r.output and (tmp_path / "mc" / "results.json").exists()
+    # --compare: the z-scores, the AUC rank correlation, the grid edges (the narrow grid's 3-120)
+    assert "z500" in r.output and "Spearman's rho" in r.output and "3-120" in r.output
+    with open(tmp_path / "mc" / "results.json") as f:
+        assert json.load(f)["config"]["alignment"] == "centred"
     r = CliRunner().invoke(app, ["activity", "synth", "--n", "0"])
     assert (
         r.exit_code == 2 and r.output.strip() == "error: --n 0: the number of runs must be a positive integer"

@@ -1,0 +1,240 @@
+"""Seed 001's Monte Carlo tables against ours (issue 53): z-scores, the grid edges, the AUC ranking's
+rank correlation, and the thresholds moved onto the scales the paper's tables use.
+
+z-scores. For a statistic with our mean m over N runs (sample standard deviation s) and the paper's
+m_p +- s_p over its N_p = 500 runs (seed 001, section 3.1.2, Tables 1-6: "average value" +- the
+spread of the runs), the standard error of the difference of the two means is
+
+    SE = sqrt(s^2 / N + s_p^2 / N_p),      z = (m - m_p) / SE,
+
+and ``z500`` is the z the same difference would have if ours were also N_p runs (SE with s / sqrt(N_p)):
+what an N = 500 rerun would show if the mean stayed where the small run put it. Table 13 prints the
+AUC without a spread: its s_p is taken equal to ours (stated in the table).
+
+Rank correlation: Spearman's rho of the two AUC rankings over the cases both have (the Pearson
+correlation of the ranks, ties given their average rank; Spearman 1904, Am. J. Psychol. 15:72).
+
+Thresholds on the paper's scales: :mod:`~flightmode.detector.activity.scales`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from flightmode.detector.activity.scales import PAPER_SCALES, PaperScale, paper_scale, to_paper_scale
+
+PAPER_N = 500  # seed 001, section 3.1.2: "a Monte Carlo simulation of N = 500 runs"
+
+
+# ---------------------------------------------------------------- z-scores
+def z_score(mean: float, sd: float, n: int, paper_mean: float, paper_sd: float, paper_n: int = PAPER_N):
+    """(SE, z, z at N = paper_n) of our mean against the paper's (module docstring)."""
+    se = math.sqrt(sd * sd / n + paper_sd * paper_sd / paper_n)
+    se500 = math.sqrt(sd * sd / paper_n + paper_sd * paper_sd / paper_n)
+    d = mean - paper_mean
+    z = d / se if se > 0 else math.copysign(math.inf, d) if d else 0.0
+    z500 = d / se500 if se500 > 0 else math.copysign(math.inf, d) if d else 0.0
+    return se, z, z500
+
+
+def z_table(
+    rows, n_runs: int, stats=("accuracy", "correlation", "auc"), paper_n: int = PAPER_N
+) -> list[dict]:
+    """One dict per (case, statistic) of :func:`montecarlo.summary` rows that the paper has: ours,
+    the paper's, the difference, SE, z and z500. Table 13's AUC has no spread: the paper's sd is
+    taken as ours (``paper_sd_assumed`` True)."""
+    out = []
+    for r in rows:
+        for stat in stats:
+            m, s = r[f"{stat}_mean"], r[f"{stat}_std"]
+            if stat == "auc":
+                pm, ps, assumed = r["paper_auc"], s, True
+            else:
+                pm, ps, assumed = r[f"paper_{stat}_mean"], r[f"paper_{stat}_std"], False
+            if not (np.isfinite(m) and np.isfinite(pm)):
+                continue
+            s = s if np.isfinite(s) else 0.0
+            se, z, z500 = z_score(m, s, n_runs, pm, ps, paper_n)
+            out.append(
+                {
+                    "label": r["label"],
+                    "detector": r["detector"],
+                    "signal": r["signal"],
+                    "stat": stat,
+                    "ours": m,
+                    "ours_sd": s,
+                    "paper": pm,
+                    "paper_sd": ps,
+                    "paper_sd_assumed": assumed,
+                    "diff": m - pm,
+                    "se": se,
+                    "z": z,
+                    "z500": z500,
+                }
+            )
+    return out
+
+
+# ---------------------------------------------------------------- ranks
+def ranks(values) -> np.ndarray:
+    """Ranks 1..n of ``values`` (1 = smallest), ties given their average rank."""
+    v = np.asarray(values, float)
+    order = np.argsort(v, kind="mergesort")
+    r = np.empty(v.size)
+    sv = v[order]
+    i = 0
+    while i < v.size:
+        j = i
+        while j + 1 < v.size and sv[j + 1] == sv[i]:
+            j += 1
+        r[order[i : j + 1]] = 0.5 * (i + j) + 1.0
+        i = j + 1
+    return r
+
+
+def spearman(x, y) -> float:
+    """Spearman's rank correlation of two equal-length sequences (Pearson's r of their ranks, ties
+    averaged); NaN for fewer than 2 pairs or a constant sequence."""
+    a, b = np.asarray(x, float), np.asarray(y, float)
+    if a.shape != b.shape or a.ndim != 1:
+        raise ValueError(f"spearman: x {a.shape} and y {b.shape} must be 1-D of one length")
+    if a.size < 2:
+        return math.nan
+    ra, rb = ranks(a), ranks(b)
+    ra -= ra.mean()
+    rb -= rb.mean()
+    den = math.sqrt(float(np.sum(ra * ra) * np.sum(rb * rb)))
+    return float(np.sum(ra * rb) / den) if den > 0 else math.nan
+
+
+def auc_rank_correlation(rows) -> tuple[float, int]:
+    """(Spearman's rho, number of cases) of our mean AUCs against Table 13's over the cases both have
+    (a higher AUC is a better rank in both)."""
+    pairs = [
+        (r["auc_mean"], r["paper_auc"])
+        for r in rows
+        if np.isfinite(r["auc_mean"]) and np.isfinite(r["paper_auc"])
+    ]
+    if not pairs:
+        return math.nan, 0
+    ours, paper = zip(*pairs)
+    return spearman(ours, paper), len(pairs)
+
+
+# ---------------------------------------------------------------- grid edges
+def grid_edges(result) -> list[dict]:
+    """Per case of a :class:`montecarlo.MonteCarloResult`: the grid's window (and shift) range, our
+    mean best window (shift), the fraction of runs whose best window (shift) is the grid's lowest or
+    highest value, and the paper's mean (is it inside the grid?)."""
+    from flightmode.detector.activity.montecarlo import label, paper_row
+
+    grid = result.config.grid
+    out = []
+    for name, signal in grid.cases():
+        e = grid.edges(name)
+        mine = [r for r in result.rows if r["detector"] == name and r["signal"] == signal]
+        p = paper_row(name, signal)
+        row = {"label": label(name, signal), "detector": name, "signal": signal}
+        for par in ("window", "shift"):
+            lo_hi = e[par]
+            vals = np.array([r[par] for r in mine], float)
+            pm = getattr(p, par)[0] if p is not None and getattr(p, par) is not None else math.nan
+            if lo_hi is None:
+                row[par] = None
+                continue
+            lo, hi = lo_hi
+            row[par] = {
+                "grid": (lo, hi),
+                "mean": float(np.mean(vals)),
+                "at_low": float(np.mean(vals == lo)),
+                "at_high": float(np.mean(vals == hi)),
+                "paper": pm,
+                "paper_inside": bool(lo <= pm <= hi) if np.isfinite(pm) else None,
+            }
+        out.append(row)
+    return out
+
+
+# ---------------------------------------------------------------- the text
+def _f(v, fmt):
+    return f"{v:{fmt}}" if v is not None and np.isfinite(v) else "-"
+
+
+def format_compare(result) -> str:
+    """The comparison as text: z-scores of accuracy, correlation and AUC (Tables 1-6, 13), the AUC
+    rank correlation, the thresholds on the paper's scales and the grid edges."""
+    from flightmode.detector.activity.montecarlo import summary
+
+    rows = summary(result)
+    n = result.n_runs
+    out = [
+        f"Paper vs ours (N = {n} runs, {result.config.alignment} windows; the paper N = {PAPER_N}): "
+        "z = (ours - paper) / sqrt(sd^2/N + sd_p^2/500); z500 = the same difference at N = 500.",
+        "Table 13's AUC has no spread: its sd is taken as ours (*).",
+        f"{'case':<11} {'stat':<5} {'ours':>15} {'paper':>15} {'diff':>7} {'SE':>7} {'z':>7} {'z500':>7}",
+    ]
+    zt = z_table(rows, n)
+    for stat in ("accuracy", "correlation", "auc"):
+        for z in (z for z in zt if z["stat"] == stat):
+            star = "*" if z["paper_sd_assumed"] else ""
+            out.append(
+                f"{z['label']:<11} {stat[:5]:<5} {z['ours']:>7.4f} +- {z['ours_sd']:.3f} "
+                f"{z['paper']:>7.4f} +- {z['paper_sd']:.3f}{star} {z['diff']:>+7.4f} {z['se']:>7.4f} "
+                f"{z['z']:>+7.1f} {z['z500']:>+7.1f}"
+            )
+        within = [z for z in zt if z["stat"] == stat]
+        k3 = sum(abs(z["z"]) <= 3 for z in within)
+        k3_500 = sum(abs(z["z500"]) <= 3 for z in within)
+        out.append(f"  {stat}: |z| <= 3 in {k3} of {len(within)} cases; |z500| <= 3 in {k3_500}")
+    rho, k = auc_rank_correlation(rows)
+    out += ["", f"AUC ranking (Table 13): Spearman's rho = {_f(rho, '.3f')} over {k} cases", ""]
+    out += [
+        "Thresholds on the paper's scales (median over runs; the mean is pulled by flat optima)",
+        f"{'case':<11} {'ours':>11} {'paper scale':>11} {'paper':>19}  unit (why)",
+    ]
+    for r in rows:
+        sc = paper_scale(r["detector"], r["signal"])
+        out.append(
+            f"{r['label']:<11} {_f(r['threshold_median'], '.4g'):>11} {_f(r.get('threshold_paper_median'), '.4g'):>11} "
+            f"{_f(r['paper_threshold_mean'], '.4g'):>9} +- {_f(r['paper_threshold_std'], '.3g'):<7}  "
+            f"{sc.unit} ({sc.why})"
+        )
+    out += [
+        "",
+        "Grid edges: the grid's range, our mean best value, the fraction of runs at the low / high edge, the paper's",
+        f"{'case':<11} {'window grid':>11} {'mean':>6} {'@lo':>5} {'@hi':>5} {'paper':>6}   "
+        f"{'shift grid':>10} {'mean':>5} {'@lo':>5} {'@hi':>5} {'paper':>6}",
+    ]
+    for e in grid_edges(result):
+        parts = [f"{e['label']:<11}"]
+        for par, wid in (("window", 11), ("shift", 10)):
+            v = e[par]
+            if v is None:
+                parts.append(
+                    f"{'-':>{wid}} {'':>6} {'':>5} {'':>5} {'':>6}" if par == "window" else f"{'-':>{wid}}"
+                )
+                continue
+            g = f"{v['grid'][0]}-{v['grid'][1]}"
+            parts.append(
+                f"{g:>{wid}} {v['mean']:>6.1f} {v['at_low']:>5.2f} {v['at_high']:>5.2f} {_f(v['paper'], '6.1f'):>6}"
+            )
+        out.append("  ".join(parts))
+    return "\n".join(out)
+
+
+__all__ = [
+    "PAPER_N",
+    "PAPER_SCALES",
+    "PaperScale",
+    "auc_rank_correlation",
+    "format_compare",
+    "grid_edges",
+    "paper_scale",
+    "ranks",
+    "spearman",
+    "to_paper_scale",
+    "z_score",
+    "z_table",
+]
