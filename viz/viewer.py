@@ -15,7 +15,7 @@ import socket
 import sys
 from pathlib import Path
 
-from flightmode.errors import FlightmodeError
+from flightmode.errors import FlightmodeError, InputDataError
 
 LOOPBACK = "127.0.0.1"
 
@@ -29,7 +29,32 @@ def resolve_rrd(path: Path) -> Path:
         )
     if rrd.suffix != ".rrd":
         raise FlightmodeError(f"{rrd}: not an .rrd file")
+    check_rrd_framing(rrd)
     return rrd
+
+
+# Rerun's file framing (rerun 0.41, re_log_encoding): a stream header that opens with the FourCC "RRF2",
+# and a stream footer that ends the file with "RRF2" "FOOT" and a 4-byte version. A file cut short
+# (a copy or a write that stopped) has no footer; the viewer would open it without a word.
+RRD_MAGIC = b"RRF2"
+RRD_FOOTER_MAGIC = b"RRF2FOOT"
+
+
+def check_rrd_framing(rrd: Path) -> None:
+    """A one-line error unless ``rrd`` opens with Rerun's header and ends with its footer (the
+    framing only: a flipped byte inside a chunk is not seen, the format carries no checksum)."""
+    size = rrd.stat().st_size
+    with open(rrd, "rb") as f:
+        head = f.read(len(RRD_MAGIC))
+        f.seek(max(0, size - len(RRD_FOOTER_MAGIC) - 4))
+        tail = f.read(len(RRD_FOOTER_MAGIC))
+    if head != RRD_MAGIC:
+        raise InputDataError(f"{rrd}: not a Rerun recording (it does not start with {RRD_MAGIC!r})")
+    if tail != RRD_FOOTER_MAGIC:
+        raise InputDataError(
+            f"{rrd}: a damaged Rerun recording (no footer at its end: cut short?); write it again with "
+            "`flightmode fly`"
+        )
 
 
 def free_port() -> int:

@@ -144,7 +144,7 @@ def write_samples(stage: Path, rec) -> Path:
     import pyarrow.parquet as pq
 
     path = stage / "samples.parquet"
-    pq.write_table(recording_table(rec), path, compression="zstd")
+    pq.write_table(recording_table(rec), path, compression="zstd", write_page_checksum=True)
     return path
 
 
@@ -162,7 +162,7 @@ def read_samples(path: Path) -> tuple[dict, dict | None]:
     if not file.is_file():
         raise InputDataError(f"{path}: no samples.parquet (make a run folder with `flightmode fly`)")
     try:
-        t = pq.read_table(file)
+        t = pq.read_table(file, page_checksum_verification=True)  # a flipped byte fails its page CRC
     except Exception as e:  # pyarrow raises several types for a file that is not Parquet
         raise InputDataError(f"{file}: not a readable Parquet file ({e})") from None
     need = {"t_s", "acc_x_g", "acc_y_g", "acc_z_g"}
@@ -229,10 +229,31 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
         )
     info = _read_json(run_dir / "run.json")
     try:
-        t = pq.read_table(run_dir / "truth.parquet")
+        t = pq.read_table(run_dir / "truth.parquet", page_checksum_verification=True)
     except Exception as e:  # pyarrow raises several types for a file that is not Parquet
         raise InputDataError(f"{run_dir / 'truth.parquet'}: not a readable Parquet file ({e})") from None
-    return track_from_table(t, info), info
+    need = {
+        "t_s",
+        "lat_deg",
+        "pos_n_m",
+        "phi_rad",
+        "fz_body_mps2",
+        "n1_pct_e0",
+        "phase",
+        "turbulence_severity",
+    }
+    if not need <= set(t.column_names):
+        raise InputDataError(
+            f"{run_dir / 'truth.parquet'}: not a flightmode truth file (columns {sorted(need - set(t.column_names))} "
+            "missing)"
+        )
+    try:
+        return track_from_table(t, info), info
+    except (KeyError, TypeError, ValueError) as e:  # a run.json key, or a truth column, that is not there
+        raise InputDataError(
+            f"{run_dir}: run.json and truth.parquet do not make a flight ({type(e).__name__}: {e}); "
+            "fly the scenario again"
+        ) from None
 
 
 TRACK_INFO_KEY = (
@@ -340,7 +361,9 @@ def write_truth(stage: Path, track: FlightTrack) -> Path:
     """truth.parquet: zstd; dictionary encoding only for the label columns (a float column almost
     never repeats, so trying a dictionary first only costs time) and BYTE_STREAM_SPLIT for the
     floats (their bytes compress better split by significance): 4x faster and half the size of
-    the defaults, the same table when read back."""
+    the defaults, the same table when read back. Every page carries its CRC-32 (Parquet's page
+    checksum, verified by :func:`read_track`): zstd stores incompressible float bytes raw, and a flipped
+    byte there would otherwise read back as a wrong number without any error."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -348,7 +371,14 @@ def write_truth(stage: Path, track: FlightTrack) -> Path:
     floats = [f.name for f in table.schema if pa.types.is_floating(f.type)]
     labels = [f.name for f in table.schema if pa.types.is_dictionary(f.type)]
     path = stage / "truth.parquet"
-    pq.write_table(table, path, compression="zstd", use_dictionary=labels, use_byte_stream_split=floats)
+    pq.write_table(
+        table,
+        path,
+        compression="zstd",
+        use_dictionary=labels,
+        use_byte_stream_split=floats,
+        write_page_checksum=True,
+    )
     return path
 
 
