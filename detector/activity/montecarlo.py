@@ -175,6 +175,7 @@ class MonteCarloConfig:
     gyr_range_dps: float = 500.0
     ranges: Ranges = DEFAULT_RANGES
     activities: tuple[str, ...] = ACTIVITIES  # the synthesizer's mix (drawn uniformly)
+    sequence: bool = False  # True: the activities in their order, cycling (synth.FIGURE2_SEQUENCE)
     bench_s: float = 20.0  # the still recording the noise figures come from
     grid: Grid = field(default_factory=Grid)
     roc_points: int = 101  # FPR grid of the averaged ROC curves
@@ -438,6 +439,7 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
         config.duration_s,
         ranges=config.ranges,
         activities=tuple(config.activities),
+        sequence=config.sequence,
         **sensor,
     )
     bench = still_recording(streams.rng("bench"), config.bench_s, **sensor)

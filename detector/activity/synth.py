@@ -72,6 +72,21 @@ PERIOD_KINDS = (
     "constant_acc",
 )
 GRAVITY_AXES = ("x", "y", "z", "+x", "+y", "+z", "-x", "-y", "-z")
+# The activity sequence of the seed's Figure 2 (section 3.1.1): "walking, laying-standing up, walking,
+# sitting-standing up, running, no angular rate, jumping, walking, laying-standing up, no acceleration"
+# ("no angular rate" is the constant acceleration, "no acceleration" the constant angular rate).
+FIGURE2_SEQUENCE = (
+    "walking",
+    "lie_stand",
+    "walking",
+    "sit_stand",
+    "running",
+    "constant_acc",
+    "jumping",
+    "walking",
+    "lie_stand",
+    "constant_rate",
+)
 
 
 @dataclass(frozen=True, slots=True)
@@ -322,14 +337,21 @@ def _activity(rng, kind: str, fs: float, r: Ranges):
     )
 
 
-def _schedule(rng, n_total: int, fs: float, r: Ranges, activities: tuple[str, ...]):
-    """Still, activity, still, activity, ... until n_total samples (the last period cut there)."""
-    pieces, n = [], 0
+def _schedule(rng, n_total: int, fs: float, r: Ranges, activities: tuple[str, ...], sequence: bool = False):
+    """Still, activity, still, activity, ... until n_total samples (the last period cut there); the
+    activities drawn uniformly, or (``sequence``) taken in their order, cycling."""
+    pieces, n, i = [], 0, 0
     while n < n_total:
         f, w, _ = _still(_n(rng, r.still_s, fs))
         group = [("still", False, f, w, ())]
         if n + f.shape[0] < n_total:
-            group += _activity(rng, activities[int(rng.integers(len(activities)))], fs, r)
+            kind = (
+                activities[i % len(activities)]
+                if sequence
+                else activities[int(rng.integers(len(activities)))]
+            )
+            i += 1
+            group += _activity(rng, kind, fs, r)
         for piece in group:
             if n >= n_total:
                 break
@@ -351,10 +373,14 @@ def synthesize(
     gyr_range_dps: float = 500.0,
     ranges: Ranges = DEFAULT_RANGES,
     activities: tuple[str, ...] = ACTIVITIES,
+    sequence: bool = False,
 ) -> Synth:
     """A recording of ``duration_s`` seconds at ``fs_hz`` (module docstring). ``rng``: a numpy
     Generator (or Streams, or an int seed); the same state gives bit-identical arrays.
-    ``activities``: the activities to draw from (default all seven of the seed)."""
+    ``activities``: the activities to draw from (default all seven of the seed), uniformly; with
+    ``sequence`` True, in their order, cycling (e.g. :data:`FIGURE2_SEQUENCE`, the seed's Figure 2:
+    its section 3.1.1 draws "the intensity ... and also the length of each activity period" at
+    random and says nothing of drawing the activities themselves)."""
     from flightmode.streams import as_streams
 
     fs = _positive(fs_hz, "fs_hz", "Hz")
@@ -381,7 +407,7 @@ def synthesize(
     m = body_to_sensor(gravity_axis)
 
     streams = as_streams(rng)
-    pieces = _schedule(streams.rng("schedule"), n_total, fs, ranges, acts)
+    pieces = _schedule(streams.rng("schedule"), n_total, fs, ranges, acts, bool(sequence))
     f_body = np.concatenate([p[2] for p in pieces])[:n_total]
     w_body = np.concatenate([p[3] for p in pieces])[:n_total]
     periods, start = [], 0
@@ -472,6 +498,7 @@ def _positive(v, name: str, unit: str) -> float:
 __all__ = [
     "ACTIVITIES",
     "DEFAULT_RANGES",
+    "FIGURE2_SEQUENCE",
     "GRAVITY_AXES",
     "PERIOD_KINDS",
     "Period",

@@ -57,6 +57,13 @@ def activity_synth_cmd(
         str | None,
         typer.Option("--activities", help="Comma-separated activity mix (default: all seven of the paper)."),
     ] = None,
+    mix: Annotated[
+        str,
+        typer.Option(
+            "--mix",
+            help="uniform: each activity drawn at random; figure2: the paper's Figure 2 sequence, cycling.",
+        ),
+    ] = "uniform",
     mbcd_bandwidth: Annotated[
         float | None,
         typer.Option(
@@ -70,7 +77,7 @@ def activity_synth_cmd(
     1-6 and 13 printed beside the paper's."""
     from flightmode.detector.activity import compare as cmp
     from flightmode.detector.activity import montecarlo as mc
-    from flightmode.detector.activity.synth import ACTIVITIES
+    from flightmode.detector.activity.synth import ACTIVITIES, FIGURE2_SEQUENCE
 
     if n < 1:
         raise ScenarioError(f"--n {n}: the number of runs must be a positive integer")
@@ -78,13 +85,20 @@ def activity_synth_cmd(
         raise ScenarioError(f"--window {window}: use causal or centred")
     if grid not in ("wide", "narrow"):
         raise ScenarioError(f"--grid {grid}: use wide or narrow")
+    if mix not in ("uniform", "figure2"):
+        raise ScenarioError(f"--mix {mix}: use uniform or figure2")
+    if mix == "figure2" and activities is not None:
+        raise ScenarioError("--mix figure2 fixes the activities: drop --activities")
     acts = ACTIVITIES if activities is None else tuple(a.strip() for a in activities.split(",") if a.strip())
+    if mix == "figure2":
+        acts = FIGURE2_SEQUENCE
     cfg = mc.MonteCarloConfig(
         grid=mc.Grid() if grid == "wide" else mc.Grid.narrow(),
         alignment=window,
         sigma_acc_g=sigma_acc_g,
         sigma_gyr_dps=sigma_gyr_dps,
         activities=acts,
+        sequence=mix == "figure2",
         mbcd_bandwidth=mbcd_bandwidth,
     )
     with CountingBar("runs", n, quiet=as_json) as bar:

@@ -141,3 +141,16 @@ def test_the_activity_list_is_the_seeds():
         "constant_rate",
         "constant_acc",
     )
+
+
+def test_the_figure2_sequence_is_followed_in_order_and_cycles():
+    """sequence=True takes the activities in their order (seed 001, Figure 2's ten), cycling; each
+    activity is still-separated and sit/lie are their three periods."""
+    from flightmode.detector.activity.synth import FIGURE2_SEQUENCE
+
+    first = {"sit_down": "sit_stand", "lie_down": "lie_stand"}
+    s = _rec(3, duration_s=600.0, activities=FIGURE2_SEQUENCE, sequence=True, **QUIET)
+    kinds = [p.kind for p in s.periods]
+    acts = [first.get(k, k) for k in kinds if k not in ("still", "seated", "lying", "stand_up")]
+    assert len(acts) > len(FIGURE2_SEQUENCE)  # 600 s holds more than one cycle
+    assert acts == [FIGURE2_SEQUENCE[i % len(FIGURE2_SEQUENCE)] for i in range(len(acts))]
