@@ -66,8 +66,11 @@ from flightmode.errors import DetectorError
 FRAMINGS = ("csv", "f64")
 # seconds without a byte from the program while answers are due, and for its exit at close
 TIMEOUT_S = 30.0
-# a chunk this small fits the pipe's buffer (64 KiB on Linux, 4 KiB by POSIX): written directly
-DIRECT_WRITE_BYTES = 4096
+# a chunk of at most this many samples fits the pipe's buffer (4 KiB by POSIX, 64 KiB on Linux) with
+# up to 7 channels in either framing (csv: at most 25 characters a number): written directly
+DIRECT_WRITE_SAMPLES = 16
+# the writer encodes and sends this many samples at a time (the program starts on the first block)
+ENCODE_BLOCK = 2048
 # an answer quoted in an error is cut here
 QUOTE_CHARS = 40
 
@@ -108,15 +111,21 @@ def header(fs_hz: float, channels: Sequence[str], framing: str, params: dict) ->
 
 def encode(t_s: Any, x: Any, framing: str) -> bytes:
     """A chunk's samples in the framing (module docstring, step 3)."""
+    return b"".join(encode_blocks(t_s, x, framing))
+
+
+def encode_blocks(t_s: Any, x: Any, framing: str, block: int = ENCODE_BLOCK):
+    """:func:`encode` ``block`` samples at a time (the writer sends each as it is made)."""
     import numpy as np
 
     rows = np.column_stack([np.asarray(t_s, float), np.asarray(x, float)])
-    if framing == "f64":
-        return rows.astype("<f8").tobytes()
-    if rows.shape[0] == 0:
-        return b""
     line = ",".join(["%r"] * rows.shape[1]) + "\n"  # %r of a float is its repr: exact
-    return ((line * rows.shape[0]) % tuple(rows.ravel().tolist())).encode()
+    for i in range(0, rows.shape[0], block):
+        r = rows[i : i + block]
+        if framing == "f64":
+            yield r.astype("<f8").tobytes()
+        else:
+            yield ((line * r.shape[0]) % tuple(r.ravel().tolist())).encode()
 
 
 def load_cmd(
@@ -196,17 +205,24 @@ class PipeDetector:
         self._write(head)
 
     # ------------------------------------------------------------------ writing
-    def _write(self, data: bytes) -> None:
-        """Write all of ``data`` to the program's input; a closed pipe is left to the reader to report
-        (the program exited: its status says why)."""
+    def _write(self, data: bytes) -> bool:
+        """Write all of ``data`` to the program's input; False at a closed pipe, left to the reader to
+        report (the program exited: its status says why)."""
         assert self.proc.stdin is not None
-        fd = self.proc.stdin.fileno()
         view = memoryview(data)
         try:
+            fd = self.proc.stdin.fileno()
             while view:
                 view = view[os.write(fd, view) :]
-        except OSError:  # BrokenPipeError: it exited or closed its input
-            pass
+        except (OSError, ValueError):  # BrokenPipeError: it exited or closed its input; closed by us
+            return False
+        return True
+
+    def _write_all(self, blocks) -> None:
+        """The writer thread: each block as it is encoded; stops at a closed pipe."""
+        for b in blocks:
+            if self.failed or not self._write(b):
+                return
 
     # ------------------------------------------------------------------ the detector
     def push(self, t_s: Any, x: Any):
@@ -226,14 +242,14 @@ class PipeDetector:
             )
         if n == 0:
             return np.zeros(0, bool)
-        payload = encode(t, a, self.framing)
         start = self.sent
         self.sent += n
         writer = None
-        if len(payload) <= DIRECT_WRITE_BYTES:
-            self._write(payload)  # the program has read everything before: this fits the pipe
+        if n <= DIRECT_WRITE_SAMPLES:
+            self._write(encode(t, a, self.framing))  # it has read all before: this fits the pipe
         else:
-            writer = threading.Thread(target=self._write, args=(payload,), daemon=True)
+            blocks = encode_blocks(t, a, self.framing)
+            writer = threading.Thread(target=self._write_all, args=(blocks,), daemon=True)
             writer.start()
         try:
             raw = self._read_answers(n, start)
@@ -383,4 +399,13 @@ def _quote(b: bytes) -> str:
     return repr(s if len(s) <= QUOTE_CHARS else s[:QUOTE_CHARS] + "...")
 
 
-__all__ = ["FRAMINGS", "TIMEOUT_S", "PipeDetector", "encode", "header", "load_cmd", "units_of"]
+__all__ = [
+    "FRAMINGS",
+    "TIMEOUT_S",
+    "PipeDetector",
+    "encode",
+    "encode_blocks",
+    "header",
+    "load_cmd",
+    "units_of",
+]
