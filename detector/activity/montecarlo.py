@@ -36,9 +36,16 @@ Choices where the seed is silent:
   deviation and n the window. LTSD's envelope order is the detector's default (6 frames).
 - Standard deviations are sample standard deviations (ddof = 1).
 
-Cost, per 120 s run at 50 Hz with the default grid: a few seconds, most of it MBCD and the spectrum
-detectors at shift 1. The memory detectors' windows stay <= 20 samples by default (both are O(N^2)
-per sample; the seed's best windows, Tables 4-5, are 6-13 samples).
+Windows (issue 53): the detectors are causal (a stream's merit of sample k is the window ending at
+k); ``MonteCarloConfig.alignment = "centred"`` scores each sample with the window centred on it
+(:func:`merit_lag`, :func:`~flightmode.detector.activity.common.centre_merit`). The seed does not
+say which it used for eq. (1)-(5) ("the frame at instant n", section 2.1.1); its LTSD envelope,
+eq. (6), spans frames n - N .. n + N (centred); its memory detectors fill "a buffer ... with the last
+N sensor readings" (section 2.3.1: causal, though a buffer's split marks a change wherever the
+evaluation places it). Both are run and compared in docs/seed001_tables_n50.txt.
+
+Cost, per 120 s run at 50 Hz with the default (wide) grid: 8-12 s of one core, most of it LTSD and
+FSD at shift 1 and MBCD at 22-32 samples; :meth:`Grid.narrow` (the N = 500 study's grid) about 3 s.
 
 Reproducibility: run i uses the generator of ``SeedSequence(seed, spawn_key=(i,))`` (the i-th child
 of ``SeedSequence(seed)``), whatever the order or the worker it runs on; the recording and the bench
