@@ -372,16 +372,17 @@ def compare_fixed_float(
     # eq. 8 only looks back over the last `need` checks: a final disagreement needs a temporary one there
     tdi = np.flatnonzero(temp_dis)
     explained = all(np.any((tdi <= c) & (tdi > c - fixed.need)) for c in np.flatnonzero(fin_dis).tolist())
-    # the floating detector's per-sample decisions: each sample holds the latest check's final static
-    mark = np.full(t.shape[0], -1)
-    mark[fl.index] = np.arange(fl.index.shape[0])
-    last = np.maximum.accumulate(mark) if t.size else mark
-    float_dec = (
-        np.where(last >= 0, fl.final_static[np.maximum(last, 0)], False)
-        if fl.index.size
-        else (np.zeros(t.shape[0], bool))
-    )
-    max_lsb = max((d["lsb_from_threshold"] for d in axis_dis), default=0.0)
+    # the floating detector's per-sample decisions as the integer one makes them: each sample holds
+    # the latest check's final static, False from a gap (a reset) until the next check
+    event = np.full(t.shape[0], -1)  # -1: nothing new; 0: a reset; 1 + j: check j
+    if t.shape[0] > 1:
+        event[np.flatnonzero(np.diff(t) > GAP_PERIODS / float(fs_hz)) + 1] = 0
+    event[fl.index] = 1 + np.arange(fl.index.shape[0])
+    pos = np.maximum.accumulate(np.where(event >= 0, np.arange(t.shape[0]), -1)) if t.size else event
+    latest = np.where(pos >= 0, event[np.maximum(pos, 0)], 0)
+    final_or_false = np.concatenate([[False], fl.final_static])
+    float_dec = final_or_false[latest]
+    max_lsb = float(dist[ci, ai].max()) if ci.size else 0.0
     return {
         "samples": int(t.shape[0]),
         "checks": int(fl.index.shape[0]),

@@ -164,3 +164,13 @@ def test_fixed_against_floating_on_the_pattern_flight(pattern_run, record_proper
     floating = interface.decisions("nmv", nmv, t, x8)
     assert int(np.sum(fixed != floating)) == r["sample_disagreements"]
     assert math.isclose(fixed.mean(), floating.mean(), abs_tol=r["sample_disagreements"] / t.shape[0])
+
+
+def test_compare_across_a_gap():
+    # a gap resets both detectors alike: with no check differing, no sample differs either (the
+    # per-sample decisions fall to False at the reset in both)
+    rng = np.random.default_rng(5)
+    t, a = _stream(rng, 4000, 1234)
+    r = fp.compare_fixed_float(t, a, FS, time_threshold_s=3.0, sigma2_counts=[0.2, 0.15, 0.3])
+    assert r["final_static_checks_fixed"] > 0 and r["within_one_lsb"]
+    assert r["final_disagreements"] == 0 and r["sample_disagreements"] == 0
