@@ -106,7 +106,7 @@ class Grid:
         if detector == "frd":
             return {"window": None, "shift": None}
         pts = self.points(detector)
-        ws = [w for w, _ in pts]
+        ws = [w for w, _ in pts if w is not None]
         ss = [s for _, s in pts if s is not None]
         return {"window": (min(ws), max(ws)), "shift": (min(ss), max(ss)) if ss else None}
 
