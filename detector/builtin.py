@@ -75,18 +75,31 @@ def columns(channels: Sequence[str], wanted: Sequence[str], who: str) -> list[in
     return [ch.index(c) for c in wanted]
 
 
-def held(n0: int, n: int, index, decision, state: bool):
-    """Per-sample decisions of samples ``n0 .. n0 + n - 1`` from checks closing at the global sample
-    ``index`` with ``decision``: the last check's at or before each sample, ``state`` (the last check's
-    before the chunk) until the first. Returns (decisions, the new state)."""
+def take(a, cols):
+    """The columns ``cols`` of ``a`` as a C-ordered float array (NumPy's fancy indexing on the second
+    axis gives a Fortran-ordered one, over which pairwise sums, hence variances, round differently:
+    the built-ins see exactly the arrays the modules they wrap see)."""
     import numpy as np
 
+    return np.ascontiguousarray(np.asarray(a, float)[:, cols])
+
+
+def held(n0: int, n: int, index, decision, state: bool):
+    """Per-sample decisions of samples ``n0 .. n0 + n - 1`` from checks closing at the global sample
+    ``index`` with ``decision``: the last check's at or before each sample
+    (:func:`flightmode.detector.decisions.held`), ``state`` (the last check's before the chunk) until
+    the first. Returns (decisions, the new state)."""
+    import numpy as np
+
+    from flightmode.detector.decisions import held as hold
+
     pos = np.asarray(index, np.int64) - n0
-    dec = np.asarray(decision, bool)
+    out = hold(n, pos, decision)
     if not pos.size:
-        return np.full(n, bool(state)), bool(state)
-    k = np.searchsorted(pos, np.arange(n), side="right") - 1
-    return np.where(k >= 0, dec[np.maximum(k, 0)], bool(state)), bool(dec[-1])
+        out[:] = bool(state)
+        return out, bool(state)
+    out[: pos[0]] = bool(state)
+    return out, bool(np.asarray(decision, bool)[-1])
 
 
 def _cat_checks(parts: list):
@@ -126,7 +139,7 @@ class MovingVarianceDetector:
         import numpy as np
 
         x = np.asarray(x, float)
-        c = self._engine.push(t_s, x[:, self._acc])
+        c = self._engine.push(t_s, take(x, self._acc))
         self._parts.append(c)
         out, self._state = held(self._n, x.shape[0], c.index, c.final_static, self._state)
         self._n += x.shape[0]
@@ -144,11 +157,10 @@ class MovingVarianceDetector:
     def evaluation(self, t_s, x, labels: dict):
         """The pushed stream's checks scored against its labels, as
         :func:`~flightmode.detector.evaluation.evaluate` scores them."""
-        import numpy as np
 
         from flightmode.detector.evaluation import check_labels, score
 
-        check_labels(t_s, np.asarray(x)[:, self._acc], labels)
+        check_labels(t_s, take(x, self._acc), labels)
         return score(self.checks, t_s, labels, self.params, self.sigma2)
 
 
@@ -195,7 +207,7 @@ def sigma2_of(sigma2, rest, channels: Sequence[str], window: int, lsb_g, who: st
             "or sigma2 = [x, y, z] in g^2"
         )
     r = np.asarray(rest, float)
-    return calibrate_sigma2(r[:, columns(channels, ACC_CHANNELS, who)], window, lsb_g)
+    return calibrate_sigma2(take(r, columns(channels, ACC_CHANNELS, who)), window, lsb_g)
 
 
 @_declare("moving_variance", ACC_CHANNELS, "seed 000's normal moving variance (eq. 1-2)")
@@ -270,7 +282,7 @@ class ActivityDetector:
 
         t = np.asarray(t_s, float)
         x = np.asarray(x, float)
-        res = self._stream.push(t, x[:, self._acc], None if self._gyr is None else x[:, self._gyr])
+        res = self._stream.push(t, take(x, self._acc), None if self._gyr is None else take(x, self._gyr))
         w = self.params.window
         m = np.concatenate([*self._pending, res.marker])
         k = m.shape[0] // w
@@ -319,7 +331,7 @@ class ActivityDetector:
         from flightmode.detector.flight_mode import DetectorParams
 
         p = self.params
-        check_labels(t_s, np.asarray(x)[:, self._acc], labels)
+        check_labels(t_s, take(x, self._acc), labels)
         dp = dataclasses.replace(
             DetectorParams(fs_hz=p.fs_hz),
             window_s=p.window_s,
@@ -351,8 +363,8 @@ def _activity(name: str, flexible: bool, needs_gyro: bool) -> Callable:
             raise DetectorError(f"{name} needs the unit's rest recording (its noise figures and rest level)")
         r = np.asarray(rest, float)
         ch = list(channels)
-        gyr = r[:, [ch.index(c) for c in GYRO_CHANNELS]] if all(c in ch for c in GYRO_CHANNELS) else None
-        figs = rest_figures(p, r[:, columns(channels, ACC_CHANNELS, name)], gyr)
+        gyr = take(r, [ch.index(c) for c in GYRO_CHANNELS]) if all(c in ch for c in GYRO_CHANNELS) else None
+        figs = rest_figures(p, take(r, columns(channels, ACC_CHANNELS, name)), gyr)
         return ActivityDetector(p, figs, channels)
 
     if flexible:
@@ -548,7 +560,7 @@ class RedundantDetector:
 
         tb = np.concatenate([np.zeros(0), *self._source.readings_t])
         pb = np.concatenate([np.zeros(0), *self._source.readings_pa])
-        acc = np.asarray(x, float)[:, self._acc]
+        acc = take(x, self._acc)
         return evaluate_redundant(t_s, acc, tb, pb, labels, self.params, self.sigma2, self.pressure_params)
 
 
@@ -612,7 +624,7 @@ class TwoSource:
         x = np.asarray(x, float)
         out = np.ones(np.asarray(t_s).shape[0], bool)
         for name, det, cols in self.parts:
-            out &= interface.checked_push(name, det, t_s, x[:, cols], self._n)
+            out &= interface.checked_push(name, det, t_s, take(x, cols), self._n)
         self._n += out.shape[0]
         return out
 
@@ -661,7 +673,6 @@ def two_source(
     """Any two detectors (``first``, ``second``: a registered name or ``package.module:make``, with
     ``first_params``, ``second_params``), by default seed 000's recommended NMV and the pressure
     source: at rest only when both say so (EASA's two independent means)."""
-    import numpy as np
 
     from flightmode.detector import interface
 
@@ -670,7 +681,7 @@ def two_source(
     for loaded, params in _two_loaded(first, second, first_params, second_params):
         ch = loaded.channels_for(params)
         cols = columns(channels, ch, f"two-source's {loaded.name}")
-        sub_rest = None if rest is None else np.asarray(rest, float)[:, cols]
+        sub_rest = None if rest is None else take(rest, cols)
         given = {k: v for k, v in context.items() if v is not None}
         parts.append((loaded.name, interface.build(loaded, fs_hz, ch, params, sub_rest, **given), cols))
     return TwoSource(parts)
