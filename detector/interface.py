@@ -298,7 +298,7 @@ def _checked(name: str, out: Any, start: int, n: int):
     if a.dtype.kind in "iuf" and a.size and not np.isin(a, (0, 1)).all():
         bad = int(np.flatnonzero(~np.isin(a, (0, 1)))[0])
         raise DetectorError(
-            f"detector {name}: decision {a[bad]!r} at sample {start + bad}: decisions are True/False (or 1/0)"
+            f"detector {name}: decision {a[bad].item()!r} at sample {start + bad}: decisions are True/False (or 1/0)"
         )
     if a.dtype.kind not in "iufb":
         raise DetectorError(
