@@ -64,7 +64,7 @@ TABLE3 = {w: v * TABLE3_UNIT_G2 / SIGMA2_PAPER_G2 for w, v in TABLE3_RAW.items()
 # seed 000, Tables 4 and 5: P_FA per T_sigma (3, 4, 5 sigma^2): per axis, P_FA^t, and P_FA at T_th 3 / 4 s
 PFA_KS = (3.0, 4.0, 5.0)
 PFA_TTHS = (3.0, 4.0)
-TABLES_4_5 = {
+TABLES_4_5: dict[int, dict[str, tuple]] = {
     4: {
         "x": (5e-2, 8e-2, 1e-1),
         "y": (7e-4, 2e-3, 4e-3),

@@ -216,3 +216,31 @@ def threshold_for_pfa(
         if pfa <= pfa_max or pm * pm_step > pm_max:
             return {"met": pfa <= pfa_max, "pm": pm, "k": k, "pfa": pfa, "steps": steps}
         i += 1
+
+
+def mixture_cv_for_spread(spread: float, n: int) -> float:
+    """The coefficient of variation of a window-to-window noise variance v (white noise within a
+    window) that gives the N-sample NMV the relative spread ``spread`` (sigma_MV / E[MV]):
+    MV = v S with S = chi2_{N-1} / N independent of v, so (spread^2 + 1) = (1 + cv^2)(1 + 2/(N - 1))."""
+    c2 = (1.0 + spread**2) / (1.0 + 2.0 / (n - 1)) - 1.0
+    if c2 < 0:
+        raise DetectorError(
+            f"spread {spread:g} is below white noise's sqrt(2/(N-1)) = {math.sqrt(2 / (n - 1)):.3f}"
+        )
+    return math.sqrt(c2)
+
+
+def pm_variance_mixture(k: float, n: int, cv: float) -> float:
+    """P(MV >= k sigma^2) for white Gaussian noise whose variance varies from window to window as a
+    gamma variable of mean sigma^2 and coefficient of variation ``cv`` (0: :func:`pm_exact`):
+    E_v[P(chi2_{N-1} >= N k / v)]. Its spectrum stays white and its mean MV (N-1)/N sigma^2 at every
+    window, while its spread grows with cv (:func:`mixture_cv_for_spread`)."""
+    from scipy.integrate import quad
+    from scipy.stats import gamma
+
+    if cv == 0:
+        return pm_exact(k, n)
+    a = 1.0 / cv**2
+    f = lambda v: gamma.pdf(v, a, scale=1.0 / a) * chi2.sf(n * k / v, n - 1)  # noqa: E731
+    hi = float(gamma.isf(1e-30, a, scale=1.0 / a))
+    return float(quad(f, 1e-12, hi, limit=500, points=[1.0, k], epsabs=1e-40, epsrel=1e-9)[0])
