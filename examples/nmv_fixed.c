@@ -49,7 +49,10 @@ static unsigned char out_buf[BUF];
 static size_t out_len = 0;
 static long long sample_no = 0; /* the index of the sample being read (for messages) */
 
+static void flush_out(void);
+
 static void die(const char *msg) {
+    flush_out(); /* the answers so far are good: the harness then names the sample it stopped at */
     fprintf(stderr, "nmv_fixed: %s (at sample %lld)\n", msg, sample_no);
     exit(2);
 }

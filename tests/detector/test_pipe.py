@@ -190,3 +190,14 @@ def test_a_missing_program():
         interface.build(loaded, FS, loaded.channels, {})
     with pytest.raises(DetectorError, match="framing"):
         pipe.load_cmd("x", framing="json")
+
+
+def test_the_firmware_refuses_a_nan_at_its_sample(firmware, capfd):
+    # the C program answers the samples before, says why on stderr (passed through) and exits 2
+    loaded = pipe.load_cmd(shlex.quote(str(firmware)))
+    det = interface.build(loaded, FS, loaded.channels, {})
+    x = np.zeros((50, 3))
+    x[20, 1] = np.nan
+    with pytest.raises(DetectorError, match=r"exited with status 2 at sample 20 \(20 answers for the 50"):
+        interface.decisions(loaded.name, det, np.arange(50) / FS, x)
+    assert "NaN or inf in the sample (at sample 20)" in capfd.readouterr().err
