@@ -131,7 +131,9 @@ class AccelerometerPreset:
         return (0, 2**self.bits - 1)
 
 
-# LIS302DL, +-2 g: 8-bit two's complement, 18 mg/digit typ. (16.2-19.8), reads to about +-2.3 g,
+# LIS302DL, +-2 g (seed 000 Table 1's range: "+-2 or +-8" g; the datasheet's full scale, whose 8-bit
+# count at 18 mg/digit reads to about +-2.3 g, the range_g here; +-8 g reads to +-9.2 g): 8-bit two's
+# complement, 18 mg/digit typ. (16.2-19.8),
 # ODR 100 or 400 Hz, bandwidth ODR/2, noise 2.23 mg (seed 000 Table 1). Offsets +-40 mg, cross-axis
 # +-2 %: flightmode assumptions. Sensitivity tolerance +-10 % is the datasheet's 16.2-19.8 mg/digit.
 _LIS302DL = AccelerometerPreset(

@@ -145,3 +145,21 @@ def test_exact_threshold_inverts_the_exact_pm():
     k = k_of_pm_acov(3.6e-6, ac, 100)
     assert k == pytest.approx(4.0, abs=0.01)  # the 3.6e-6 at 4 sigma^2, inverted
     assert pm_acov(k * ac[0], ac, 100) == pytest.approx(3.6e-6, rel=1e-6)
+
+
+def test_white_noise_with_a_varying_variance_against_monte_carlo():
+    from flightmode.detector.statistics import mixture_cv_for_spread, pm_exact, pm_variance_mixture
+
+    n = 100
+    assert pm_variance_mixture(2.0, n, 0.0) == pm_exact(2.0, n)
+    cv = mixture_cv_for_spread(0.373, n)  # the spread Table 2 implies (tests/sim/test_noise_colour.py)
+    rng = np.random.default_rng(5)
+    m = 200_000
+    v = rng.gamma(1 / cv**2, cv**2, m)  # mean 1, CV cv
+    mv = v * rng.chisquare(n - 1, m) / n
+    assert mv.std() / mv.mean() == pytest.approx(0.373, rel=0.01)  # 200k draws: ~0.2 % relative error
+    p = pm_variance_mixture(2.0, n, cv)
+    # four binomial standard errors of the simulated fraction
+    assert abs((mv >= 2.0).mean() - p) <= 4 * math.sqrt(p / m)
+    # Table 3 for this noise is the white column at every window: E[MV] = (N - 1)/N sigma^2
+    assert mv.mean() == pytest.approx((n - 1) / n, rel=0.005)
