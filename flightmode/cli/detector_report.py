@@ -72,7 +72,10 @@ def print_tables(console: Console, t_s, acc_g, labels: dict, p: DetectorParams, 
     out = {}
     rows = table2(window_s=p.window_s, fs_hz=p.fs_hz)
     out["table2"] = rows
-    t = Table(title=f"Table 2 form: P_M of one check on white noise, N = {p.window} (seed 000 eq. 13)")
+    t = Table(
+        title=f"Table 2 form: P_M of one check on white noise, N = {p.window} (seed 000 eq. 13; the paper's "
+        "beside eq. 13 with measured moments and the exact P_M of the LIS302DL's noise: flightmode seeds 000)"
+    )
     for c in (
         "T_sigma",
         "P_M Gaussian (eq. 13)",
