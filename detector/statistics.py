@@ -24,6 +24,12 @@ centring projector), so its mean and variance follow from r(m) exactly and its d
 weighted sum of chi-square(1) variables with weights the eigenvalues of C R C / N (R the Toeplitz
 matrix of r). sim.sensor.accelerometer's coloured LIS302DL noise (white + Gauss-Markov) is fitted
 with these to the spread Table 2 implies (tests/sim/test_noise_colour.py).
+
+Section 5.1.1's steps as functions: eq. 13 inverted (:func:`k_of_pm_gaussian`), the exact threshold of
+a coloured noise (:func:`k_of_pm_acov`), and the last step, "if not [P_FA below the maximum], then
+P_M is increased and a new MV threshold is computed" (:func:`threshold_for_pfa`, any k(P_M) and
+P_FA(k) passed in). White noise whose variance varies between windows (:func:`pm_variance_mixture`)
+is the what-if beside it: Table 2's spread with a white spectrum (seed 000 Table 3; flightmode seeds 000).
 """
 
 from __future__ import annotations
