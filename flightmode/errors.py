@@ -39,21 +39,50 @@ class AircraftError(FlightmodeError):
 class FlightDivergedError(FlightmodeError):
     """A simulated flight that failed: NaN, divergence, a crash, an exceeded limit.
 
-    Carries the phase and simulated time at which it happened.
+    Carries the phase and simulated time at which it happened and, for a limit, which one: ``kind``
+    (a stable key, one per limit: the rows of docs/failures.md), the ``quantity`` that broke it (its
+    name and unit), its ``value`` and the ``limit`` it broke (None where a failure has no number).
     """
 
-    def __init__(self, cause: str, *, phase: str, t_s: float) -> None:
+    def __init__(
+        self,
+        cause: str,
+        *,
+        phase: str,
+        t_s: float,
+        kind: str | None = None,
+        quantity: str | None = None,
+        value: float | None = None,
+        limit: float | None = None,
+    ) -> None:
         self.cause = cause
         self.phase = phase
         self.t_s = t_s
+        self.kind = kind
+        self.quantity = quantity
+        self.value = value
+        self.limit = limit
         super().__init__(f"flight failed in phase '{phase}' at t = {t_s:.2f} s: {cause}")
 
     def __reduce__(self):  # picklable across processes (Dask workers) despite keyword-only arguments
-        return (_flight_diverged, (self.cause, self.phase, self.t_s))
+        return (
+            _flight_diverged,
+            (self.cause, self.phase, self.t_s, self.kind, self.quantity, self.value, self.limit),
+        )
 
 
-def _flight_diverged(cause: str, phase: str, t_s: float) -> FlightDivergedError:
-    return FlightDivergedError(cause, phase=phase, t_s=t_s)
+def _flight_diverged(
+    cause: str,
+    phase: str,
+    t_s: float,
+    kind: str | None = None,
+    quantity: str | None = None,
+    value: float | None = None,
+    limit: float | None = None,
+) -> FlightDivergedError:
+    return FlightDivergedError(
+        cause, phase=phase, t_s=t_s, kind=kind, quantity=quantity, value=value, limit=limit
+    )
 
 
 class SensorError(FlightmodeError):

@@ -96,8 +96,8 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
     def watchdog(t_s: float, phase: str) -> None:
         if limit is not None and time.perf_counter() - t0 > limit:
             raise FlightTimeoutError(
-                f"flight {flight_id(i)} exceeded the {limit:g} s wall-time limit while "
-                f"flying; raise --flight-timeout-s and --resume"
+                f"flight {flight_id(i)} exceeded the {limit:g} s wall-time limit in phase '{phase}' at "
+                f"t = {t_s:.0f} s (simulated); raise --flight-timeout-s and --resume"
             )
 
     r = pipeline.run(sc, stages=("fly", "sense", "detect"), progress=watchdog)

@@ -236,9 +236,14 @@ def fly(
         step += every
         if step > limit_steps:
             raise FlightDivergedError(
-                f"the flight did not reach the stand within {limit_steps / fdm_hz:.0f} s",
+                f"the flight did not reach the stand within {limit_steps / fdm_hz:.0f} s "
+                "(simulate.max_duration_s: its ground time, the distance at 120 m/s, and 3 h)",
                 phase=pilot.phase,
                 t_s=step / fdm_hz,
+                kind="stand_time",
+                quantity="simulated time (s)",
+                value=step / fdm_hz,
+                limit=limit_steps / fdm_hz,
             )
     # the rates one step past the last row: the last row's angular acceleration (_to_track)
     rates_after = [get(nodes[ac.index[name]]) for name in ("p_radps", "q_radps", "r_radps")]

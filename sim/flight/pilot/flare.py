@@ -181,7 +181,11 @@ class Flare(Controller):
                 p.fail(
                     f"hard landing: touchdown sink rate {sink / FT_M:.1f} ft/s exceeds "
                     f"{ap.tune.max_touchdown_sink_mps / FT_M:.0f} ft/s, the gear's reserve-energy sink "
-                    "(14 CFR 25.723(b))"
+                    "(14 CFR 25.723(b))",
+                    kind="hard_landing",
+                    quantity="touchdown sink rate (ft/s)",
+                    value=sink / FT_M,
+                    limit=ap.tune.max_touchdown_sink_mps / FT_M,
                 )
             p.fire("touchdown")
 
@@ -198,11 +202,18 @@ class Flare(Controller):
             # a 787-8 pattern flight in a 27 kt wind flown with Boeing's wind additive (165 kt on
             # approach) climbed to 570 ft in its flare within a minute
             cause = (
-                f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway (flare height "
-                f"{prof.flare_height_ft:.0f} ft)"
+                f"balloon: the flare climbed to {gear_h_m / FT_M:.0f} ft above the runway, over "
+                f"{FLARE_BALLOON_FACTOR * prof.flare_height_ft:.0f} ft ({FLARE_BALLOON_FACTOR:g} x the flare "
+                f"height {prof.flare_height_ft:.0f} ft)"
             )
             if self.approaches >= MAX_APPROACHES:
-                p.fail(f"{cause} on approach {self.approaches}; no diversion is flown after {MAX_APPROACHES}")
+                p.fail(
+                    f"{cause} on approach {self.approaches}; no diversion is flown after {MAX_APPROACHES}",
+                    kind="balloon_last_approach",
+                    quantity="main gear height in the flare (ft)",
+                    value=gear_h_m / FT_M,
+                    limit=FLARE_BALLOON_FACTOR * prof.flare_height_ft,
+                )
         elif rx_m > self.float_limit_m and x[p.ix["wow"]] < 0.5 and self.approaches < MAX_APPROACHES:
             cause = (
                 f"long flare: still airborne {rx_m:.0f} m past the threshold, over the runway's second half "

@@ -27,6 +27,28 @@ from flightmode.sim.flight.plan import FlightPlan
 from flightmode.sim.flight.turbulence import background_edr, sigma_high_mps
 from flightmode.units import FT_M, KT_MPS
 
+# the flight's limits (_check_limits): the main gear's reference point may sink a little into the runway
+# on a hard touchdown (the CG's height above ground, less its settled height); 2 m below the terrain is
+# through it. 16 km (52,500 ft) is above every profiled type's ceiling (the 787-8's 43,100 ft), Mach 0.95
+# above the profiled types' maximum operating Mach (the fastest, the 787-8's, is 0.90: FAA TCDS T00021SE): a
+# state beyond either is a diverged FDM, not a flight
+BELOW_GROUND_M = -2.0
+MAX_ALT_M = 16000.0
+MAX_MACH = 0.95
+RUNWAY_BEFORE_M = 50.0  # ground contact this far before the threshold still counts as on the runway
+# No progress to the destination (Pilot._check_progress): in these phases the distance to go (the route's,
+# then the runway's on the localizer; a go-around's circuit starts a route of its own) must shrink by
+# PROGRESS_MIN_M within PROGRESS_WINDOW_S, or the flight ends. flightmode flies no holding and no diversion:
+# an aircraft not 1 nm closer after 15 min is circling or flying away (at the slowest airborne speed,
+# 130 kt on final, 15 min is 32 nm; a standard holding pattern's lap is 4 min, ICAO Doc 8168 Vol I;
+# the longest leg away from the runway flown on purpose is a go-around circuit's upwind and crosswind
+# legs, 3 + 3 nm, and the turn back after a departure away from the destination: 2-3 min). It ends such
+# a flight while its reserve fuel still flies it (loaded: an hour of the type's mean burn beyond the
+# trip, simulate.RESERVE_H), long before the tanks run dry and a glide ends in a stall
+PROGRESS_PHASES = frozenset({"climb", "cruise", "descent", "approach", "go_around", "flare"})
+PROGRESS_MIN_M = 1852.0
+PROGRESS_WINDOW_S = 900.0
+PROGRESS_CHECK_S = 10.0  # how often the distance to go is taken
 EN_ROUTE = frozenset({"climb", "cruise", "descent"})  # ticked at 5 Hz above 3000 ft (control_every)
 LOW_AIRBORNE = frozenset({"flare"})  # airborne, but ticked at 40 Hz at any height
 
@@ -63,6 +85,8 @@ class Pilot:
         self._t_alpha_high: float | None = None
         self._en_route = False
         self._airborne_high = False
+        self._progress: tuple[float, float] | None = None  # (least distance to go so far m, when s)
+        self._next_progress_check = 0.0
         self.gust_sigma_mps: float | None = None  # turbulent air: sigma_w above 2000 ft; None: still air
 
     def set_cg_height(self, cg_height_m: float) -> None:
@@ -90,6 +114,8 @@ class Pilot:
             self.event("end", condition)
             self.done = True
             return
+        if tr.target == "go_around":
+            self._progress = None  # the circuit is a route of its own (GoAround.enter)
         self.phase = tr.target
         self.phase_code = PHASE_CODE[tr.target]
         self.t_phase = self.t
@@ -97,8 +123,21 @@ class Pilot:
         self.controller = self.controllers[tr.target]
         self.controller.enter(self._x)
 
-    def fail(self, cause: str) -> None:
-        raise FlightDivergedError(cause, phase=self.phase, t_s=self.t)
+    def fail(
+        self,
+        cause: str,
+        *,
+        kind: str,
+        quantity: str | None = None,
+        value: float | None = None,
+        limit: float | None = None,
+    ) -> None:
+        """End the flight: a :class:`FlightDivergedError` with this phase and time, the limit's ``kind``
+        (a row of docs/failures.md), and the ``quantity`` (name and unit) whose ``value`` broke its
+        ``limit``."""
+        raise FlightDivergedError(
+            cause, phase=self.phase, t_s=self.t, kind=kind, quantity=quantity, value=value, limit=limit
+        )
 
     # ------------------------------------------------------------------ tick
     @property
@@ -135,7 +174,13 @@ class Pilot:
 
     def _check_limits(self, x) -> None:
         if not math.isfinite(sum(x)):
-            self.fail("NaN in the flight state: JSBSim diverged")
+            name = next(n for n, i in self.ix.items() if not math.isfinite(x[i]))
+            self.fail(
+                f"NaN in the flight state: JSBSim diverged ({name} = {x[self.ix[name]]}, not finite)",
+                kind="nan",
+                quantity=name,
+                value=x[self.ix[name]],
+            )
         ix = self.ix
         agl, phi, alpha = x[ix["agl_m"]], x[ix["phi_rad"]], x[ix["alpha_rad"]]
         airborne_phase = self.phase in AIRBORNE_PHASES
@@ -144,7 +189,13 @@ class Pilot:
         self._airborne_high = airborne_phase and self.phase not in LOW_AIRBORNE and agl > 1000 * FT_M
         max_bank = self.ap.tune.max_bank_deg
         if abs(math.degrees(phi)) > max_bank:
-            self.fail(f"bank angle {math.degrees(phi):.1f} deg exceeds {max_bank:.0f} deg")
+            self.fail(
+                f"bank angle {math.degrees(phi):.1f} deg exceeds {max_bank:.0f} deg",
+                kind="bank",
+                quantity="bank angle, either way (deg)",
+                value=abs(math.degrees(phi)),
+                limit=max_bank,
+            )
         # stall: angle of attack above the type's stall angle for a whole second (gusts in
         # turbulence spike alpha for a fraction of a second without stalling the wing)
         if airborne_phase and not on_wheels and math.degrees(alpha) > self.prof.alpha_stall_deg:
@@ -153,21 +204,78 @@ class Pilot:
             if self.t - self._t_alpha_high >= 1.0:
                 self.fail(
                     f"stall: angle of attack {math.degrees(alpha):.1f} deg above "
-                    f"{self.prof.alpha_stall_deg:.0f} deg for 1 s at IAS {x[ix['ias_mps']] / KT_MPS:.0f} kt"
+                    f"{self.prof.alpha_stall_deg:.0f} deg for 1 s at IAS {x[ix['ias_mps']] / KT_MPS:.0f} kt",
+                    kind="stall",
+                    quantity="angle of attack (deg)",
+                    value=math.degrees(alpha),
+                    limit=self.prof.alpha_stall_deg,
                 )
         else:
             self._t_alpha_high = None
-        if agl < -2.0:
-            self.fail(f"below the ground: height above ground {agl:.1f} m")
-        if x[ix["alt_m"]] > 16000.0 or x[ix["mach"]] > 0.95:
-            self.fail(f"divergence: altitude {x[ix['alt_m']]:.0f} m, Mach {x[ix['mach']]:.2f}")
+        if agl < BELOW_GROUND_M:
+            self.fail(
+                f"below the ground: height above ground {agl:.1f} m, under {BELOW_GROUND_M:.0f} m",
+                kind="below_ground",
+                quantity="height above ground (m)",
+                value=agl,
+                limit=BELOW_GROUND_M,
+            )
+        if x[ix["alt_m"]] > MAX_ALT_M:
+            self.fail(
+                f"divergence: altitude {x[ix['alt_m']]:.0f} m above {MAX_ALT_M:.0f} m",
+                kind="altitude",
+                quantity="altitude (m)",
+                value=x[ix["alt_m"]],
+                limit=MAX_ALT_M,
+            )
+        if x[ix["mach"]] > MAX_MACH:
+            self.fail(
+                f"divergence: Mach {x[ix['mach']]:.3f} above {MAX_MACH:.3f}",
+                kind="mach",
+                quantity="Mach number",
+                value=x[ix["mach"]],
+                limit=MAX_MACH,
+            )
         if airborne_phase and on_wheels and self.phase != "initial_climb":
             fr = self.ap.dest if self.ap.loc_mode or self.phase == "go_around" else self.ap.origin
             rx, ry = fr.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
-            if abs(ry) > fr.rwy.width_m / 2 or not (-50.0 < rx < fr.rwy.length_m):
+            half = fr.rwy.width_m / 2
+            if abs(ry) > half or not (-RUNWAY_BEFORE_M < rx < fr.rwy.length_m):
+                lateral = abs(ry) > half
+                what = "distance from the centreline (m)" if lateral else "distance past the threshold (m)"
                 self.fail(
-                    f"ground contact off the runway at x = {rx:.0f} m, y = {ry:.0f} m from the threshold"
+                    f"ground contact off the runway at x = {rx:.0f} m, y = {ry:.0f} m from the threshold "
+                    f"(the runway: x from {-RUNWAY_BEFORE_M:.0f} to {fr.rwy.length_m:.0f} m, "
+                    f"|y| up to {half:.0f} m)",
+                    kind="off_runway",
+                    quantity=what,
+                    value=abs(ry) if lateral else rx,
+                    limit=half if lateral else (fr.rwy.length_m if rx > 0 else -RUNWAY_BEFORE_M),
                 )
+        self._check_progress(x)
+
+    def _check_progress(self, x) -> None:
+        """End a flight that no longer comes closer to its runway (PROGRESS_WINDOW_S)."""
+        if self.phase not in PROGRESS_PHASES:
+            self._progress = None
+            return
+        if self.t < self._next_progress_check:
+            return
+        self._next_progress_check = self.t + PROGRESS_CHECK_S
+        d = self.ap.distance_to_go_m(x)
+        if self._progress is None or d < self._progress[0] - PROGRESS_MIN_M:
+            self._progress = (d, self.t)
+        elif self.t - self._progress[1] > PROGRESS_WINDOW_S:
+            since = self.t - self._progress[1]
+            self.fail(
+                f"no progress to the runway: {d / 1852.0:.1f} nm to go, not {PROGRESS_MIN_M / 1852.0:.0f} nm "
+                f"closer than the {self._progress[0] / 1852.0:.1f} nm of {since:.0f} s ago (limit "
+                f"{PROGRESS_WINDOW_S:.0f} s): circling or flying away, and no holding or diversion is flown",
+                kind="no_progress",
+                quantity="time without coming 1 nm closer to the runway (s)",
+                value=since,
+                limit=PROGRESS_WINDOW_S,
+            )
 
     def _turbulence(self) -> None:
         """The air is turbulent from liftoff to touchdown (:mod:`flightmode.sim.flight.turbulence`):

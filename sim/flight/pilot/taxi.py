@@ -46,8 +46,14 @@ class Taxi(Controller):
             ap.tune.taxi_max_steer_deg,
             1.2 * style.yaw_rate_max_radps,
         )
-        if abs(cross) > 30.0:
-            p.fail(f"left the taxiway: {cross:.0f} m from the taxi route")
+        if abs(cross) > TAXI_MAX_CROSS_M:
+            p.fail(
+                f"left the taxiway: {abs(cross):.1f} m from the taxi route, more than {TAXI_MAX_CROSS_M:.1f} m",
+                kind="off_taxiway",
+                quantity="distance from the taxi route (m)",
+                value=abs(cross),
+                limit=TAXI_MAX_CROSS_M,
+            )
         stops = ap.path.stops
         decel = style.decel_mps2
         ahead = gs * tau
@@ -122,3 +128,9 @@ class TaxiIn(Taxi):
     def tick(self, x) -> None:
         if self.taxi(x, self.ap.dest):
             self.p.fire("at_stand")
+
+
+# the taxi route's centre line this far away is off the paved taxiway: a code-E taxiway (787-8) is
+# 23 m wide with 10.5 m shoulders each side (ICAO Annex 14, 3.9.4 and 3.10.1: 44 m overall), so 30 m
+# from the centre line is on the grass for every type flown
+TAXI_MAX_CROSS_M = 30.0
