@@ -17,6 +17,17 @@ Figures (``OUT/figures``):
 - ``worst_flight.png``: seed 000 Figs. 14 and 15 in form, for the flight closest to trouble: the MV
   per axis against 3/4/5 sigma^2, then the temporary and final statics for k = 3, 4, 5 at T_th 4 s
   (Fig. 14) and for T_th = 2, 3, 4, 5 s at 4 sigma^2 (Fig. 15).
+
+With several detectors (issue 52: the built-in grid's methods and detectors of the interface, the
+``detectors`` of the Certification), also:
+
+- ``pareto_detectors.png``: each detector's points (bound against response p95) in a colour of its
+  own, its own Pareto front joined, the point it would ship starred;
+- ``response_detectors.png``: the response at the destination gate of each detector at that point;
+
+and the HTML gains one verdict line per detector, their chosen points side by side, and each one's
+false statics by phase and placement. The bound and availability against k are drawn for the built-in
+grid's points only (a detector of the interface has its own parameters, not k).
 """
 
 from __future__ import annotations
@@ -33,6 +44,8 @@ from flightmode.viz.tornado import TornadoData, fig_tornado, tornado_html
 
 FIGURES = (
     "pareto",
+    "pareto_detectors",
+    "response_detectors",
     "bound_vs_k",
     "availability_vs_k",
     "response_cdf",
@@ -72,6 +85,8 @@ class ReportData:
     worst_flight: WorstFlightData | None
     # the model-uncertainty study (certify --uncertainty): its tornado chart; None: not run
     tornado: TornadoData | None = None
+    # side by side: [(legend, finite responses s sorted, flights)] per detector at its chosen point
+    detector_curves: list | tuple = ()
 
 
 def _plt():
@@ -137,6 +152,50 @@ def fig_vs_k(
     axes[0][-1].legend(
         fontsize=7, loc="best", title="solid NMV, dashed EMV, dotted seed 001's", title_fontsize=7
     )
+    fig.tight_layout()
+    _save(fig, path)
+
+
+def fig_pareto_detectors(cert, path: Path) -> None:
+    """Each detector's points and its own Pareto front (module docstring)."""
+    plt = _plt()
+    s = cert.summary
+    x_all = np.array([r["response_p95_s"] for r in s], float)
+    edge = np.nanmax(np.where(np.isfinite(x_all), x_all, np.nan), initial=1.0) * 1.5
+    x_all = np.where(np.isfinite(x_all), x_all, edge)  # never answered: at the right edge
+    y_all = np.array([r["rate_upper_per_h"] for r in s], float)
+    cmap = plt.get_cmap("tab10")
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for j, d in enumerate(cert.detectors):
+        col = cmap(j % 10)
+        idx = np.array(d["points"], int)
+        ax.scatter(x_all[idx], y_all[idx], s=10, color=col, alpha=0.45)
+        f = sorted(d["pareto"], key=lambda i: (x_all[i], y_all[i]))
+        ax.plot(
+            x_all[f],
+            y_all[f],
+            "o",
+            color=col,
+            ms=6,
+            mec="black",
+            label=f"{d['name']}: its front ({len(f)} points)",
+        )
+        rp = d["recommendation"]["point"]
+        i_rp = s.index(rp) if rp in s else None
+        if i_rp is not None:
+            ax.scatter(
+                [x_all[i_rp]], [y_all[i_rp]], marker="*", s=240, color=col, edgecolors="black", zorder=5
+            )
+    ax.axhline(cert.target.rate_per_h, color="crimson", lw=1, ls=":", label="target")
+    if cert.target.max_response_s:
+        ax.axvline(cert.target.max_response_s, color="grey", lw=1, ls=":", label="max response")
+    ax.set_yscale("log")
+    ax.set_xscale("symlog", linthresh=10)
+    ax.set_xlabel("response p95 at the destination gate, s (never answered: right edge)")
+    ax.set_ylabel(f"false statics per flight-hour, {cert.target.confidence:.0%} upper bound")
+    ax.set_title("detectors side by side: each one's Pareto front; star: the point it would ship", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
     _save(fig, path)
 
@@ -412,6 +471,49 @@ def _section_511(th: dict) -> list[str]:
     return parts
 
 
+def _img(name: str, png: bytes) -> str:
+    return f"<img alt='{html.escape(name)}' src='data:image/png;base64,{base64.b64encode(png).decode()}'>"
+
+
+def _side_by_side_html(cert, figures: dict[str, bytes]) -> list[str]:
+    """One verdict line per detector, their chosen points, the two figures, each one's false statics
+    by phase and placement (module docstring)."""
+    e = html.escape
+    parts = [f"<h2>Detectors side by side ({len(cert.detectors)})</h2>"]
+    for d in cert.detectors:
+        r = d["recommendation"]
+        parts.append(
+            f"<div class='verdict {e(r['status'])}'><b>{e(d['name'])}</b> ({e(d['spec'])}): "
+            f"<b>{e(r['status'])}</b>: {e(r['text'])}</div>"
+        )
+    rows = [
+        d["recommendation"]["point"]
+        | {"name": f"{d['name']}: {d['point_name']}", "front": len(d["pareto"])}
+        | {"grid": len(d["points"])}
+        for d in cert.detectors
+    ]
+    parts.append(_table(rows, POINT_COLS + [("grid", "points", "d"), ("front", "on its front", "d")]))
+    for name in ("pareto_detectors", "response_detectors"):
+        if name in figures:
+            parts.append(_img(name, figures[name]))
+    for d in cert.detectors:
+        parts.append(f"<h3>{e(d['name'])}: false statics by phase and placement at its point</h3>")
+        parts.append(
+            _table(
+                d["breakdown"],
+                [
+                    ("condition", "condition", ""),
+                    ("value", "value", ""),
+                    ("flights", "flights", "d"),
+                    ("in_window_h", "in-window h", ",.2f"),
+                    ("false_statics", "false statics", "d"),
+                    ("response_p95_s", "response p95 s", ".1f"),
+                ],
+            )
+        )
+    return parts
+
+
 def render_html(cert, figures: dict[str, bytes], data: ReportData) -> str:
     """The self-contained report: ``figures`` {name: PNG bytes}, point names from ``data``."""
     e = html.escape
@@ -446,6 +548,8 @@ def render_html(cert, figures: dict[str, bytes], data: ReportData) -> str:
             f"statics in {s['in_window_h']:,.1f} h, bound {s['rate_upper_per_h']:.3g} /h, response p95 "
             f"{s['response_p95_s']:.1f} s, availability {s['availability']:.3f}.</p>"
         )
+    if len(cert.detectors) > 1:
+        parts += _side_by_side_html(cert, figures)
     if "tornado" in figures and data.tornado is not None:  # the verdict's uncertainty, beside the verdict
         parts += tornado_html(data.tornado, figures["tornado"])
     if "pareto" in figures:  # the verdict's picture, above the fold
@@ -478,7 +582,15 @@ def render_html(cert, figures: dict[str, bytes], data: ReportData) -> str:
         )
         + "</p>"
     )
-    parts.append(f"<p>Grid: {meta['grid']['points']} points; sigma^2 from {e(meta['sigma2_from'])}.</p>")
+    parts.append(
+        f"<p>Grid: {len(cert.summary)} points"
+        + "".join(
+            f"; {e(d['name'])} ({e(d['spec'])}): {len(d['points'])}"
+            for d in cert.detectors
+            if len(cert.detectors) > 1
+        )
+        + f"; sigma^2 from {e(meta['sigma2_from'])}.</p>"
+    )
     rec = cert.recommendation["point"]
     front = sorted(
         cert.pareto, key=lambda i: (cert.summary[i]["rate_upper_per_h"], cert.summary[i]["response_p95_s"])
@@ -514,7 +626,7 @@ def render_html(cert, figures: dict[str, bytes], data: ReportData) -> str:
             )
     parts.append("<h2>Figures</h2>")
     for name, png in figures.items():
-        if name in ("pareto", "tornado"):
+        if name in ("pareto", "tornado", "pareto_detectors", "response_detectors"):
             continue
         parts.append(
             f"<h3>{e(name)}</h3><img alt='{e(name)}' src='data:image/png;base64,"
@@ -535,17 +647,31 @@ def write_report(cert, data: ReportData, out: Path) -> dict[str, Path]:
     fig_dir.mkdir(parents=True, exist_ok=True)
     paths = {n: fig_dir / f"{n}.png" for n in FIGURES}
     fig_pareto(cert, paths["pareto"], data.seed000_index, data.seed000_short)
-    fig_vs_k(
-        cert.summary,
-        "rate_upper_per_h",
-        f"false statics per h, {cert.target.confidence:.0%} bound",
-        paths["bound_vs_k"],
-        cert.target.rate_per_h,
-        log=True,
-    )
-    fig_vs_k(
-        cert.summary, "availability", "availability (static time reported static)", paths["availability_vs_k"]
-    )
+    grid_rows = [r for r in cert.summary if not r.get("params")]  # k is the built-in grid's axis
+    if grid_rows:
+        fig_vs_k(
+            grid_rows,
+            "rate_upper_per_h",
+            f"false statics per h, {cert.target.confidence:.0%} bound",
+            paths["bound_vs_k"],
+            cert.target.rate_per_h,
+            log=True,
+        )
+        fig_vs_k(
+            grid_rows,
+            "availability",
+            "availability (static time reported static)",
+            paths["availability_vs_k"],
+        )
+    else:
+        paths.pop("bound_vs_k")
+        paths.pop("availability_vs_k")
+    if len(cert.detectors) > 1:
+        fig_pareto_detectors(cert, paths["pareto_detectors"])
+        fig_response_cdf(list(data.detector_curves), paths["response_detectors"])
+    else:
+        paths.pop("pareto_detectors")
+        paths.pop("response_detectors")
     fig_response_cdf(data.response_curves, paths["response_cdf"])
     fig_phase_heatmap(data.phases, cert, paths["phase_heatmap"])
     if cert.threshold:

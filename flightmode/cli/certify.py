@@ -10,7 +10,15 @@ from rich.table import Table
 from rich.text import Text
 
 from flightmode.cli.common import JSON_HELP, WORKERS_HELP, comma_list, console, emit_json
-from flightmode.cli.study import GRID_HELP, SweepProgress, excluded, out_of, point_name, print_breakdown
+from flightmode.cli.study import (
+    GRID_HELP,
+    SweepProgress,
+    excluded,
+    grid_and_detectors,
+    out_of,
+    point_name,
+    print_breakdown,
+)
 
 
 def certify_cmd(
@@ -29,7 +37,7 @@ def certify_cmd(
             help="The moving-variance paper's section 5.1.1: the probability of misdetection to set the threshold from.",
         ),
     ] = 1e-3,
-    method: Annotated[str, typer.Option("--method", help=GRID_HELP["method"])] = "nmv,emv",
+    method: Annotated[str | None, typer.Option("--method", help=GRID_HELP["method"])] = None,
     weight: Annotated[str, typer.Option("--weight", help=GRID_HELP["weight"])] = "5",
     window_s: Annotated[str, typer.Option("--window-s", help=GRID_HELP["window_s"])] = "0.5,1,2",
     k: Annotated[str, typer.Option("--k", help=GRID_HELP["k"])] = "2:8:0.5",
@@ -61,6 +69,10 @@ def certify_cmd(
             help="With --uncertainty: only these parameters (comma-separated; `flightmode scenarios --model`).",
         ),
     ] = None,
+    detector: Annotated[list[str] | None, typer.Option("--detector", help=GRID_HELP["detector"])] = None,
+    param: Annotated[list[str] | None, typer.Option("--param", help=GRID_HELP["param"])] = None,
+    grid_file: Annotated[Path | None, typer.Option("--grid-file", help=GRID_HELP["grid_file"])] = None,
+    grace_s: Annotated[float | None, typer.Option("--grace-s", help=GRID_HELP["grace_s"])] = None,
     as_json: Annotated[bool, typer.Option("--json", help=JSON_HELP)] = False,
 ) -> None:
     """Recommend detector parameters that meet a false-static target, with their evidence.
@@ -68,17 +80,19 @@ def certify_cmd(
     The Pareto front of (false-static bound, response, availability); the point that meets the target
     with the best response, or how many flight-hours the datasets lack; the paper's section 5.1.1
     threshold from the static data; OUT/report.html with its figures. --uncertainty: the verdict with
-    its model uncertainty (a tornado chart in the report)."""
-    from flightmode.detector.grid import grid_from_text
+    its model uncertainty (a tornado chart in the report). Several detectors (--method's, repeated
+    --detector, [[detector]] tables of --grid-file) are certified side by side in one report."""
     from flightmode.studies.certify import Target
     from flightmode.studies.sweep import check_request
 
-    grid = grid_from_text(method, weight, window_s, k, time_threshold_s)
+    grid, entries = grid_and_detectors(
+        method, weight, window_s, k, time_threshold_s, detector, param, grid_file, grace_s
+    )
     target = Target(target_fa_per_h, confidence, max_response_s, pm)
     target.validate()
     out = out_of(out, datasets, "certify", "the report")
     sensors = comma_list(sensor, "--sensor")
-    check_request(datasets, grid, sigma2_from, sensors)
+    check_request(datasets, grid, sigma2_from, sensors, entries)
     study = None
     if uncertainty:
         from flightmode.errors import InputDataError
@@ -87,6 +101,8 @@ def certify_cmd(
 
         if len(datasets) != 1:
             raise InputDataError("--uncertainty: give one dataset (its members are flown again per variant)")
+        if entries or grid is None:
+            raise InputDataError("--uncertainty certifies the built-in grid: drop --detector and --grid-file")
         names = choose_parameters(comma_list(parameter, "--parameter"))
         cert, study = run_uncertainty(
             datasets[0],
@@ -100,11 +116,11 @@ def certify_cmd(
             log=(lambda m: None) if as_json else (lambda m: console().print(m, highlight=False)),
         )
     else:
-        cert = _certify(datasets, grid, target, sigma2_from, workers, sensors, out, as_json)
+        cert = _certify(datasets, grid, target, sigma2_from, workers, sensors, out, as_json, entries)
     _print(cert, study, confidence, out, as_json)
 
 
-def _certify(datasets, grid, target, sigma2_from, workers, sensors, out, as_json):
+def _certify(datasets, grid, target, sigma2_from, workers, sensors, out, as_json, entries=()):
     from flightmode.studies.certify import certify
 
     with SweepProgress(quiet=as_json) as progress:
@@ -119,6 +135,7 @@ def _certify(datasets, grid, target, sigma2_from, workers, sensors, out, as_json
             on_start=progress.start,
             on_flight=progress.advance,
             log=(lambda m: None) if as_json else (lambda m: console().print(m, highlight=False)),
+            detectors=entries,
         )
 
 
@@ -136,16 +153,25 @@ def _print(cert, study, confidence: float, out, as_json: bool) -> None:
                 "breakdown": {"point": which, "rows": cert.breakdowns[which]},
                 "threshold": cert.threshold,
                 "excluded": cert.meta["excluded"],
+                "detectors": [
+                    {k: d[k] for k in ("name", "spec", "recommendation", "point_name")}
+                    for d in cert.detectors
+                ],
                 "report": str(Path(out) / "report.html"),
             }
             | ({"uncertainty": study.as_dict()} if study is not None else {})
         )
         return
     excluded(cert.meta["excluded"])
-    style = {"meets": "green", "too_small": "yellow", "too_slow": "yellow", "unreachable": "red"}[
-        cert.recommendation["status"]
-    ]
+    style_of = {"meets": "green", "too_small": "yellow", "too_slow": "yellow", "unreachable": "red"}
+    style = style_of[cert.recommendation["status"]]
     console().print(Text(f"{cert.recommendation['status']}: {cert.recommendation['text']}", style=style))
+    if len(cert.detectors) > 1:  # one verdict line per detector
+        for d in cert.detectors:
+            r = d["recommendation"]
+            console().print(
+                Text(f"{d['name']}: {r['status']}: {r['text']}", style=style_of.get(r["status"], ""))
+            )
     t = Table(
         "method",
         "W_s",

@@ -26,7 +26,33 @@ GRID_HELP = {
     "sensor": "Re-sense every flight with these presets, one or a comma list (e.g. lis302dl,lis302dl-8g; "
     "a dataset made with --truth full).",
     "sigma2_from": "preset (each unit's bench calibration) or rest.",
+    "detector": "A detector of the interface, repeatable: a registered name (nmv, two-source, eobs-duty, "
+    "a plugin's entry point) or package.module:make; each runs per sample on every flight, side by side "
+    "with the others (--method is then off unless given).",
+    "param": "key=value for every --detector (repeatable; values read as TOML).",
+    "grid_file": "A TOML file of [[detector]] tables (name, spec, channels, grace_s, [detector.params], "
+    "[detector.grid]: the Cartesian product of its lists); docs/studies.md.",
+    "grace_s": "A detector's rest decision carried into the in-flight window from before pushback counts as "
+    "a false static when it lasts this long (default 1 s, seed 000's W_s: the built-ins' resolution).",
 }
+DEFAULT_METHODS = "nmv,emv"
+
+
+def grid_and_detectors(method, weight, window_s, k, time_threshold_s, detector, param, grid_file, grace_s):
+    """The built-in grid (None when detectors are given and --method is not) and the detector entries
+    of --detector/--param and --grid-file (:mod:`flightmode.studies.detectors`)."""
+    from flightmode.detector.grid import grid_from_text
+    from flightmode.studies import detectors as dets
+
+    if param and not detector:
+        raise ScenarioError("--param: give the --detector it is for (or use --grid-file)")
+    entries = dets.from_cli(detector or [], param or [], grace_s)
+    if grid_file is not None:
+        entries += dets.from_toml(grid_file, grace_s)
+    if method is None and entries:
+        return None, entries
+    grid = grid_from_text(method or DEFAULT_METHODS, weight, window_s, k, time_threshold_s)
+    return grid, entries
 
 
 class SweepProgress:
@@ -71,6 +97,8 @@ def excluded(failed: list[dict]) -> None:
 
 
 def point_name(r: dict, recommended: bool) -> str:
+    if r.get("params"):  # a detector of the interface: its label and parameters
+        return r["method"] + ("" if r["params"] == "{}" else f" {r['params']}")
     name = r["method"] + (f" w{r['weight']:g}" if r["method"].startswith("emv") else "")
     return name + (" (the paper's point)" if recommended else "")
 
@@ -96,7 +124,7 @@ def out_of(out: Path | None, datasets: list[Path], name: str, what: str) -> Path
 
 def sweep_cmd(
     datasets: Annotated[list[Path], typer.Argument(help="Dataset folders made by `flightmode dataset`.")],
-    method: Annotated[str, typer.Option("--method", help=GRID_HELP["method"])] = "nmv,emv",
+    method: Annotated[str | None, typer.Option("--method", help=GRID_HELP["method"])] = None,
     weight: Annotated[str, typer.Option("--weight", help=GRID_HELP["weight"])] = "5",
     window_s: Annotated[str, typer.Option("--window-s", help=GRID_HELP["window_s"])] = "0.5,1,2",
     k: Annotated[str, typer.Option("--k", help=GRID_HELP["k"])] = "2:8:0.5",
@@ -115,13 +143,17 @@ def sweep_cmd(
         float, typer.Option("--target-fa-per-h", help="Target false statics per flight-hour.")
     ] = 1e-4,
     top: Annotated[int, typer.Option("--top", help="Grid points to print.")] = 10,
+    detector: Annotated[list[str] | None, typer.Option("--detector", help=GRID_HELP["detector"])] = None,
+    param: Annotated[list[str] | None, typer.Option("--param", help=GRID_HELP["param"])] = None,
+    grid_file: Annotated[Path | None, typer.Option("--grid-file", help=GRID_HELP["grid_file"])] = None,
+    grace_s: Annotated[float | None, typer.Option("--grace-s", help=GRID_HELP["grace_s"])] = None,
     as_json: Annotated[bool, typer.Option("--json", help=JSON_HELP)] = False,
 ) -> None:
     """Evaluate a grid of detector parameters over every flight of one or more datasets.
 
     Each moving variance is computed once; prints the best points with exact upper bounds on the
-    false-static rate and where they come from, and writes the per-flight rows to OUT."""
-    from flightmode.detector.grid import grid_from_text
+    false-static rate and where they come from, and writes the per-flight rows to OUT. --detector and
+    --grid-file add detectors of the interface (run per sample; docs/studies.md)."""
     from flightmode.studies.sweep import (
         breakdown,
         check_request,
@@ -131,12 +163,14 @@ def sweep_cmd(
         sweep,
     )
 
-    grid = grid_from_text(method, weight, window_s, k, time_threshold_s)
+    grid, entries = grid_and_detectors(
+        method, weight, window_s, k, time_threshold_s, detector, param, grid_file, grace_s
+    )
     if not target_fa_per_h > 0:
         raise ScenarioError(f"--target-fa-per-h {target_fa_per_h!r}: must be > 0")
     out = out_of(out, datasets, "sweep", "their common sweep")
     sensors = comma_list(sensor, "--sensor")
-    check_request(datasets, grid, sigma2_from, sensors)
+    check_request(datasets, grid, sigma2_from, sensors, entries)
     with SweepProgress(quiet=as_json) as progress:
         result = sweep(
             datasets,
@@ -147,6 +181,7 @@ def sweep_cmd(
             out=out,
             on_start=progress.start,
             on_flight=progress.advance,
+            detectors=entries,
         )
     table: Any = result.points
     rows = rank_points(summarise(table, confidence, target_fa_per_h, by_sensor=bool(sensors)))
@@ -155,7 +190,7 @@ def sweep_cmd(
     shown += [r for r in paper if r not in shown]
     best = rows[0]
     by_condition = breakdown(table, best, result.phases)
-    methods = compare_methods(table, confidence) if len({m for m, _ in grid.methods}) > 1 else []
+    methods = compare_methods(table, confidence) if len(set(table["method"].to_pylist())) > 1 else []
     flights = len(set(zip(table["dataset"].to_pylist(), table["flight_id"].to_pylist(), strict=True)))
     if as_json:
         emit_json(
@@ -166,7 +201,7 @@ def sweep_cmd(
                 "breakdown": by_condition,
                 "methods": methods,
                 "rows": table.num_rows,
-                "grid_points": len(grid),
+                "grid_points": len(rows),
                 "flights": flights,
             }
         )
@@ -231,7 +266,7 @@ def sweep_cmd(
             )
         console().print(c)
     console().print(
-        f"{table.num_rows:,} rows ({len(grid)} grid points x {flights} flights"
+        f"{table.num_rows:,} rows ({len(rows)} grid points x {flights} flights"
         + (f" x {len(sensors)} sensors" if sensors else "")
         + f") written to {out}",
         highlight=False,

@@ -44,7 +44,7 @@ if TYPE_CHECKING:
     from flightmode.detector.grid import Grid
     from flightmode.viz.tornado import TornadoData
 
-SEED000_POINT = RECOMMENDED.grid_point()  # seed 000, Table 9, as a grid point of the sweep
+SEED000_POINT = RECOMMENDED.grid_point()  # seed 000, Table 9, as a grid point of the sweep (params "")
 
 
 @dataclass(frozen=True)
@@ -83,6 +83,9 @@ class Certification:
     breakdowns: dict  # {"recommended": [...], "seed000": [...]}
     worst_flight: dict | None
     meta: dict = field(default_factory=dict)
+    # side by side (:func:`side_by_side`): per detector (the sweep's method column), its points'
+    # indices into summary, its own Pareto front, verdict and breakdown at its chosen point
+    detectors: list[dict] = field(default_factory=list)
 
 
 def grid_point(row: dict) -> dict:
@@ -93,6 +96,13 @@ def grid_point(row: dict) -> dict:
 
 
 def point_name(row: dict) -> str:
+    if row.get("params"):  # a detector of the interface: its label and parameters
+        sensor = f" on {row['sensor_preset']}" if row.get("sensor_preset") else ""
+        return (
+            f"{row['method']} {row['params']}{sensor}"
+            if row["params"] != "{}"
+            else f"{row['method']}{sensor}"
+        )
     m = row["method"].upper() + (f" w{row['weight']:g}" if row["method"] == "emv" else "")
     k = f"{row['k']:g} sigma^2" if row["method"] in ("nmv", "emv") else f"{row['k']:g} x rest"
     sensor = f" on {row['sensor_preset']}" if row.get("sensor_preset") else ""
@@ -133,6 +143,7 @@ def _fixed_order(r: dict) -> tuple:
         r["window_s"],
         r["k"],
         r["time_threshold_s"],
+        r.get("params", ""),
         str(r.get("sensor_preset", "")),
     )
 
@@ -353,7 +364,7 @@ def worst_flight(points, phases, point: dict) -> dict | None:
         return None
     under: dict[tuple, int] = {}
     for r in (
-        where(phases, {k: point[k] for k in ("method", "weight", "window_s", "k")})
+        where(phases, {k: point[k] for k in ("method", "weight", "window_s", "k", "params")})
         .select(["dataset", "flight_id", "sensor_preset", "under_all"])
         .to_pylist()
     ):
@@ -376,12 +387,18 @@ def worst_flight(points, phases, point: dict) -> dict | None:
 
 
 # ---------------------------------------------------------------------- the whole job
-def _sweep_matches(meta: dict, datasets: list[Path], grid, sigma2_from: str, sensors) -> bool:
+def _sweep_matches(
+    meta: dict, datasets: list[Path], grid, sigma2_from: str, sensors, detectors: Sequence = ()
+) -> bool:
     from flightmode.studies.sweep import manifest_digest
 
     have = [(d["path"], d["manifest_sha256"]) for d in meta.get("datasets", [])]
     want = [(str(p), manifest_digest(p)) for p in datasets]
-    g = meta.get("grid", {})
+    g = meta.get("grid")
+    if meta.get("detectors") != json.loads(json.dumps([e.as_dict() for e in detectors])):
+        return False  # a plugin's code may change under the same name: its points must at least match
+    if g is None or grid is None:
+        return have == want and g is None and grid is None and meta.get("sigma2_from") == sigma2_from
     return (
         have == want
         and meta.get("sigma2_from") == sigma2_from
@@ -394,7 +411,7 @@ def _sweep_matches(meta: dict, datasets: list[Path], grid, sigma2_from: str, sen
 
 
 def command_of(
-    datasets_meta: list[dict], grid, target: Target, sigma2_from: str, out: Path, sensors=None
+    datasets_meta: list[dict], grid, target: Target, sigma2_from: str, out: Path, sensors=None, detectors=()
 ) -> list[str]:
     """The commands that make the datasets again and certify them (for the report)."""
     lines = []
@@ -407,8 +424,6 @@ def command_of(
             ]
         )
         lines.append(f"flightmode dataset {d['family']} --n {d['flights']} --out {d['path']}{extra}")
-    methods = list(dict.fromkeys(m for m, _ in grid.methods))  # the grid's own order (ties follow it nowhere)
-    weights = list(dict.fromkeys(w for m, w in grid.methods if m == "emv"))
 
     def axis(v):
         return ",".join(f"{x:g}" for x in v)
@@ -417,10 +432,19 @@ def command_of(
         f"flightmode certify {' '.join(d['path'] for d in datasets_meta)} --target-fa-per-h {target.rate_per_h:g} "
         f"--confidence {target.confidence:g} --pm {target.pm:g}"
         + (f" --max-response-s {target.max_response_s:g}" if target.max_response_s else "")
-        + f" --method {','.join(methods)}"
-        + (f" --weight {axis(weights)}" if weights else "")
-        + f" --window-s {axis(grid.windows_s)} --k {axis(grid.ks)} --time-threshold-s {axis(grid.time_thresholds_s)}"
-        + f" --sigma2-from {sigma2_from}"
+    )
+    if grid is not None:
+        methods = list(dict.fromkeys(m for m, _ in grid.methods))  # the grid's own order
+        weights = list(dict.fromkeys(w for m, w in grid.methods if m == "emv"))
+        cmd += (
+            f" --method {','.join(methods)}"
+            + (f" --weight {axis(weights)}" if weights else "")
+            + f" --window-s {axis(grid.windows_s)} --k {axis(grid.ks)} --time-threshold-s {axis(grid.time_thresholds_s)}"
+        )
+    if detectors:  # the detectors' specs and points are in certify.json (meta.detectors)
+        cmd += " --grid-file DETECTORS.toml"
+    cmd += (
+        f" --sigma2-from {sigma2_from}"
         + (f" --sensor {','.join(sensors)}" if sensors else "")
         + f" --out {out}"
     )
@@ -429,7 +453,7 @@ def command_of(
 
 def certify(
     datasets: Sequence[str | Path],
-    grid: Grid,
+    grid: Grid | None,
     target: Target,
     *,
     sigma2_from: str = "preset",
@@ -443,8 +467,11 @@ def certify(
     scheduler: str | None = None,
     tornado: TornadoData | None = None,
     uncertainty: dict | None = None,
+    detectors: Sequence = (),
 ) -> Certification:
-    """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``. ``workers``
+    """Sweep (or reuse ``OUT/sweep``), then certify (module docstring); writes ``OUT``. ``grid``: the
+    built-in grid (None: none); ``detectors``: detectors of the interface
+    (:class:`flightmode.studies.detectors.Entry`), certified side by side with the grid's methods. ``workers``
     and ``scheduler``: the sweep's Dask cluster (:func:`flightmode.studies.sweep.sweep`). ``tornado``
     and ``uncertainty``: the model-uncertainty study of these flights
     (:func:`flightmode.studies.uncertainty.uncertainty`), drawn in the report and kept in
@@ -464,7 +491,7 @@ def certify(
             cached = read_sweep(sweep_dir)
         except InputDataError:  # an older layout: swept again below
             cached = None
-        if cached is not None and _sweep_matches(cached.meta, paths, grid, sigma2_from, sensors):
+        if cached is not None and _sweep_matches(cached.meta, paths, grid, sigma2_from, sensors, detectors):
             log(f"reusing the sweep in {sweep_dir} (same datasets, grid and sigma^2 source)")
             result = cached
     if result is None:
@@ -478,6 +505,7 @@ def certify(
             on_start=on_start,
             on_flight=on_flight,
             scheduler=scheduler,
+            detectors=detectors,
         )
     summary = summarise(
         result.points, target.confidence, target.rate_per_h, by_sensor=bool(result.meta.get("sensors"))
@@ -496,12 +524,19 @@ def certify(
     rp = grid_point(rec["point"])
     # section 5.1.1 is about the moving variance: seed 000's NMV at 1 s if the grid has it, else the
     # first moving-variance method and window of the grid; none at all: no section 5.1.1
-    mv_methods = [m for m in grid.methods if m[0] in ("nmv", "emv")]
+    # (the moving variances the sweep kept static statistics of: seed 000's own methods first)
+    swept = (
+        result.static.select(["method", "weight", "window_s"]).to_pylist() if result.static.num_rows else []
+    )
+    mv_methods = sorted(
+        dict.fromkeys((r["method"], r["weight"]) for r in swept), key=lambda m: m[0] not in ("nmv", "emv")
+    )
     th: dict = {}
     if mv_methods:
         seed_method = (RECOMMENDED.method, RECOMMENDED.weight)
         method_5_1_1 = seed_method if seed_method in mv_methods else mv_methods[0]
-        window_5_1_1 = RECOMMENDED.window_s if RECOMMENDED.window_s in grid.windows_s else grid.windows_s[0]
+        windows = sorted({r["window_s"] for r in swept if (r["method"], r["weight"]) == method_5_1_1})
+        window_5_1_1 = RECOMMENDED.window_s if RECOMMENDED.window_s in windows else windows[0]
         method, weight = method_5_1_1  # a grid's (method, weight) pair
         th = threshold_from_static(result.static, target.pm, method, weight, window_5_1_1, target.confidence)
         th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
@@ -517,11 +552,22 @@ def certify(
             {"dataset": r["dataset"], "flight_id": r["flight_id"], "error": (r.get("error") or "")[:300]}
             for r in result.failed
         ],
-        "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors),
+        "commands": command_of(result.meta["datasets"], grid, target, sigma2_from, out, sensors, detectors),
     }
     if uncertainty is not None:
         meta["uncertainty"] = uncertainty
-    cert = Certification(target, summary, front, rec, seed000, th, breakdowns, worst, meta)
+    cert = Certification(
+        target,
+        summary,
+        front,
+        rec,
+        seed000,
+        th,
+        breakdowns,
+        worst,
+        meta,
+        side_by_side(summary, target, result),
+    )
     out.mkdir(parents=True, exist_ok=True)
     atomic_text(json.dumps(as_dict(cert), indent=2, default=_jsonable), out / "certify.json")
     if figures:
@@ -531,6 +577,36 @@ def certify(
     return cert
 
 
+# ---------------------------------------------------------------------- detectors side by side
+def side_by_side(summary: Sequence[dict], target: Target, result) -> list[dict]:
+    """Per detector (the sweep's ``method`` column: a built-in grid's method, or a detector entry's
+    label), in the summary's order: its points (indices into ``summary``), its own Pareto front, its
+    verdict (:func:`recommend` over its points alone) and the breakdown by phase and placement at
+    the point it would ship."""
+    from flightmode.studies.sweep import breakdown
+
+    specs = {e["name"]: e for e in result.meta.get("detectors") or []}
+    out = []
+    for name in dict.fromkeys(r["method"] for r in summary):
+        idx = [i for i, r in enumerate(summary) if r["method"] == name]
+        rows = [summary[i] for i in idx]
+        rec = recommend(rows, target, lambda p: _hours_per_flight(result.points, p))
+        rows_at = breakdown(result.points, grid_point(rec["point"]), result.phases)
+        e = specs.get(name)
+        out.append(
+            {
+                "name": name,
+                "spec": e["spec"] if e else f"--method {name}",
+                "points": idx,
+                "pareto": [idx[j] for j in pareto_front(rows)],
+                "recommendation": rec,
+                "point_name": point_name(rec["point"]),
+                "breakdown": [b for b in rows_at if b["condition"] in ("phase", "placement")],
+            }
+        )
+    return out
+
+
 # ---------------------------------------------------------------------- the report's figure data
 def report_data(cert: Certification, result):
     """What :func:`flightmode.viz.certify_report.write_report` draws beyond ``cert``, computed from
@@ -538,8 +614,14 @@ def report_data(cert: Certification, result):
     from flightmode.studies.sweep import POINT_KEYS, at_point, where
     from flightmode.viz.certify_report import ReportData
 
-    rec = {k: cert.recommendation["point"][k] for k in POINT_KEYS}
-    tths = sorted({r["time_threshold_s"] for r in cert.summary})
+    rec = grid_point(cert.recommendation["point"])
+    tths = sorted(
+        {
+            r["time_threshold_s"]
+            for r in cert.summary
+            if (r["method"], r["params"]) == (rec["method"], rec["params"])
+        }
+    )
     shown = [
         ("recommended", rec),
         ("seed 000", SEED000_POINT),
@@ -548,7 +630,7 @@ def report_data(cert: Certification, result):
     ]
     curves, done = [], set()
     for label, p in shown:
-        key = tuple(p[k] for k in POINT_KEYS)
+        key = tuple(p.get(k, "") for k in POINT_KEYS)  # seed 000's point: params "" (a grid point)
         rows = at_point(result.points, p)
         if key in done or not rows:
             continue
@@ -560,11 +642,18 @@ def report_data(cert: Certification, result):
             curves.append((f"{label}: {point_name(p)}", v, n))
     p = cert.recommendation["point"]
     phases = (
-        where(result.phases, {k: p[k] for k in ("method", "weight", "window_s")})
+        where(result.phases, {k: p[k] for k in ("method", "weight", "window_s", "params")})
         .select(["phase", "k", "checks", "under_all"])
         .to_pydict()
     )
     seed = cert.seed000
+    per_detector = []  # the response at the gate of each detector at the point it would ship
+    for d in cert.detectors if len(cert.detectors) > 1 else []:
+        rows = at_point(result.points, grid_point(d["recommendation"]["point"]))
+        v = np.sort(np.array([r["response_s"] for r in rows], float))
+        per_detector.append(
+            (f"{d['name']}: {point_name(d['recommendation']['point'])}", v[np.isfinite(v)], v.size)
+        )
     return ReportData(
         names=tuple(point_name(row) for row in cert.summary),
         recommended_name=point_name(cert.recommendation["point"]),
@@ -583,6 +672,7 @@ def report_data(cert: Certification, result):
         worst_flight=_worst_flight_data(cert.worst_flight, result.meta["sigma2_from"])
         if cert.worst_flight
         else None,
+        detector_curves=per_detector,
     )
 
 
@@ -702,4 +792,5 @@ __all__ = [
     "grid_point",
     "report_data",
     "command_of",
+    "side_by_side",
 ]

@@ -53,13 +53,15 @@ CONDITIONS = (
     "sensor_preset",
     "family",
 )
-POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s")
+# a grid point: a built-in grid's (method, weight, window_s, k, time_threshold_s) with params "", or a
+# detector of the interface: method = its label, params = its parameters as JSON, the other four 0
+POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s", "params")
 # log-spaced bins of MV / sigma^2 for truly static checks: 1e-2 to 1e3, 2.3 % wide (underflow and
 # overflow folded into the first and last bins, which a threshold search never reaches)
 STATIC_EDGES = np.geomspace(1e-2, 1e3, 501)
 AXES = ("x", "y", "z")
 MV_METHODS = ("nmv", "emv")  # seed 000's moving variance; any other method is one of seed 001's detectors
-SWEEP_FORMAT = 3  # the sweep folder's layout (read_sweep refuses others: sweep again)
+SWEEP_FORMAT = 4  # the sweep folder's layout (read_sweep refuses others: sweep again)
 
 
 @dataclass(frozen=True)
@@ -167,9 +169,11 @@ def sweep_flight(
     sigma2_from: str = "preset",
     family: str = "",
     sensors: Sequence[str] | None = None,
+    detectors: Sequence = (),
 ) -> dict:
-    """Every grid point on one flight of a dataset (on each of ``sensors``, re-sensed, if given):
-    {"points", "phases", "static"} lists of rows (module docstring)."""
+    """Every grid point (of ``grid``, None for none, and of each detector entry of ``detectors``:
+    :class:`flightmode.studies.detectors.Entry`) on one flight of a dataset (on each of ``sensors``,
+    re-sensed, if given): {"points", "phases", "static"} lists of rows (module docstring)."""
     out: dict = {"points": [], "phases": [], "static": []}
     for preset, cols, text in flight_streams(dataset, row, sensors):
         part = _sweep_stream(
@@ -178,6 +182,7 @@ def sweep_flight(
             grid,
             sigma2_from,
             {"dataset": dataset, "family": family, "flight_id": row["flight_id"]},
+            detectors,
         )
         for k in out:
             out[k] += part[k]
@@ -305,7 +310,7 @@ def _rest_of(source: str, row: dict, cols: dict, fs: float) -> np.ndarray:
     return bench_static(preset, unit, pipeline.streams_of(sc.seed).rng("detector/bench")).acc_g
 
 
-def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> dict:
+def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict, detectors: Sequence = ()) -> dict:
     t, acc = cols["t_s"], cols["acc_g"]
     fs = round(1.0 / float(np.median(np.diff(t))), 6)
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
@@ -325,11 +330,24 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
     cond = {k: row.get(k) for k in CONDITIONS if k not in ("family", "sensor_preset")}
     points, phases, statics = [], [], []
     seen: set[tuple] = set()
-    for method, p, e in _evaluate(t, acc, cols.get("gyro_dps"), labels, grid, fs, sigma2_from, row, cols):
+    from flightmode.studies.detectors import fast_grid
+
+    runs = [_evaluate(t, acc, cols.get("gyro_dps"), labels, grid, fs, sigma2_from, row, cols)] if grid else []
+    plugins = []
+    for entry in detectors:  # a built-in with a grid fast path is swept by it, under its label
+        g = fast_grid(entry)
+        if g is None:
+            plugins.append(entry)
+        else:
+            runs.append(
+                (entry.name, p, e)
+                for _, p, e in _evaluate(t, acc, cols.get("gyro_dps"), labels, g, fs, sigma2_from, row, cols)
+            )
+    for method, p, e in (x for run in runs for x in run):
         c = e.checks
         base = (method, p.weight, p.window_s)
         mv_method = p.method in MV_METHODS
-        bk = {**key, "method": method, "weight": p.weight, "window_s": p.window_s}
+        bk = {**key, "method": method, "weight": p.weight, "window_s": p.window_s, "params": ""}
         in_w = window[c.index]
         codes = phase_code[c.index][in_w]
         if (*base, p.k_sigma) not in seen:  # once per (detector run, k): per-phase checks under k
@@ -353,6 +371,7 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
                             "under_y": int(under[1][i]),
                             "under_z": int(under[2][i]),
                             "under_all": int(under_all[i]),
+                            "seconds": float(n_ph[i]) * p.window_s,
                         }
                     )
         if mv_method and base not in seen:  # once per moving variance: the static MV in sigma^2 units
@@ -374,6 +393,7 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
                 "window_s": p.window_s,
                 "k": p.k_sigma,
                 "time_threshold_s": p.time_threshold_s,
+                "params": "",
                 "in_window_h": in_window_h,
                 "in_flight_checks": e.in_flight_checks,
                 "false_static_count": e.false_static_count,
@@ -391,6 +411,42 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict) -> d
                 "availability": (static_s - e.missed_static_s) / static_s if static_s > 0 else math.nan,
             }
         )
+    for entry in plugins:
+        from flightmode.studies.detectors import params_text, run_entry
+
+        in_w = window
+        codes = phase_code[in_w]
+        n_ph = np.bincount(codes, minlength=len(phase_names))
+        for params, dec, d in run_entry(entry, cols, row, fs, sigma2_from, _rest_of):
+            pk = {"method": entry.name, "weight": 0.0, "window_s": 0.0, "k": 0.0}
+            text = params_text(params)
+            under = np.bincount(codes[dec[in_w]], minlength=len(phase_names))
+            for i, name in enumerate(phase_names):
+                if n_ph[i]:  # per phase: in-window samples, and those the detector called at rest
+                    u = int(under[i])
+                    phases.append(
+                        {**key, **pk, "params": text, "phase": str(name), "checks": int(n_ph[i])}
+                        | {"under_x": u, "under_y": u, "under_z": u, "under_all": u}
+                        | {"seconds": float(n_ph[i]) * d.dt_s}
+                    )
+            s = d.summary()
+            points.append(
+                {**key, **cond, **pk, "time_threshold_s": 0.0, "params": text, "in_window_h": in_window_h}
+                | {k: s[k] for k in ("false_static_count", "false_static_s", "longest_false_static_s")}
+                | {
+                    "in_flight_checks": d.in_flight_samples,
+                    "false_static_phases": s["false_static_phases"],
+                    "suspend_s": d.suspend_s,
+                    "response_s": d.response_s
+                    if d.response_s is not None
+                    else (math.inf if d.rest_after else math.nan),
+                    "static_s": d.static_s,
+                    "missed_static_s": d.missed_static_s,
+                    "checks": d.samples,
+                    "accuracy": d.accuracy,
+                    "availability": d.availability,
+                }
+            )
     return {"points": points, "phases": phases, "static": statics}
 
 
@@ -412,9 +468,11 @@ def check_request(
     grid,
     sigma2_from: str = "preset",
     sensors: Sequence[str] | None = None,
+    detectors: Sequence = (),
 ) -> list[Path]:
     """The dataset folders, once each, every one a dataset with a successful flight (and its full-rate
-    truth if ``sensors`` re-sense it); the grid's axes; the sigma^2 source; the sensor presets. An
+    truth if ``sensors`` re-sense it); the grid's axes; the detector entries (each loads, each label
+    once: :func:`flightmode.studies.detectors.check`); the sigma^2 source; the sensor presets. An
     InputDataError, DetectorError or SensorError naming what is wrong; reads only."""
     paths = [Path(datasets)] if isinstance(datasets, (str, Path)) else [Path(d) for d in datasets]
     if not paths:
@@ -423,7 +481,14 @@ def check_request(
         raise InputDataError("the same dataset is named twice: its flights would count double")
     if sigma2_from not in ("preset", "rest"):
         raise InputDataError(f"--sigma2-from {sigma2_from!r}: use preset or rest")
-    grid.check_axes()
+    if grid is None and not detectors:
+        raise InputDataError("nothing to sweep: give --method or --detector (or --grid-file)")
+    if grid is not None:
+        grid.check_axes()
+    if detectors:
+        from flightmode.studies.detectors import check
+
+        check(detectors, [m for m, _ in grid.methods] if grid is not None else [])
     if sensors is not None:
         from flightmode.sim.sensor.accelerometer import get_preset
 
@@ -457,8 +522,10 @@ def sweep(
     on_start: Callable[[int], None] | None = None,
     on_flight: Callable[[str], None] | None = None,
     scheduler: str | None = None,
+    detectors: Sequence = (),
 ) -> SweepResult:
-    """Evaluate ``grid`` on every successful flight of ``datasets`` (module docstring); the failed
+    """Evaluate ``grid`` (None: none) and the ``detectors`` (:class:`flightmode.studies.detectors.
+    Entry`, each point run per sample on each stream) on every successful flight of ``datasets`` (module docstring); the failed
     flights are excluded and returned. ``sensors``: re-sense each flight with each of these presets
     (datasets made with ``--truth full``) instead of reading its samples. Writes the sweep folder
     ``out`` if given. ``on_start(flights)`` and ``on_flight(flight_id)`` report progress. One Dask
@@ -469,8 +536,9 @@ def sweep(
 
     from flightmode.datasets.make import ok_flights
 
-    paths = check_request(datasets, grid, sigma2_from, sensors)
+    paths = check_request(datasets, grid, sigma2_from, sensors, detectors)
     sensors = tuple(sensors) if sensors else None
+    detectors = tuple(detectors)
     jobs, failed, described = [], [], []
     for d in paths:
         ok, bad, meta = ok_flights(d)
@@ -491,12 +559,13 @@ def sweep(
         )
     d0, r0, _ = jobs[0]
     t0 = pq.read_table(Path(d0) / r0["samples_file"], columns=["t_s"])["t_s"].to_numpy()[:1000]
-    grid.validate(round(1.0 / float(np.median(np.diff(t0))), 6))  # a window under 2 samples, before any work
+    if grid is not None:  # a window under 2 samples, before any work
+        grid.validate(round(1.0 / float(np.median(np.diff(t0))), 6))
     if on_start:
         on_start(len(jobs))
     results = map_flights(
         sweep_flight,
-        [(d, r, grid, sigma2_from, fam, sensors) for d, r, fam in jobs],
+        [(d, r, grid, sigma2_from, fam, sensors, detectors) for d, r, fam in jobs],
         workers,
         (lambda n: on_flight(jobs[n][1]["flight_id"])) if on_flight else None,
         scheduler=scheduler,
@@ -510,13 +579,16 @@ def sweep(
         "datasets": described,
         "sigma2_from": sigma2_from,
         "sensors": list(sensors) if sensors else None,
-        "grid": {
+        "grid": None
+        if grid is None
+        else {
             "methods": [list(m) for m in grid.methods],
             "windows_s": list(grid.windows_s),
             "ks": list(grid.ks),
             "time_thresholds_s": list(grid.time_thresholds_s),
             "points": len(grid),
         },
+        "detectors": [e.as_dict() for e in detectors],
         "static_edges": "geomspace(1e-2, 1e3, 501)",
         "versions": _versions(),
     }
@@ -583,6 +655,7 @@ def summarise(
     re-senses the same flights: their hours must not add up across presets)."""
     from flightmode.detector.confidence import hours_needed, rate_and_response
 
+    table = with_params(table)
     keys = list(POINT_KEYS) + (["sensor_preset"] if by_sensor else [])
     df = table.select(
         keys
@@ -641,6 +714,7 @@ def rank_points(rows: list[dict]) -> list[dict]:
             r["window_s"],
             r["k"],
             r["time_threshold_s"],
+            r.get("params", ""),
         ),
     )
 
@@ -652,6 +726,7 @@ def compare_methods(table, confidence: float = 0.95) -> list[dict]:
     time threshold (seed 001's "ROC at the best window"), false-positive rate = the in-window checks
     declared static, true-positive rate = the truly static time reported static (availability), the
     curve closed at (0, 0) and (1, 1). Sorted as the points are chosen."""
+    table = with_params(table)
     rows = summarise(table, confidence)
     d = table.select(
         [
@@ -666,6 +741,8 @@ def compare_methods(table, confidence: float = 0.95) -> list[dict]:
             "missed_static_s",
             "checks",
             "accuracy",
+            "params",
+            "in_window_h",
         ]
     ).to_pydict()
     n = len(d["k"])
@@ -688,13 +765,18 @@ def compare_methods(table, confidence: float = 0.95) -> list[dict]:
         for i in range(n):
             if (d["method"][i], d["weight"][i], d["window_s"][i], d["time_threshold_s"][i]) != key:
                 continue
-            k = d["k"][i]
+            k = (d["k"][i], d["params"][i])  # a detector of the interface: its grid's points
             f = fpr.setdefault(k, [0.0, 0.0, 0.0, 0.0])
             f[0] += d["false_static_s"][i]
-            f[1] += d["in_flight_checks"][i] * d["window_s"][i]
+            # in-window time: the checks' (W_s each) or, per sample, the window's
+            f[1] += (
+                d["in_flight_checks"][i] * d["window_s"][i]
+                if not d["params"][i]
+                else d["in_window_h"][i] * 3600
+            )
             f[2] += d["static_s"][i] - d["missed_static_s"][i]
             f[3] += d["static_s"][i]
-            if k == best["k"] and d["checks"][i] and not math.isnan(d["accuracy"][i]):
+            if k == (best["k"], best["params"]) and d["checks"][i] and not math.isnan(d["accuracy"][i]):
                 acc_num += d["accuracy"][i] * d["checks"][i]
                 acc_den += d["checks"][i]
         pts = sorted(
@@ -726,9 +808,21 @@ def where(table, values: dict):
 
 def at_point(table, point: dict) -> list[dict]:
     """The rows of one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``,
-    and ``sensor_preset`` if the point names one)."""
+    ``params``: "" if not given, a built-in grid's point; and ``sensor_preset`` if the point names one)."""
     keys = POINT_KEYS + (("sensor_preset",) if "sensor_preset" in point else ())
-    return where(table, {k: point[k] for k in keys}).to_pylist()
+    return where(
+        with_params(table), {k: point.get(k, "") if k == "params" else point[k] for k in keys}
+    ).to_pylist()
+
+
+def with_params(table):
+    """``table`` with a ``params`` column ("" in every row: a built-in grid's points) if it has none
+    (a table made by hand of a built-in grid's rows)."""
+    import pyarrow as pa
+
+    if "params" in table.column_names:
+        return table
+    return table.append_column("params", pa.array([""] * table.num_rows, pa.string()))
 
 
 def breakdown(table, point: dict, phases=None) -> list[dict]:
@@ -760,14 +854,20 @@ def breakdown(table, point: dict, phases=None) -> list[dict]:
         keys = ("method", "weight", "window_s", "k") + (
             ("sensor_preset",) if "sensor_preset" in point else ()
         )
+        phases = with_params(phases)
+        point = point | {"params": point.get("params", "")}
         hours: dict[str, float] = {}
         flights: dict[str, set] = {}
         for r in (
-            where(phases, {k: point[k] for k in keys})
-            .select(["phase", "checks", "dataset", "flight_id"])
+            where(phases, {k: point[k] for k in (*keys, "params")})
+            .select(
+                ["phase", "checks", "dataset", "flight_id"]
+                + (["seconds"] if "seconds" in phases.column_names else [])
+            )
             .to_pylist()
-        ):
-            hours[r["phase"]] = hours.get(r["phase"], 0.0) + r["checks"] * point["window_s"] / 3600.0
+        ):  # in-phase time: the rows' own (checks x W_s, or samples x dt), else the checks' at W_s
+            sec = r.get("seconds", r["checks"] * point["window_s"])
+            hours[r["phase"]] = hours.get(r["phase"], 0.0) + sec / 3600.0
             flights.setdefault(r["phase"], set()).add((r["dataset"], r["flight_id"]))
         events: dict[str, int] = {}
         for r in rows:

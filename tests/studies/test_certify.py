@@ -20,6 +20,7 @@ def _row(i, events, hours, rate_up, p95, avail, k=4.0):
         "window_s": 1.0,
         "k": k,
         "time_threshold_s": float(i),
+        "params": "",  # a built-in grid's point (summarise's rows)
         "false_statics": events,
         "in_window_h": hours,
         "rate_per_h": events / hours,
