@@ -158,7 +158,9 @@ def print_decisions(console: Console, d) -> None:
     e = d.decision_evaluation
     params = ", ".join(f"{k}={v!r}" for k, v in d.detector_params.items()) or "its defaults"
     t = Table(
-        title=f"detector {d.method} ({d.source}{': ' + d.title if d.title else ''}), {params}; "
+        title=f"detector {d.method}"
+        + (f" ({d.source}{': ' + d.title if d.title else ''})" if d.source != d.method else "")
+        + f", {params}; "
         f"channels {', '.join(d.channels)}; scored per sample",
         show_header=False,
     )
