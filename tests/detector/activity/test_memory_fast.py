@@ -142,14 +142,14 @@ def test_stream_equals_batch_at_the_study_window(name, chunk):
 def test_the_flight_wrapper_uses_the_study_windows():
     """MBGTD and MBCD run with seed 001's windows (Tables 10-11, samples at its IMU's 50 Hz) in
     samples at the stream's rate; W_s stays the check period; the other detectors keep W_s fs."""
-    from flightmode.detector.activity.flight import STUDY_WINDOW_S, ActivityParams, _kwargs
+    from flightmode.detector.activity.flight import STUDY_WINDOW_S, ActivityParams, detector_kwargs
 
     assert ActivityParams("mbgtd", fs_hz=50.0).detector_window == 13  # Table 10: 13.18 samples
     assert ActivityParams("mbcd", fs_hz=50.0).detector_window == 13  # Table 11: 12.62 samples
     assert ActivityParams("mbgtd", fs_hz=100.0).detector_window == 26
     assert ActivityParams("mbcd", fs_hz=100.0, signal="gyr").detector_window == 30  # 15.25 at 50 Hz
     p = ActivityParams("mbcd", fs_hz=100.0, window_s=2.0)
-    assert (p.window, _kwargs(p, {"bandwidth": 1.0})["window"]) == (200, 25)
+    assert (p.window, detector_kwargs(p, {"bandwidth": 1.0})["window"]) == (200, 25)
     assert ActivityParams("amvd", fs_hz=100.0, window_s=0.5).detector_window == 50
     assert set(STUDY_WINDOW_S) == {"mbgtd", "mbcd"}
     assert all(0.2 < s < 0.35 for v in STUDY_WINDOW_S.values() for s in v.values())
