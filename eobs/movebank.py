@@ -339,6 +339,11 @@ def _parse(data: bytes | str) -> MovebankFile:
     if not lines or lines[0] == "":
         raise InputDataError("line 1: empty: a Movebank e-obs file starts with its header line")
     header = tuple(_split_line(lines[0], 1))
+    if ",".join(map(_quote, header)) != lines[0]:  # 'a"b' or '"a"': read, but not written back alike
+        raise InputDataError(
+            "line 1: the header's quoting would not be written back as it is; only text this reader "
+            "writes back byte for byte is accepted"
+        )
     cols = find_columns(header)
     owned = set(cols.indices())
     names = header
