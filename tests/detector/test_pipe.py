@@ -20,6 +20,7 @@ import pytest
 from flightmode.detector import fixed_point as fp
 from flightmode.detector import interface, pipe
 from flightmode.errors import DetectorError
+from flightmode.scenarios.scenario import builtin_names
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "nmv_fixed.c"
 FS = 100.0
@@ -201,3 +202,35 @@ def test_the_firmware_refuses_a_nan_at_its_sample(firmware, capfd):
     with pytest.raises(DetectorError, match=r"exited with status 2 at sample 20 \(20 answers for the 50"):
         interface.decisions(loaded.name, det, np.arange(50) / FS, x)
     assert "NaN or inf in the sample (at sample 20)" in capfd.readouterr().err
+
+
+ROUTES = [n for n in builtin_names() if n != "pattern"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ROUTES)
+def test_the_c_firmware_on_the_built_in_routes(firmware, run_cached, name, record_property):
+    # every built-in route gate to gate: the C program (f64) equals nmv-fixed on every sample, and the
+    # integer detector differs from the floating one only within one LSB of the threshold (counted)
+    import dataclasses
+
+    from flightmode.runs.pipeline import streams_of
+    from flightmode.sim.sensor.accelerometer import UnitDraw, bench_static, get_preset
+
+    r = run_cached(name)
+    rec = r.recording
+    preset = dataclasses.replace(get_preset(rec.preset), odr_hz=float(rec.odr_hz))
+    bench = bench_static(preset, UnitDraw.from_dict(rec.unit), streams_of(r.seed).rng("detector/bench"))
+    s2 = fp.sigma2_counts_of_rest(bench.acc_g, int(round(rec.odr_hz)))
+    params = {"sigma2_counts": s2.tolist()}
+    ref = fp.make(rec.odr_hz, list(interface.ACC_CHANNELS), **params).push(rec.t_s, rec.acc_g)
+    loaded = pipe.load_cmd(shlex.quote(str(firmware)), "f64")
+    got = interface.decisions(
+        loaded.name, interface.build(loaded, rec.odr_hz, loaded.channels, params), rec.t_s, rec.acc_g
+    )
+    np.testing.assert_array_equal(got, ref)
+    c = fp.compare_fixed_float(rec.t_s, rec.acc_g, rec.odr_hz, sigma2_counts=s2)
+    assert c["within_one_lsb"] and c["final_explained"], c["axis_disagreements"]
+    for key in ("checks", "temporary_disagreements", "final_disagreements", "sample_disagreements"):
+        record_property(key, c[key])
+    record_property("axis_disagreements", len(c["axis_disagreements"]))
