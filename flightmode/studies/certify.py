@@ -364,7 +364,7 @@ def worst_flight(points, phases, point: dict) -> dict | None:
         return None
     under: dict[tuple, int] = {}
     for r in (
-        where(phases, {k: point[k] for k in ("method", "weight", "window_s", "k", "params")})
+        where(phases, {k: point.get(k, "") for k in ("method", "weight", "window_s", "k", "params")})
         .select(["dataset", "flight_id", "sensor_preset", "under_all"])
         .to_pylist()
     ):
@@ -513,7 +513,9 @@ def certify(
     summary.sort(key=_fixed_order)
     front = pareto_front(summary)
     rec = recommend(summary, target, lambda p: _hours_per_flight(result.points, p))
-    seed000 = next((r for r in summary if {k: r[k] for k in SEED000_POINT} == SEED000_POINT), None)
+    seed000 = next(
+        (r for r in summary if {k: r[k] for k in SEED000_POINT} == SEED000_POINT and not r["params"]), None
+    )
     if seed000 is not None:
         seed000 = seed000 | {
             "meets": bool(
@@ -541,8 +543,10 @@ def certify(
         th = threshold_from_static(result.static, target.pm, method, weight, window_5_1_1, target.confidence)
         th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
     breakdowns = {"recommended": breakdown(result.points, rp, result.phases)}
-    seed_point = SEED000_POINT | (
-        {"sensor_preset": seed000["sensor_preset"]} if seed000 and "sensor_preset" in seed000 else {}
+    seed_point = (
+        SEED000_POINT
+        | {"params": ""}
+        | ({"sensor_preset": seed000["sensor_preset"]} if seed000 and "sensor_preset" in seed000 else {})
     )
     if seed000 is not None:
         breakdowns["seed000"] = breakdown(result.points, seed_point, result.phases)
