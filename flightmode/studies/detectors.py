@@ -147,7 +147,7 @@ def from_toml(path: str | Path, grace_s: float | None = None) -> list[Entry]:
 def check(entries: Sequence[Entry], taken: Sequence[str] = ()) -> None:
     """Every factory loads, every label is given once (``taken``: the built-in grid's methods), the
     channels are known names, the grace is >= 0; a DetectorError (or InputDataError) otherwise."""
-    from flightmode.detector.interface import check_channels, load
+    from flightmode.detector.interface import check_channels, check_params, load
 
     seen = set(taken)
     for e in entries:
@@ -163,7 +163,10 @@ def check(entries: Sequence[Entry], taken: Sequence[str] = ()) -> None:
             raise InputDataError(f"detector {e.name}: grace_s {e.grace_s!r}: a duration >= 0 s")
         if not e.points:
             raise InputDataError(f"detector {e.name}: no grid point")
-        _ = loaded
+        for params in e.points:  # a parameter the factory does not take, before any flight
+            check_params(loaded, params)
+            if e.channels is None:
+                loaded.channels_for(params)
 
 
 def fast_grid(entry: Entry):
@@ -181,6 +184,7 @@ def fast_grid(entry: Entry):
         sig = inspect.signature(loaded.factory).parameters
     except (TypeError, ValueError):
         return None
+    plain = Grid()  # an axis the factory does not take: the grid's default (NMV's weight 1)
     axes: dict[str, list] = {k: [] for k in GRID_AXES}
     for p in entry.points:
         if set(p) - set(GRID_AXES):
@@ -188,7 +192,9 @@ def fast_grid(entry: Entry):
         for k in GRID_AXES:
             if k in p:
                 v = p[k]
-            elif k in sig and sig[k].default is not inspect.Parameter.empty:
+            elif k not in sig:
+                v = plain.methods[0][1] if k == "weight" else getattr(plain, GRID_AXES[k])[0]
+            elif sig[k].default is not inspect.Parameter.empty:
                 v = sig[k].default
             else:
                 return None
@@ -205,24 +211,53 @@ def fast_grid(entry: Entry):
     return grid if len(grid) == len(entry.points) else None  # a product of the axes, nothing more
 
 
-def rest_matrix(entry_channels: Sequence[str], cols: dict, row: dict, sigma2_from: str, fs: float, rest_of):
-    """The rest recording a factory that takes ``rest`` gets, in its channels: the unit's bench
-    recording (``preset``, acceleration only) or the truly static samples before the flight."""
+def rest_matrix(channels: Sequence[str], cols: dict, row: dict, sigma2_from: str, fs: float, x, rest_of):
+    """The rest recording a factory that takes ``rest`` gets, in its ``channels`` (``x``: the stream's
+    matrix in them), as ``detect`` gives it (:func:`flightmode.runs.detect.rest_recording`):
+    ``preset``, the unit's bench recording for the accelerometer (the stream the sweep's sigma^2
+    comes from) and the longest truly static run before the flight for the other channels (held at its
+    last value beyond it); ``rest``, the truly static samples before the flight (every static sample
+    when those are fewer than one second)."""
     import numpy as np
 
     from flightmode.detector.evaluation import longest_static_run
-    from flightmode.detector.interface import ACC_CHANNELS, stream_matrix
+    from flightmode.detector.interface import ACC_CHANNELS
 
-    if sigma2_from == "preset" and all(c in ACC_CHANNELS for c in entry_channels):
-        bench = np.asarray(rest_of(sigma2_from, row, cols, fs), float)
-        return bench[:, [ACC_CHANNELS.index(c) for c in entry_channels]]
-    static = np.asarray(cols["sensor_static"], bool).copy()
+    static = np.asarray(cols["sensor_static"], bool)
     window = np.asarray(cols["in_flight_window"], bool)
+    before = static.copy()
     if window.any():
-        static[int(np.flatnonzero(window)[0]) :] = False
-    a, b = longest_static_run(static)
-    _, x = stream_matrix(cols, entry_channels, f"flight {row['flight_id']}")
-    return x[a:b]
+        before[int(np.flatnonzero(window)[0]) :] = False  # what a tracker saw before the flight
+    if sigma2_from == "rest":
+        return x[before if before.sum() >= fs else static]
+    bench = np.asarray(rest_of(sigma2_from, row, cols, fs), float)
+    a, b = longest_static_run(before) if before.any() else longest_static_run(static)
+    out = np.empty((bench.shape[0], len(channels)))
+    for j, c in enumerate(channels):
+        if c in ACC_CHANNELS:
+            out[:, j] = bench[:, ACC_CHANNELS.index(c)]
+        else:
+            run = x[a:b, j]
+            out[:, j] = np.concatenate([run, np.full(max(0, bench.shape[0] - run.shape[0]), run[-1])])[
+                : bench.shape[0]
+            ]
+    return out
+
+
+def context_of(row: dict, cols: dict) -> dict:
+    """The harness's context keywords for one dataset flight (:data:`flightmode.detector.interface.
+    CONTEXT` but ``rest``): its accelerometer's resolution, and with a barometer its reading rate and
+    the destination's expected ground pressure (from the flight's scenario, as its own run had them)."""
+    from flightmode.runs import pipeline
+    from flightmode.scenarios.scenario import Scenario
+
+    sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
+    out: dict = {"lsb_g": pipeline.sensor_preset(sc.sensor).lsb_g}
+    baro = pipeline.baro_preset(sc.sensor) if "baro_pa" in cols else None
+    if baro is not None:
+        out["baro_fs_hz"] = float(baro.odr_hz)
+        out["arrival_ground_pa"] = pipeline.pressure_params(sc, baro.odr_hz).arrival_ground_pa
+    return out
 
 
 def run_entry(entry: Entry, cols: dict, row: dict, fs: float, sigma2_from: str, rest_of) -> list[tuple]:
@@ -233,13 +268,14 @@ def run_entry(entry: Entry, cols: dict, row: dict, fs: float, sigma2_from: str, 
     from flightmode.detector.interface import build, decisions, load, stream_matrix
 
     loaded = load(entry.spec)
-    channels = entry.channels or loaded.channels
-    t, x = stream_matrix(cols, channels, f"flight {row['flight_id']}")
-    rest = rest_matrix(channels, cols, row, sigma2_from, fs, rest_of) if loaded.takes_rest else None
     labels = {k: cols[k] for k in ("in_flight_window", "sensor_static", "phase")}
+    context = context_of(row, cols)
     out = []
     for params in entry.points:
-        det = build(loaded, fs, channels, params, rest)
+        channels = entry.channels or loaded.channels_for(params)
+        t, x = stream_matrix(cols, channels, f"flight {row['flight_id']}")
+        rest = rest_matrix(channels, cols, row, sigma2_from, fs, x, rest_of) if loaded.takes_rest else None
+        det = build(loaded, fs, channels, params, rest, **context)
         try:
             dec = decisions(entry.name, det, t, x)
         except DetectorError as e:
@@ -252,6 +288,7 @@ __all__ = [
     "GRACE_S",
     "Entry",
     "check",
+    "context_of",
     "fast_grid",
     "from_cli",
     "from_toml",

@@ -26,6 +26,14 @@ The sweep folder (written file by file, atomically; ``sweep.json`` last):
 - ``sweep.json``: the datasets (family, manifest digest, flights used and excluded), the grid, the
   sigma^2 source and the versions.
 
+Detectors of the interface (``detectors``: :mod:`flightmode.studies.detectors`) are swept beside the
+grid: each point runs per sample on each stream and is scored per sample
+(:func:`flightmode.detector.decisions.score`); its rows carry the detector's label as ``method``, its
+parameters as JSON in ``params`` (``""`` for the grid's points) and 0 in ``weight``, ``window_s``,
+``k`` and ``time_threshold_s``; ``in_flight_checks`` and ``checks`` count samples, and its phase rows
+count in-window samples and those it called at rest (``under_*``); ``seconds`` is every phase row's
+in-window time. A detector whose factory has ``grid_method`` is swept by the grid's fast path.
+
 Per grid point (:func:`summarise`): the false-static rate per in-window flight-hour and its exact
 upper bound (:mod:`flightmode.detector.confidence`), response p50/p95/max, mean availability.
 """

@@ -47,6 +47,15 @@ class Short:
 
 def make_short(fs_hz, channels):
     return Short()
+
+
+def fast_nmv(fs_hz, channels, window_s=1.0, k=4.0, time_threshold_s=4.0, rest=None, lsb_g=None):
+    from flightmode.detector.builtin import nmv
+
+    return nmv(fs_hz, channels, window_s=window_s, k=k, time_threshold_s=time_threshold_s, rest=rest, lsb_g=lsb_g)
+
+
+fast_nmv.grid_method = "nmv"  # the sweep may use its grid's fast path
 '''
 
 
@@ -291,3 +300,19 @@ def test_the_eobs_duty_rule_decides_once_per_burst_and_its_chunks_agree():
         make(fs, ["acc_x_g"], interval_s=1.0, burst_samples=20, sigma2=[1e-6])
     with pytest.raises(DetectorError, match="sigma2"):
         make(fs, ["acc_x_g"])
+
+
+def test_a_factory_with_a_grid_method_is_swept_by_the_grid_fast_path(tiny_dataset, plugin, tmp_path):
+    """The attribute grid_method, not the name, sends a detector to the built-in grid's fast path: its
+    rows are the grid's own (--method nmv), under its label."""
+    from flightmode.detector.grid import grid_from_text
+    from flightmode.studies.detectors import Entry, fast_grid
+    from flightmode.studies.sweep import sweep
+
+    entry = Entry("mine", f"{plugin}:fast_nmv", None, ({"k": 3.0}, {"k": 4.0}))
+    assert fast_grid(entry) == grid_from_text("nmv", "1", "1", "3,4", "4")
+    assert fast_grid(Entry("x", f"{plugin}:make")) is None  # no grid_method: per sample
+    a = sweep(tiny_dataset, None, detectors=[entry]).points.to_pylist()
+    b = sweep(tiny_dataset, grid_from_text("nmv", "1", "1", "3,4", "4")).points.to_pylist()
+    assert [r["method"] for r in a] == ["mine", "mine"]
+    assert [r | {"method": "nmv"} for r in a] == b
