@@ -39,6 +39,16 @@ HEADING_BANK_GAIN = 2.0
 # 20 route landings of the 787-8 planned with the real type's burn (european-trio's routes), which now
 # land 6.5 m from it at most
 LOC_LOOK_MIN_M = 600.0
+# the approach fix reached without a capture (Autopilot._turn_back): how long after first coming within
+# 2.5 nm of it, and the leg out beyond it. A lap of a circle about the fix at 200-250 kt and 25 deg of
+# bank takes 2 pi V / (g tan 25 deg) = 140-180 s: after 300 s the aircraft has circled the fix more than
+# once without meeting the capture's conditions, and would go on circling (the pattern's approaches of
+# the four types, a go-around each, capture 81-111 s after first coming within 2.5 nm). 6 nm out,
+# the waypoint is reached 2 nm short of it; the turn back (a 1.5-2 nm radius) then leaves the aircraft
+# 3-4 nm beside the centreline and 4-5 nm out, headed for the fix about 40 deg off the course, inside
+# the capture's 75 deg
+FIX_CAPTURE_WAIT_S = 300.0
+TURN_BACK_NM = 6.0
 
 
 class Autopilot:
@@ -221,9 +231,32 @@ class Autopilot:
             self.fix_nm = fix_nm
         self.waypoints = list(waypoints) + [self.approach_fix()]
         self.wp = 0
+        self.fix_reached_t: float | None = None  # first time within 2.5 nm of the fix, not captured
         # distance from each waypoint to the threshold along the remaining legs (constant)
         legs = [geodesy.gc_distance_m(*a, *b) for a, b in zip(self.waypoints, self.waypoints[1:])]
         self.legs_after_m = [sum(legs[i:]) + self.fix_nm * NM_M for i in range(len(self.waypoints))]
+
+    def _turn_back(self, hdg_err_rad: float) -> None:
+        """At the approach fix for FIX_CAPTURE_WAIT_S without a capture (a route that reaches the fix from
+        the runway's side, headed away from the final course): fly out along the extended centreline
+        TURN_BACK_NM past the fix and back to it, at the glideslope's height at the fix (a procedure
+        turn's outbound leg: ICAO Doc 8168 Vol I, reversal procedures). Without it the pure pursuit of
+        the fix circled it, the fix inside its turn circle, until a lap happened to meet the capture's
+        conditions: regional-hops member 38 (EDDF-LKPR, runway 24 reached from the west) circled it
+        about 10 min with seeds 0-4 and 17 min with seed 5, burning 3.4 t/h of the 6.6 t it had at the
+        fix: about 1.9 h of circling. Issue 54's flight of that member, which stalled in its flare 2.7 h
+        after the gate, had likely circled there about 1.8 h. The distance to go counts the leg out as
+        the fix's."""
+        self.fix_reached_t = None
+        out = self.dest.to_latlon(-(self.fix_nm + TURN_BACK_NM) * NM_M, 0.0)
+        self.waypoints.insert(self.wp, out)
+        self.legs_after_m.insert(self.wp, self.legs_after_m[self.wp])
+        self.cruise_alt_m = min(self.cruise_alt_m, self.path_alt_m(self.fix_nm * NM_M))
+        self.event(
+            "turn_back",
+            f"at the approach fix {FIX_CAPTURE_WAIT_S:.0f} s without a capture, "
+            f"{math.degrees(hdg_err_rad):.0f} deg off the final course",
+        )
 
     def distance_to_go_m(self, x) -> float:
         lat, lon = x[self.ix["lat_deg"]], x[self.ix["lon_deg"]]
@@ -265,6 +298,11 @@ class Autopilot:
                 if may_capture and (d < 2.5 * NM_M or inside_cone) and hdg_err < math.radians(75.0):
                     self.loc_mode = captured = True
                     self.event("localizer_capture", "")
+                else:
+                    if may_capture and d < 2.5 * NM_M and self.fix_reached_t is None:
+                        self.fix_reached_t = self.t
+                    if self.fix_reached_t is not None and self.t - self.fix_reached_t > FIX_CAPTURE_WAIT_S:
+                        self._turn_back(hdg_err)
             elif d < 2.0 * NM_M:
                 self.wp += 1
                 self.event("waypoint", f"{self.wp}")

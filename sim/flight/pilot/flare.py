@@ -177,6 +177,14 @@ class Flare(Controller):
         ap.track_centreline(x, rx, ry, FLARE_MAX_BANK_DEG)
         if x[ix["wow"]] > 0.5:
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
+            tdz_m = ap.dest.rwy.touchdown_zone_end_m
+            if rx > tdz_m:
+                # a float past the touchdown zone: landed, not failed (FLOAT_LIMIT_FRACTION), but flagged
+                # in the flight's events (docs/failures.md; the 787-8 on some routes)
+                p.event(
+                    "long_landing",
+                    f"touchdown {rx:.0f} m past the threshold, beyond the touchdown zone's {tdz_m:.0f} m",
+                )
             if sink > ap.tune.max_touchdown_sink_mps:
                 p.fail(
                     f"hard landing: touchdown sink rate {sink / FT_M:.1f} ft/s exceeds "
