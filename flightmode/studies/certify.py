@@ -208,7 +208,9 @@ def recommend(
             "text": f"{len(rate_ok)} points meet {target.rate_per_h:g} false statics per flight-hour, but none "
             f"answers within {target.max_response_s:g} s at the gate (p95); the fastest of them, "
             f"{point_name(best)}, answers in {best['response_p95_s']:.1f} s: raise --max-response-s or "
-            "widen the grid (shorter T_th)",
+            + (
+                "widen its grid (faster to resume)" if best.get("params") else "widen the grid (shorter T_th)"
+            ),
         }
     pool = [r for r in summary if fast(r)] or list(summary)
     fewest = min(r["false_statics"] for r in pool)
@@ -231,7 +233,8 @@ def recommend(
             f"no grid point can meet {target.rate_per_h:g} per flight-hour on such flights: the one with "
             f"the fewest false statics, {point_name(best)}, has {x} in {t_h:,.0f} h, and even the "
             f"{target.confidence:.0%} lower bound on its rate, {lower:.3g} /h, is above the target; widen "
-            f"the grid (lower k, longer T_th){limit}"
+            + ("its grid (slower to call rest)" if best.get("params") else "the grid (lower k, longer T_th)")
+            + limit
         )
         return out
     need = hours_needed(target.rate_per_h, target.confidence, x)
