@@ -63,7 +63,7 @@ class EobsDutyDetector:
         last = 0
         ends = np.flatnonzero(member & (off == self.span))
         start = 0
-        for e in ends:
+        for e in ends.tolist():
             take = np.flatnonzero(member[start : e + 1]) + start
             burst = np.concatenate([*self.pending, x[take]]) if self.pending else x[take]
             self.pending = []

@@ -33,7 +33,7 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -530,9 +530,8 @@ def certify(
     # section 5.1.1 is about the moving variance: seed 000's NMV at 1 s if the grid has it, else the
     # first moving-variance method and window of the grid; none at all: no section 5.1.1
     # (the moving variances the sweep kept static statistics of: seed 000's own methods first)
-    swept = (
-        result.static.select(["method", "weight", "window_s"]).to_pylist() if result.static.num_rows else []
-    )
+    static: Any = result.static
+    swept = static.select(["method", "weight", "window_s"]).to_pylist() if static.num_rows else []
     mv_methods = sorted(
         dict.fromkeys((r["method"], r["weight"]) for r in swept), key=lambda m: m[0] not in ("nmv", "emv")
     )

@@ -422,16 +422,15 @@ def _sweep_stream(cols: dict, row: dict, grid, sigma2_from: str, key: dict, dete
     for entry in plugins:
         from flightmode.studies.detectors import params_text, run_entry
 
-        in_w = window
-        codes = phase_code[in_w]
-        n_ph = np.bincount(codes, minlength=len(phase_names))
+        sample_codes = phase_code[window]
+        n_ph = np.bincount(sample_codes, minlength=len(phase_names))
         for params, dec, d in run_entry(entry, cols, row, fs, sigma2_from, _rest_of):
             pk = {"method": entry.name, "weight": 0.0, "window_s": 0.0, "k": 0.0}
             text = params_text(params)
-            under = np.bincount(codes[dec[in_w]], minlength=len(phase_names))
+            at_rest = np.bincount(sample_codes[dec[window]], minlength=len(phase_names))
             for i, name in enumerate(phase_names):
                 if n_ph[i]:  # per phase: in-window samples, and those the detector called at rest
-                    u = int(under[i])
+                    u = int(at_rest[i])
                     phases.append(
                         {**key, **pk, "params": text, "phase": str(name), "checks": int(n_ph[i])}
                         | {"under_x": u, "under_y": u, "under_z": u, "under_all": u}
@@ -768,7 +767,7 @@ def compare_methods(table, confidence: float = 0.95) -> list[dict]:
             ),
         )
         key = (method, best["weight"], best["window_s"], best["time_threshold_s"])
-        fpr: dict[float, list[float]] = {}
+        fpr: dict[tuple[float, str], list[float]] = {}
         acc_num = acc_den = 0.0
         for i in range(n):
             if (d["method"][i], d["weight"][i], d["window_s"][i], d["time_threshold_s"][i]) != key:
