@@ -166,7 +166,7 @@ def rest_recording(source: str, cols: dict, info: dict | None, channels, x) -> t
             ]
     if "pressure_pa" in ch:
         where += "; the pressure at rest before the flight"
-    return rest, where
+    return rest, f"bench calibration: the {where}"
 
 
 def _describe(loaded, params: dict) -> str:
