@@ -189,23 +189,35 @@ def test_a_route_that_reaches_the_approach_fix_headed_away_turns_back_instead_of
     extended centreline 3 nm out and the fix is 16 nm out (the routes' default): without the turn back
     the 737 circles the fix for the whole flight (flown to 1,500 s: no capture). With it, after 300 s at
     the fix (Autopilot.FIX_CAPTURE_WAIT_S) it flies out 6 nm along the centreline and back, and
-    captures the localizer."""
+    captures the localizer.
+
+    And a touchdown past the touchdown zone (a float: the 787-8's on some routes) lands and goes on,
+    flagged in the flight's events: the zone's end moved here from 914 m to 300 m, short of the 737's
+    touchdowns (500-700 m past the threshold)."""
     from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
     from flightmode.sim.flight import simulate
+    from flightmode.sim.flight.plan import Runway
 
+    monkeypatch.setattr(Runway, "touchdown_zone_end_m", property(lambda self: 300.0))
     sc = Scenario.builtin("pattern").replace(
         route={"waypoints": [[46.1797, 6.1261], [46.2854, 6.1786]]},  # crosswind corner; 3 nm out on the line
         approach={"fix_nm": 16.0},
         **SHORT,
     )
-    tr = simulate.fly(sc.plan, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=1280.0)
+    tr = simulate.fly(sc.plan, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=1680.0)
     names = [e.name for e in tr.events if e.name in ("turn_back", "waypoint", "localizer_capture")]
     assert names == ["waypoint", "waypoint", "turn_back", "waypoint", "localizer_capture"], names
     t_back, t_capture = tr.event_time("turn_back"), tr.event_time("localizer_capture")
     # the fix first within 2.5 nm about 645 s in: the turn back 300 s later, the capture 5 min after it
     assert 900.0 < t_back < 1000.0 and t_back < t_capture < t_back + 400.0
     assert "300 s without a capture" in next(e.detail for e in tr.events if e.name == "turn_back")
+    # landed, long by the moved zone, flagged, and rolling out
+    (td,) = [e for e in tr.events if e.name == "touchdown"]
+    (flag,) = [e for e in tr.events if e.name == "long_landing"]
+    x_td = float(td.detail.split(" at ")[1].removesuffix(" m"))
+    assert flag.t_s == td.t_s == tr.event_time("rollout") and 300.0 < x_td < 914.4
+    assert flag.detail == f"touchdown {x_td:.0f} m past the threshold, beyond the touchdown zone's 300 m"
 
 
 # ---------------------------------------------------------------------- the landing
@@ -238,26 +250,6 @@ def test_balloon_on_the_last_approach(monkeypatch):
     from flightmode.sim.flight.aircraft.registry import PROFILES
 
     assert e.limit == 0.5 * PROFILES["737"].flare_height_ft and e.value > e.limit  # both in ft
-
-
-def test_a_touchdown_past_the_touchdown_zone_is_flagged_not_failed(monkeypatch):
-    """A float past the touchdown zone lands (the 787-8's on some routes): the flight goes on, and its
-    events flag it. The zone's end moved from 914 m to 300 m: the 737's touchdown, 600-700 m past the
-    threshold, is then past it."""
-    from flightmode.runs import pipeline
-    from flightmode.scenarios.scenario import Scenario
-    from flightmode.sim.flight import simulate
-    from flightmode.sim.flight.plan import Runway
-
-    monkeypatch.setattr(Runway, "touchdown_zone_end_m", property(lambda self: 300.0))
-    sc = Scenario.builtin("pattern").replace(**SHORT)
-    tr = simulate.fly(sc.plan, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=900.0)
-    (td,) = [e for e in tr.events if e.name == "touchdown"]
-    (flag,) = [e for e in tr.events if e.name == "long_landing"]
-    x_td = float(td.detail.split(" at ")[1].removesuffix(" m"))
-    assert flag.t_s == td.t_s and 300.0 < x_td < 914.4
-    assert flag.detail == f"touchdown {x_td:.0f} m past the threshold, beyond the touchdown zone's 300 m"
-    assert tr.event_time("rollout") == td.t_s  # and the flight goes on
 
 
 # ---------------------------------------------------------------------- the table
