@@ -47,7 +47,7 @@ def detect_cmd(
         typer.Option(
             "--detector-cmd",
             help='A program that decides over a pipe: "PROGRAM ARGS" reads a JSON header line and one '
-            "line per sample on stdin, writes one 0/1 line per sample (docs/detectors.md).",
+            "line per sample on stdin, writes one 0/1 line per sample (docs/detector_pipe.md).",
         ),
     ] = None,
     framing: Annotated[
