@@ -26,7 +26,7 @@ of an activity detector's merit), ``time_threshold_s`` (T_th); ``weight`` (EMV),
 flexible activity detectors' input); the pressure source's ``baro_rate_pa_s``, ``baro_margin_hpa``,
 ``baro_hold_s``. **Calibration** from the keyword ``rest`` (the unit's rest recording in the same
 channels): sigma^2 per axis as :func:`~flightmode.detector.flight_mode.calibrate_sigma2` computes it
-on the bench (with the ``lsb_g`` floor), an activity detector's noise figures and rest level as
+on the bench (with the ``sensor_lsb_g`` floor), an activity detector's noise figures and rest level as
 :func:`~flightmode.detector.activity.flight.rest_figures` does. ``sigma2`` may be given instead.
 
 **Internals for the rich report**: every built-in detector has a ``kind`` (``moving_variance``,
@@ -188,10 +188,10 @@ def moving_variance_params(
     return p
 
 
-def sigma2_of(sigma2, rest, channels: Sequence[str], window: int, lsb_g, who: str):
+def sigma2_of(sigma2, rest, channels: Sequence[str], window: int, sensor_lsb_g, who: str):
     """sigma^2 per axis: ``sigma2`` as given (three positive variances, g^2), or from the rest
     recording's accelerometer channels by :func:`~flightmode.detector.flight_mode.calibrate_sigma2`
-    (seed 000 section 5.1 step 1, the quantisation floor ``lsb_g^2 / 12``)."""
+    (seed 000 section 5.1 step 1, the quantisation floor ``sensor_lsb_g^2 / 12``)."""
     import numpy as np
 
     from flightmode.detector.flight_mode import calibrate_sigma2
@@ -207,7 +207,7 @@ def sigma2_of(sigma2, rest, channels: Sequence[str], window: int, lsb_g, who: st
             "or sigma2 = [x, y, z] in g^2"
         )
     r = np.asarray(rest, float)
-    return calibrate_sigma2(take(r, columns(channels, ACC_CHANNELS, who)), window, lsb_g)
+    return calibrate_sigma2(take(r, columns(channels, ACC_CHANNELS, who)), window, sensor_lsb_g)
 
 
 @_declare("moving_variance", ACC_CHANNELS, "seed 000's normal moving variance (eq. 1-2)")
@@ -221,11 +221,13 @@ def nmv(
     sigma2: Any = None,
     threshold: str | None = None,
     rest: Any = None,
-    lsb_g: float | None = None,
+    sensor_lsb_g: float | None = None,
 ) -> MovingVarianceDetector:
     """Seed 000's NMV (eq. 1-2, 6-9): W_s ``window_s``, T_sigma = ``k`` sigma^2, T_th ``time_threshold_s``."""
     p = moving_variance_params("nmv", fs_hz, window_s, k, time_threshold_s, 1.0, threshold)
-    return MovingVarianceDetector(p, sigma2_of(sigma2, rest, channels, p.window, lsb_g, "nmv"), channels)
+    return MovingVarianceDetector(
+        p, sigma2_of(sigma2, rest, channels, p.window, sensor_lsb_g, "nmv"), channels
+    )
 
 
 @_declare("moving_variance", ACC_CHANNELS, "seed 000's exponential moving variance (eq. 3-5)")
@@ -240,11 +242,13 @@ def emv(
     sigma2: Any = None,
     threshold: str | None = None,
     rest: Any = None,
-    lsb_g: float | None = None,
+    sensor_lsb_g: float | None = None,
 ) -> MovingVarianceDetector:
     """Seed 000's EMV (eq. 3-5) with weighting factor ``weight`` (1, 5, 10 in the paper)."""
     p = moving_variance_params("emv", fs_hz, window_s, k, time_threshold_s, weight, threshold)
-    return MovingVarianceDetector(p, sigma2_of(sigma2, rest, channels, p.window, lsb_g, "emv"), channels)
+    return MovingVarianceDetector(
+        p, sigma2_of(sigma2, rest, channels, p.window, sensor_lsb_g, "emv"), channels
+    )
 
 
 # ----------------------------------------------------------------------------------------------
@@ -580,13 +584,13 @@ def _redundant(method: str) -> Callable:
         baro_fs_hz: float = BARO_FS_HZ,
         arrival_ground_pa: float | None = None,
         rest: Any = None,
-        lsb_g: float | None = None,
+        sensor_lsb_g: float | None = None,
     ) -> RedundantDetector:
         if method == "nmv" and weight != POINT.weight:
             raise DetectorError("nmv+baro: weight is the EMV's (use emv+baro)")
         pp = pressure_params(baro_fs_hz, baro_rate_pa_s, baro_margin_hpa, baro_hold_s, arrival_ground_pa)
         p = moving_variance_params(method, fs_hz, window_s, k, time_threshold_s, weight, None)
-        s2 = sigma2_of(sigma2, rest, channels, p.window, lsb_g, f"{method}+baro")
+        s2 = sigma2_of(sigma2, rest, channels, p.window, sensor_lsb_g, f"{method}+baro")
         return RedundantDetector(MovingVarianceDetector(p, s2, channels), pp, channels)
 
     make.__name__ = make.__qualname__ = f"{method}_baro"
@@ -666,7 +670,7 @@ def two_source(
     first_params: dict | None = None,
     second_params: dict | None = None,
     rest: Any = None,
-    lsb_g: float | None = None,
+    sensor_lsb_g: float | None = None,
     baro_fs_hz: float | None = None,
     arrival_ground_pa: float | None = None,
 ) -> TwoSource:
@@ -676,7 +680,7 @@ def two_source(
 
     from flightmode.detector import interface
 
-    context = {"lsb_g": lsb_g, "baro_fs_hz": baro_fs_hz, "arrival_ground_pa": arrival_ground_pa}
+    context = {"sensor_lsb_g": sensor_lsb_g, "baro_fs_hz": baro_fs_hz, "arrival_ground_pa": arrival_ground_pa}
     parts = []
     for loaded, params in _two_loaded(first, second, first_params, second_params):
         ch = loaded.channels_for(params)

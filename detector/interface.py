@@ -10,11 +10,11 @@ A detector is made by a *factory* ``make(fs_hz, channels, **params) -> Detector`
   (m, len(channels)) in the same channels (the bench recording of the unit, or the stream's static
   samples before the flight, as ``--sigma2-from`` says): a detector calibrates on it as a tracker
   calibrates on the bench.
-- other keywords the harness offers when the factory names them (:data:`CONTEXT`): ``lsb_g`` (the
-  accelerometer's resolution in g, None when unknown: a variance floor for a quantised sensor),
-  ``baro_fs_hz`` (the barometer's own reading rate: ``pressure_pa`` holds each reading until the next)
-  and ``arrival_ground_pa`` (the destination's expected ground pressure when the route is known).
-  A ``--param`` of the same name wins.
+- other keywords the harness offers when the factory names them (:data:`CONTEXT`):
+  ``sensor_lsb_g`` (the recording's accelerometer resolution in g, None when unknown: a variance
+  floor for a quantised sensor), ``baro_fs_hz`` (the barometer's own reading rate: ``pressure_pa``
+  holds each reading until the next) and ``arrival_ground_pa`` (the destination's expected ground
+  pressure when the route is known). A ``--param`` of the same name wins.
 - A factory may say which channels it reads with an attribute ``channels`` (a tuple of names), or,
   when they depend on its parameters, a function ``channels_for(**params)``; the harness's default
   is the three accelerometer axes.
@@ -45,7 +45,7 @@ ACC_CHANNELS = ("acc_x_g", "acc_y_g", "acc_z_g")
 GYRO_CHANNELS = ("gyro_x_dps", "gyro_y_dps", "gyro_z_dps")
 CHANNELS = (*ACC_CHANNELS, *GYRO_CHANNELS, "pressure_pa")
 # keywords the harness passes to a factory that names them (module docstring); ``rest`` is the first
-CONTEXT = ("rest", "lsb_g", "baro_fs_hz", "arrival_ground_pa")
+CONTEXT = ("rest", "sensor_lsb_g", "baro_fs_hz", "arrival_ground_pa")
 
 
 @runtime_checkable
@@ -193,8 +193,9 @@ def takes_rest(factory: Any) -> bool:
 
 
 def parameters(factory: Any) -> tuple[str, ...] | None:
-    """The parameters a user may set on ``factory`` (its keywords after ``fs_hz`` and ``channels``,
-    without the harness's :data:`CONTEXT`); None when it takes any (``**params``) or has no signature."""
+    """The parameters a user may set on ``factory``: its keywords after ``fs_hz`` and ``channels``
+    but ``rest`` (the context keywords it names among them: a ``--param`` overrides what the harness
+    offers); None when it takes any (``**params``) or has no signature."""
     sig = _signature(factory)
     if sig is None or any(p.kind is inspect.Parameter.VAR_KEYWORD for p in sig.values()):
         return None
@@ -203,7 +204,7 @@ def parameters(factory: Any) -> tuple[str, ...] | None:
         for n, p in sig.items()
         if p.kind in (inspect.Parameter.KEYWORD_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
     ]
-    return tuple(n for n in names[2:] if n not in CONTEXT)
+    return tuple(n for n in names[2:] if n != "rest")
 
 
 def check_params(loaded: Loaded, params: dict) -> None:

@@ -9,7 +9,7 @@ This module gives the factory what the harness knows of the stream and its run.j
 
 - ``rest``: the unit's rest recording in the detector's channels (:func:`rest_recording`), the same
   calibration data ``stream_sigma2`` and ``stream_rest`` of :mod:`flightmode.runs.pipeline` use;
-- ``lsb_g``: the accelerometer's resolution (the variance floor of a quantised unit);
+- ``sensor_lsb_g``: the accelerometer's resolution (the variance floor of a quantised unit);
 - ``baro_fs_hz``: the barometer's reading rate; ``arrival_ground_pa``: the destination's expected
   ground pressure when the run's scenario is known (:func:`flightmode.runs.pipeline.pressure_params`).
 
@@ -226,8 +226,8 @@ def detect_stream(
         rest, where = rest_recording(s.sigma2_from, cols, info, channels, x)
     f = loaded.factory
     context: dict = {}
-    if interface.accepts(f, "lsb_g"):
-        context["lsb_g"] = _lsb_g(info)
+    if interface.accepts(f, "sensor_lsb_g"):
+        context["sensor_lsb_g"] = _lsb_g(info)
     if "pressure_pa" in channels and interface.accepts(f, "baro_fs_hz"):
         context["baro_fs_hz"] = baro_rate_hz(cols, info)
     if "pressure_pa" in channels and interface.accepts(f, "arrival_ground_pa"):

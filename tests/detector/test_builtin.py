@@ -62,7 +62,7 @@ def _make(name: str, params: dict | None = None):
 
 
 def _build(loaded, ch, params, rest, cols):
-    return interface.build(loaded, FS, ch, params, rest[:, cols], lsb_g=None, baro_fs_hz=BARO_FS)
+    return interface.build(loaded, FS, ch, params, rest[:, cols], sensor_lsb_g=None, baro_fs_hz=BARO_FS)
 
 
 BUILTINS = [

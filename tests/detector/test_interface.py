@@ -117,8 +117,9 @@ def test_a_factory_loads_from_a_module_path_and_decides(plugin):
     loaded = interface.load(f"{plugin}:make")
     assert loaded.source == f"{plugin}:make" and loaded.channels == interface.ACC_CHANNELS
     assert loaded.takes_rest and interface.parameters(loaded.factory) == ("window_s", "limit_g2")
+    assert interface.parameters(interface.load("nmv").factory)[-1] == "sensor_lsb_g"  # settable by --param
     t, x = _stream()
-    det = interface.build(loaded, 100.0, loaded.channels, {"window_s": 0.2}, rest=x[:100], lsb_g=0.018)
+    det = interface.build(loaded, 100.0, loaded.channels, {"window_s": 0.2}, rest=x[:100], sensor_lsb_g=0.018)
     assert loaded.factory.seen == {"fs_hz": 100.0, "channels": list(interface.ACC_CHANNELS), "rest_rows": 100}
     d = interface.decisions(loaded.name, det, t, x, chunk=37)
     # at rest (2 mg noise: variance of |a| ~ 4e-6 g^2 < 1e-4) after its 20-sample window fills; moving
