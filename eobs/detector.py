@@ -13,7 +13,7 @@ the next burst's last sample: False (the radio stays off) before the first.
 sigma^2: the ``sigma2`` parameter (g^2, one per channel), or calibrated on the unit's rest recording
 (``rest``, passed by the harness) cut into bursts of the same shape
 (:func:`~flightmode.eobs.duty_cycle.calibrate_sigma2_bursts`), floored at the quantisation noise
-``lsb_g^2 / 12`` (``lsb_g`` from the harness, else the recording's smallest step).
+``lsb_g^2 / 12`` (``sensor_lsb_g`` from the harness, else the recording's smallest step).
 
 ``push`` takes chunks of any size and ``decide`` the whole stream; both run the same bursts through
 :class:`~flightmode.eobs.duty_cycle.BurstDetector`, so they agree exactly.
@@ -92,7 +92,7 @@ def make(
     m: int = M,
     sigma2: Any = None,
     rest: Any = None,
-    lsb_g: float | None = None,
+    sensor_lsb_g: float | None = None,
 ) -> EobsDutyDetector:
     """The duty-cycled rule at ``fs_hz`` on ``channels`` (acceleration, g): a burst of
     ``burst_samples`` samples at ``odr_hz`` every ``interval_s`` seconds; quiet when every channel's
@@ -128,7 +128,7 @@ def make(
                 f"eobs-duty: the rest recording ({np.asarray(rest).shape[0]} samples) is shorter than one burst"
             )
         sigma2 = calibrate_sigma2_bursts(
-            list(r[: nb * burst_samples].reshape(nb, burst_samples, -1)), lsb_g=lsb_g or _lsb(r)
+            list(r[: nb * burst_samples].reshape(nb, burst_samples, -1)), lsb_g=sensor_lsb_g or _lsb(r)
         )
     s2 = np.asarray(sigma2, float).reshape(-1)
     if s2.size != len(channels):

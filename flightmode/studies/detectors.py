@@ -252,12 +252,14 @@ def context_of(row: dict, cols: dict) -> dict:
     from flightmode.scenarios.scenario import Scenario
 
     sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']}")
-    out: dict = {"lsb_g": pipeline.sensor_preset(sc.sensor).lsb_g}
+    out: dict = {"sensor_lsb_g": pipeline.sensor_preset(sc.sensor).lsb_g}
     baro = pipeline.baro_preset(sc.sensor) if "baro_pa" in cols else None
     if baro is not None:
         out["baro_fs_hz"] = float(baro.odr_hz)
         out["arrival_ground_pa"] = pipeline.pressure_params(sc, baro.odr_hz).arrival_ground_pa
-    return out
+    from flightmode.detector.interface import CONTEXT
+
+    return {k: v for k, v in out.items() if k in CONTEXT}  # what the interface offers, by its names
 
 
 def run_entry(entry: Entry, cols: dict, row: dict, fs: float, sigma2_from: str, rest_of) -> list[tuple]:

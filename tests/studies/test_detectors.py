@@ -49,10 +49,10 @@ def make_short(fs_hz, channels):
     return Short()
 
 
-def fast_nmv(fs_hz, channels, window_s=1.0, k=4.0, time_threshold_s=4.0, rest=None, lsb_g=None):
+def fast_nmv(fs_hz, channels, window_s=1.0, k=4.0, time_threshold_s=4.0, rest=None):
     from flightmode.detector.builtin import nmv
 
-    return nmv(fs_hz, channels, window_s=window_s, k=k, time_threshold_s=time_threshold_s, rest=rest, lsb_g=lsb_g)
+    return nmv(fs_hz, channels, window_s=window_s, k=k, time_threshold_s=time_threshold_s, rest=rest)
 
 
 fast_nmv.grid_method = "nmv"  # the sweep may use its grid's fast path
