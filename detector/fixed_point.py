@@ -24,7 +24,8 @@ The floating detector compares ``MV < k sigma^2`` exactly; the register rounds `
 ``2^-f`` counts^2, so the two can disagree only on a check whose MV lies between the two thresholds:
 within half an LSB of the threshold (:func:`compare_fixed_float` counts them and checks the bound).
 
-sigma^2 (counts^2 per axis): ``sigma2_counts`` if given, else calibrated on the unit's rest recording
+sigma^2 (counts^2 per axis): ``sigma2_counts`` if given, else ``sigma2`` in g^2 (the built-in ``nmv``'s
+parameter) over ``lsb_g^2``, else calibrated on the unit's rest recording
 (``rest``, quantised to counts, :func:`~flightmode.detector.flight_mode.calibrate_sigma2` with the
 quantisation floor 1/12 counts^2), else that floor itself: the calibration a truly still 8-bit part
 gives (its count is constant; FACTS.md's LIS302DL tension).
@@ -277,13 +278,17 @@ def make(
     sigma2_counts: Any = None,
     lsb_g: float = LSB_G,
     frac_bits: int = FRAC_BITS,
+    sigma2: Any = None,
 ):
-    """The ``nmv-fixed`` factory (module docstring): seed 000's NMV in integers. ``sigma2_counts``
-    (counts^2, one number or three) wins over the rest recording ``rest`` (in the stream's
-    channels), which wins over the quantisation floor."""
+    """The ``nmv-fixed`` factory (module docstring): seed 000's NMV in integers. sigma^2 per axis (one
+    number or three): ``sigma2_counts`` in counts^2, else ``sigma2`` in g^2 as the built-in ``nmv``
+    takes it (divided by ``lsb_g * lsb_g``: the same parameter grid serves both), else calibrated on
+    the rest recording ``rest`` (in the stream's channels), else the quantisation floor."""
     import numpy as np
 
     cols = _acc_columns(channels)
+    if sigma2_counts is None and sigma2 is not None:
+        sigma2_counts = np.asarray(sigma2, float) / (lsb_g * lsb_g)  # examples/nmv_fixed.c: the same
     if sigma2_counts is None:
         if rest is not None:
             window = int(round(window_s * fs_hz))

@@ -19,9 +19,10 @@
  * the latest check's final static (0 before the first check).
  *
  * Parameters (header "params", all optional): window_s (1.0), k (4.0), time_threshold_s (4.0),
- * sigma2_counts (a number or three, counts^2; default 1/12, the quantisation floor), lsb_g (0.018),
- * frac_bits (8). The signal path is integer only; floating point is used for the configuration (the
- * register T) and to emulate the sensor's ADC (g -> count), which the real part does in hardware.
+ * sigma2_counts (a number or three, counts^2; default 1/12, the quantisation floor) or, without it,
+ * sigma2 (g^2, as the built-in nmv takes it; divided by lsb_g^2), lsb_g (0.018), frac_bits (8).
+ * The signal path is integer only; floating point is used for the configuration (the register T)
+ * and to emulate the sensor's ADC (g -> count), which the real part does in hardware.
  *
  * I/O: read(2)/write(2) with our own buffers; the answers are flushed before every read that may
  * block, so the program never sits on answers the harness waits for (the protocol's one rule).
@@ -283,7 +284,10 @@ int main(void) {
         if ((v = json_value(line, pf, pe, "time_threshold_s"))) tth = json_number(v, "time_threshold_s");
         if ((v = json_value(line, pf, pe, "lsb_g"))) lsb = json_number(v, "lsb_g");
         if ((v = json_value(line, pf, pe, "frac_bits"))) frac_bits = (int)json_number(v, "frac_bits");
-        if ((v = json_value(line, pf, pe, "sigma2_counts"))) {
+        const char *sc = json_value(line, pf, pe, "sigma2_counts");
+        double scale = 1.0; /* "sigma2" in g^2 when there is no "sigma2_counts": over lsb_g^2 */
+        if (!sc && (sc = json_value(line, pf, pe, "sigma2"))) scale = lsb * lsb;
+        if ((v = sc)) {
             if (*v == '[') {
                 const char *p = v + 1;
                 for (int a = 0; a < 3; a++) {
@@ -296,6 +300,7 @@ int main(void) {
             } else {
                 s2[0] = s2[1] = s2[2] = json_number(v, "sigma2_counts");
             }
+            for (int a = 0; a < 3; a++) s2[a] /= scale;
         }
     }
     if (!(window_s > 0) || !(k > 0) || !(tth > 0) || !(lsb > 0)) die("params: window_s, k, time_threshold_s, lsb_g must be > 0");

@@ -234,3 +234,22 @@ def test_the_c_firmware_on_the_built_in_routes(firmware, run_cached, name, recor
     for key in ("checks", "temporary_disagreements", "final_disagreements", "sample_disagreements"):
         record_property(key, c[key])
     record_property("axis_disagreements", len(c["axis_disagreements"]))
+
+
+def test_sigma2_in_g2_as_the_builtin_nmv_takes_it(firmware):
+    # the same parameter grid serves nmv and nmv-fixed: sigma2 in g^2 is sigma2_counts times lsb_g^2,
+    # in the C program as in Python (thresholds chosen so the decisions vary: both outcomes occur)
+    rng = np.random.default_rng(6)
+    n = 3000
+    t = np.arange(n) / FS
+    x = np.array([0.0, 0.0, 1.0]) + rng.normal(0.0, 0.01, (n, 3))
+    x[1000:1500] += rng.normal(0.0, 0.03, (500, 3))
+    params = {"sigma2": [1.0e-4, 1.2e-4, 0.9e-4], "time_threshold_s": 2.0}
+    ch = list(interface.ACC_CHANNELS)
+    ref = fp.make(FS, ch, **params).push(t, x)
+    counts = np.array(params["sigma2"]) / (fp.LSB_G * fp.LSB_G)
+    assert np.array_equal(fp.make(FS, ch, sigma2_counts=counts, time_threshold_s=2.0).push(t, x), ref)
+    assert ref.any() and not ref.all()
+    loaded = pipe.load_cmd(shlex.quote(str(firmware)), "csv")
+    got = interface.decisions(loaded.name, interface.build(loaded, FS, ch, params), t, x, chunk=700)
+    np.testing.assert_array_equal(got, ref)
