@@ -197,17 +197,37 @@ def sweep_flight(
     return out
 
 
+GRID_KINDS = ("moving_variance", "redundant", "activity")  # the kinds of built-in with a grid fast path
+
+
+def grid_kind(method: str) -> str:
+    """The ``kind`` of a grid method's registered factory (``flightmode.detector.builtin``'s
+    declaration: moving_variance, redundant, activity; a flexible one's ``name:signal`` by its name);
+    a DetectorError for a method the grid cannot sweep (use ``--detector``)."""
+    from flightmode.detector.interface import load
+    from flightmode.errors import DetectorError
+
+    kind = getattr(load(method.partition(":")[0], what="--method").factory, "kind", None)
+    if kind not in GRID_KINDS:
+        raise DetectorError(
+            f"--method {method}: no grid of its own ({kind}); sweep it with --detector {method}"
+        )
+    return str(kind)
+
+
 def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
     """(method name, parameters, evaluation) for every point of the grid: the moving variance's
     (:func:`~flightmode.detector.grid.evaluate_grid`), the moving variance AND the pressure source's
     (``nmv+baro``, ``emv+baro``: the redundant rule, :func:`_pressure_gate`) and seed 001's detectors'
     (:func:`~flightmode.detector.activity.flight.evaluate_activity_grid`, calibrated on the same rest
-    recording as sigma^2)."""
+    recording as sigma^2). Which of the three a method is, its registered factory's ``kind`` says
+    (:func:`grid_kind`)."""
     import dataclasses
 
-    from flightmode.detector.grid import REDUNDANT, evaluate_grid
+    from flightmode.detector.grid import evaluate_grid
 
-    mv = tuple(m for m in grid.methods if m[0] in MV_METHODS)
+    kinds = {m: grid_kind(m) for m, _ in grid.methods}
+    mv = tuple(m for m in grid.methods if kinds[m[0]] == "moving_variance")
     if mv:
         for p, e in evaluate_grid(
             t,
@@ -218,7 +238,7 @@ def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
             sigma2_of_flight(sigma2_from, row, cols),
         ):
             yield p.method, p, e
-    red = tuple((m.partition("+")[0], w) for m, w in grid.methods if m in REDUNDANT)
+    red = tuple((m.partition("+")[0], w) for m, w in grid.methods if kinds[m] == "redundant")
     if red:
         gate = _pressure_gate(row, cols)
         for p, e in evaluate_grid(
@@ -231,7 +251,7 @@ def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
             gate=gate,
         ):
             yield f"{p.method}+baro", p, e
-    others = [m for m, _ in grid.methods if m not in MV_METHODS and m not in REDUNDANT]
+    others = [m for m, _ in grid.methods if kinds[m] == "activity"]
     if others:
         from flightmode.detector.activity import registry
         from flightmode.detector.activity.flight import evaluate_activity_grid
