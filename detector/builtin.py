@@ -84,22 +84,45 @@ def take(a, cols):
     return np.ascontiguousarray(np.asarray(a, float)[:, cols])
 
 
-def held(n0: int, n: int, index, decision, state: bool):
+def gap_starts(t, t_prev: float | None, fs_hz: float):
+    """Positions in the chunk ``t`` where a time gap starts (a sample more than 1.5 sample periods after
+    the one before it, ``t_prev`` the previous chunk's last time): where seed 000's detector resets
+    (:mod:`flightmode.detector.flight_mode`)."""
+    import numpy as np
+
+    period = 1.0 / float(fs_hz)
+    gaps = np.flatnonzero(np.diff(t) > 1.5 * period) + 1
+    if t_prev is not None and t.shape[0] and t[0] - t_prev > 1.5 * period:
+        gaps = np.concatenate([[0], gaps])
+    return gaps
+
+
+def held(n0: int, n: int, index, decision, state: bool, resets=()):
     """Per-sample decisions of samples ``n0 .. n0 + n - 1`` from checks closing at the global sample
     ``index`` with ``decision``: the last check's at or before each sample
     (:func:`flightmode.detector.decisions.held`), ``state`` (the last check's before the chunk) until
-    the first. Returns (decisions, the new state)."""
+    the first. At ``resets`` (positions in the chunk where a time gap starts: :func:`gap_starts`) the
+    decision falls to False until the next check, as the detector's own state does (no check after a
+    reset is static until T_th of clean data: the radio never keeps a permission across a gap).
+    Returns (decisions, the new state)."""
     import numpy as np
 
     from flightmode.detector.decisions import held as hold
 
     pos = np.asarray(index, np.int64) - n0
-    out = hold(n, pos, decision)
+    dec = np.asarray(decision, bool)
+    resets = np.asarray(resets, np.int64)
+    if resets.size:  # a reset is a decision False at its sample, before any check closing there
+        pos = np.concatenate([pos, resets])
+        dec = np.concatenate([dec, np.zeros(resets.size, bool)])
+        order = np.lexsort((np.concatenate([np.ones(len(index), int), np.zeros(resets.size, int)]), pos))
+        pos, dec = pos[order], dec[order]
+    out = hold(n, pos, dec)
     if not pos.size:
         out[:] = bool(state)
         return out, bool(state)
     out[: pos[0]] = bool(state)
-    return out, bool(np.asarray(decision, bool)[-1])
+    return out, bool(dec[-1])
 
 
 def _cat_checks(parts: list):
@@ -129,7 +152,7 @@ class MovingVarianceDetector:
         self._engine = FlightModeDetector(params, sigma2)
         self.params, self.sigma2 = params, self._engine.sigma2
         self._parts = [self._engine.push(np.zeros(0), np.zeros((0, 3)))]
-        self._n, self._state = 0, False
+        self._n, self._state, self._t_prev = 0, False, None
 
     def push(self, t_s, x):
         return self.push_checks(t_s, x)[0]
@@ -141,9 +164,20 @@ class MovingVarianceDetector:
         x = np.asarray(x, float)
         c = self._engine.push(t_s, take(x, self._acc))
         self._parts.append(c)
-        out, self._state = held(self._n, x.shape[0], c.index, c.final_static, self._state)
+        self.last_resets = self._resets(t_s)  # where this chunk's gaps reset the detector
+        out, self._state = held(self._n, x.shape[0], c.index, c.final_static, self._state, self.last_resets)
         self._n += x.shape[0]
         return out, c
+
+    def _resets(self, t_s):
+        """Where the chunk's time gaps reset the detector (:func:`gap_starts`), the chunk's end kept."""
+        import numpy as np
+
+        t = np.asarray(t_s, float)
+        out = gap_starts(t, self._t_prev, self.params.fs_hz)
+        if t.shape[0]:
+            self._t_prev = float(t[-1])
+        return out
 
     def decide(self, t_s, x):
         """The whole stream at once (one push)."""
@@ -547,7 +581,7 @@ class RedundantDetector:
         allowed = c.final_static & _state_at(pc.t_s, pc.static, c.t_s, self._p_state)
         if pc.static.size:
             self._p_state = bool(pc.static[-1])
-        out, self._state = held(self._n, t.shape[0], c.index, allowed, self._state)
+        out, self._state = held(self._n, t.shape[0], c.index, allowed, self._state, self.accel.last_resets)
         self._n += t.shape[0]
         return out
 

@@ -213,3 +213,30 @@ def test_builtin_parameters_and_channels_are_checked_in_one_line():
     # a built-in given channels without the ones it reads
     with pytest.raises(DetectorError, match="have no acc_z_g"):
         interface.build(interface.load("nmv"), FS, ["acc_x_g", "acc_y_g"], {}, rest[:, :2])
+
+
+def test_a_time_gap_withdraws_the_permission_until_t_th_of_clean_data():
+    """Seed 000's detector resets at a gap (flight_mode: samples more than 1.5 periods apart); the
+    per-sample decisions fall to False at the gap's first sample, not at the next check, in any
+    chunking, and come back only after T_th (4 s = 4 checks) of clean data."""
+    import numpy as np
+
+    from flightmode.detector import interface
+
+    fs = 100.0
+    rng = np.random.default_rng(7)
+    t = np.arange(3000) / fs
+    t[1500:] += 10.0  # ten seconds with no sample
+    x = rng.normal(0.0, 0.002, (3000, 3)) + [0.0, 0.0, 1.0]  # a unit at rest, white noise
+    rest = rng.normal(0.0, 0.002, (6000, 3)) + [0.0, 0.0, 1.0]
+    loaded = interface.load("nmv")
+    runs = []
+    for chunk in (None, 7, 1000):
+        det = interface.build(loaded, fs, loaded.channels, {}, rest=rest)
+        runs.append(interface.decisions("nmv", det, t, x, chunk))
+    for out in runs[1:]:
+        assert np.array_equal(out, runs[0])
+    out = runs[0]
+    assert out[1499]  # at rest long enough before the gap
+    assert not out[1500:1899].any()  # from the gap until the fourth clean check closes
+    assert out[1899:].all()
