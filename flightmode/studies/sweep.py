@@ -197,15 +197,13 @@ def sweep_flight(
     return out
 
 
-GRID_KINDS = ("moving_variance", "redundant", "activity")  # the kinds of built-in with a grid fast path
-
-
 def grid_kind(method: str) -> str:
     """The ``kind`` of a grid method's registered factory (``flightmode.detector.builtin``'s
     declaration: moving_variance, redundant, activity; a flexible one's ``name:signal`` by its name);
     a DetectorError for a method the grid cannot sweep (use ``--detector``)."""
     from flightmode.detector.interface import load
     from flightmode.errors import DetectorError
+    from flightmode.studies.detectors import GRID_KINDS
 
     kind = getattr(load(method.partition(":")[0], what="--method").factory, "kind", None)
     if kind not in GRID_KINDS:

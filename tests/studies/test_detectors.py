@@ -312,6 +312,10 @@ def test_a_factory_with_a_grid_method_is_swept_by_the_grid_fast_path(tiny_datase
     entry = Entry("mine", f"{plugin}:fast_nmv", None, ({"k": 3.0}, {"k": 4.0}))
     assert fast_grid(entry) == grid_from_text("nmv", "1", "1", "3,4", "4")
     assert fast_grid(Entry("x", f"{plugin}:make")) is None  # no grid_method: per sample
+    # a registered built-in with a grid: by its factory's kind; with a parameter off the grid: per sample
+    assert fast_grid(Entry("n", "nmv", None, ({"k": 3.0},))) == grid_from_text("nmv", "1", "1", "3", "4")
+    assert fast_grid(Entry("n", "nmv", None, ({"sigma2": [1e-6] * 3},))) is None
+    assert fast_grid(Entry("t", "two-source")) is None
     a = sweep(tiny_dataset, None, detectors=[entry]).points.to_pylist()
     b = sweep(tiny_dataset, grid_from_text("nmv", "1", "1", "3,4", "4")).points.to_pylist()
     assert [r["method"] for r in a] == ["mine", "mine"]
