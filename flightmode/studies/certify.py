@@ -90,9 +90,9 @@ class Certification:
 
 def grid_point(row: dict) -> dict:
     """The grid point of a summary row (and its sensor preset, when the sweep re-sensed)."""
-    from flightmode.studies.sweep import POINT_KEYS
+    from flightmode.studies.sweep import POINT_ID
 
-    return {k: row[k] for k in POINT_KEYS + (("sensor_preset",) if "sensor_preset" in row else ())}
+    return {k: row[k] for k in POINT_ID + (("sensor_preset",) if "sensor_preset" in row else ())}
 
 
 def point_name(row: dict) -> str:
@@ -617,7 +617,7 @@ def side_by_side(summary: Sequence[dict], target: Target, result) -> list[dict]:
 def report_data(cert: Certification, result):
     """What :func:`flightmode.viz.certify_report.write_report` draws beyond ``cert``, computed from
     the sweep ``result`` (:class:`~flightmode.viz.certify_report.ReportData`)."""
-    from flightmode.studies.sweep import POINT_KEYS, at_point, where
+    from flightmode.studies.sweep import POINT_ID, at_point, where
     from flightmode.viz.certify_report import ReportData
 
     rec = grid_point(cert.recommendation["point"])
@@ -636,7 +636,7 @@ def report_data(cert: Certification, result):
     ]
     curves, done = [], set()
     for label, p in shown:
-        key = tuple(p.get(k, "") for k in POINT_KEYS)  # seed 000's point: params "" (a grid point)
+        key = tuple(p.get(k, "") for k in POINT_ID)  # seed 000's point: params "" (a grid point)
         rows = at_point(result.points, p)
         if key in done or not rows:
             continue

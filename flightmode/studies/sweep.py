@@ -61,9 +61,10 @@ CONDITIONS = (
     "sensor_preset",
     "family",
 )
-# a grid point: a built-in grid's (method, weight, window_s, k, time_threshold_s) with params "", or a
-# detector of the interface: method = its label, params = its parameters as JSON, the other four 0
-POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s", "params")
+# a built-in grid's point; a sweep's rows add ``params`` (POINT_ID): "" for the grid's points, the
+# parameters as JSON of a detector of the interface (method = its label, the other four 0)
+POINT_KEYS = ("method", "weight", "window_s", "k", "time_threshold_s")
+POINT_ID = (*POINT_KEYS, "params")
 # log-spaced bins of MV / sigma^2 for truly static checks: 1e-2 to 1e3, 2.3 % wide (underflow and
 # overflow folded into the first and last bins, which a threshold search never reaches)
 STATIC_EDGES = np.geomspace(1e-2, 1e3, 501)
@@ -681,7 +682,7 @@ def summarise(
     from flightmode.detector.confidence import hours_needed, rate_and_response
 
     table = with_params(table)
-    keys = list(POINT_KEYS) + (["sensor_preset"] if by_sensor else [])
+    keys = list(POINT_ID) + (["sensor_preset"] if by_sensor else [])
     df = table.select(
         keys
         + [
@@ -834,7 +835,7 @@ def where(table, values: dict):
 def at_point(table, point: dict) -> list[dict]:
     """The rows of one grid point (``method``, ``weight``, ``window_s``, ``k``, ``time_threshold_s``,
     ``params``: "" if not given, a built-in grid's point; and ``sensor_preset`` if the point names one)."""
-    keys = POINT_KEYS + (("sensor_preset",) if "sensor_preset" in point else ())
+    keys = POINT_ID + (("sensor_preset",) if "sensor_preset" in point else ())
     return where(
         with_params(table), {k: point.get(k, "") if k == "params" else point[k] for k in keys}
     ).to_pylist()
@@ -928,5 +929,6 @@ __all__ = [
     "SweepResult",
     "CONDITIONS",
     "POINT_KEYS",
+    "POINT_ID",
     "STATIC_EDGES",
 ]
