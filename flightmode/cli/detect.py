@@ -122,6 +122,14 @@ def detect_cmd(
         float | None,
         typer.Option("--baro-hold-s", help="+baro: the pressure source's hold time, s (default 120)."),
     ] = None,
+    compare_float: Annotated[
+        bool,
+        typer.Option(
+            "--compare-float",
+            help="nmv-fixed: also count where the integer detector and the floating NMV disagree on the "
+            "same 8-bit samples, and how far from the threshold (LSBs).",
+        ),
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help=JSON_HELP)] = False,
 ) -> None:
     """Run a flight-mode detector over one recorded flight and score it against the truth.
@@ -179,7 +187,14 @@ def detect_cmd(
             raise typer.BadParameter(f"{source} is not a dataset folder", param_hint="--flight")
         cols, info = read_samples(source)
         label = str(source)
+    if compare_float and spec != "nmv-fixed":
+        raise DetectorError("--compare-float: only with --detector nmv-fixed (the integer NMV)")
     d = detect_stream(cols, info, source, spec, settings, "--method" if method else "--detector")
+    cmp = None
+    if compare_float:
+        from flightmode.runs.detect import compare_fixed_float
+
+        cmp = compare_fixed_float(cols, info, source, settings)
     if as_json:
         emit_json(
             {
@@ -194,6 +209,7 @@ def detect_cmd(
             | {"rest": d.rest}
             | {"evaluation": d.evaluation.summary()}
             | {"decisions": d.decision_evaluation.summary()}
+            | ({"compare_float": _fixed_summary(cmp)} if cmp is not None else {})
         )
         return
     from flightmode.cli import detector_report as dr
@@ -222,6 +238,16 @@ def detect_cmd(
     if d.kind != "moving_variance":  # any other detector: scored from its per-sample decisions
         out.print(Text(label, style="bold"), highlight=False)
         dr.print_decisions(out, d)
+        if cmp is not None:
+            c = _fixed_summary(cmp)
+            out.print(
+                f"fixed vs floating NMV on the same 8-bit samples: {c['checks']:,} checks; disagreements: "
+                f"{c['axis_disagreements']} axis comparisons, {c['temporary_disagreements']} checks (eq. 7), "
+                f"{c['final_disagreements']} (eq. 8), {c['sample_disagreements']:,} samples; farthest "
+                f"{c['max_lsb_from_threshold']:.3g} LSB from the threshold "
+                f"({'all within one LSB' if c['within_one_lsb'] else 'NOT all within one LSB'})",
+                highlight=False,
+            )
         return
     sensor = (info or {}).get("sensor")
     out.print(
@@ -233,3 +259,16 @@ def detect_cmd(
         from flightmode.detector.recommended import labels_of
 
         dr.print_tables(out, cols["t_s"], cols["acc_g"], labels_of(cols), d.params, d.evaluation.sigma2)
+
+
+def _fixed_summary(cmp: dict) -> dict:
+    """compare_fixed_float's counts (its per-comparison list counted)."""
+    return {
+        "checks": int(cmp["checks"]),
+        "axis_disagreements": len(cmp["axis_disagreements"]),
+        "temporary_disagreements": int(cmp["temporary_disagreements"]),
+        "final_disagreements": int(cmp["final_disagreements"]),
+        "sample_disagreements": int(cmp["sample_disagreements"]),
+        "max_lsb_from_threshold": float(cmp["max_lsb_from_threshold"]),
+        "within_one_lsb": bool(cmp["within_one_lsb"]),
+    }

@@ -169,6 +169,38 @@ def rest_recording(source: str, cols: dict, info: dict | None, channels, x) -> t
     return rest, f"bench calibration: the {where}"
 
 
+def compare_fixed_float(cols: dict, info: dict | None, source, settings: DetectSettings) -> dict:
+    """``nmv-fixed`` against the floating NMV on this stream's 8-bit samples
+    (:func:`flightmode.detector.fixed_point.compare_fixed_float`): sigma^2 in counts^2 from the unit's
+    rest recording as ``--sigma2-from`` picks it, the window, k and T_th from ``settings.params``."""
+    import numpy as np
+
+    from flightmode.detector import fixed_point
+    from flightmode.detector.interface import ACC_CHANNELS, stream_matrix
+    from flightmode.detector.recommended_point import POINT
+
+    p = dict(settings.params)
+    unknown = sorted(set(p) - {"window_s", "k", "time_threshold_s"})
+    if unknown:
+        raise DetectorError(
+            f"--compare-float: nmv-fixed's comparison takes window_s, k, time_threshold_s, not {unknown}"
+        )
+    fs = stream_rate_hz(cols, info)
+    t, x = stream_matrix(cols, ACC_CHANNELS, str(source))
+    rest, _ = rest_recording(settings.sigma2_from, cols, info, ACC_CHANNELS, x)
+    window_s = float(p.get("window_s", POINT.window_s))
+    window = int(round(window_s * fs))
+    return fixed_point.compare_fixed_float(
+        t,
+        x,
+        fs,
+        window_s=window_s,
+        k=float(p.get("k", POINT.k_sigma)),
+        time_threshold_s=float(p.get("time_threshold_s", POINT.time_threshold_s)),
+        sigma2_counts=fixed_point.sigma2_counts_of_rest(np.asarray(rest), window),
+    )
+
+
 def _describe(loaded, params: dict) -> str:
     """``frd with --signal sum``: the detector and the parameters that change its channels."""
     base = loaded.channels_for({})

@@ -166,3 +166,24 @@ def test_a_detector_that_misbehaves_is_one_line_and_exit_2(pattern_run, tests_pk
         assert words in r.output and len(r.output.strip().splitlines()) == 1, (args, r.output)
     assert sorted(p.name for p in run.iterdir()) == before and not any(cwd.iterdir())
     assert [p.name for p in samples.parent.iterdir()] == ["samples.parquet"]
+
+
+def test_nmv_fixed_against_the_floating_nmv_on_the_pattern_run(pattern_run):
+    """seed 000's NMV in integer arithmetic (nmv-fixed) beside the floating NMV on the same 8-bit
+    samples: the register's rounding is half an LSB of k sigma^2, so every comparison that differs lies
+    within one LSB of the threshold (docs/detector_pipe.md)."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from flightmode.cli.main import app
+
+    run, _ = pattern_run
+    r = CliRunner().invoke(app, ["detect", str(run), "--detector", "nmv-fixed", "--compare-float", "--json"])
+    assert r.exit_code == 0, r.output
+    c = json.loads(r.output)["compare_float"]
+    assert c["checks"] > 4000  # one a second over the 74-minute circuit
+    assert c["within_one_lsb"] and c["max_lsb_from_threshold"] <= 1.0
+    assert c["final_disagreements"] <= c["temporary_disagreements"] <= c["axis_disagreements"]
+    r = CliRunner().invoke(app, ["detect", str(run), "--detector", "nmv", "--compare-float"])
+    assert r.exit_code == 2 and "only with --detector nmv-fixed" in r.output
