@@ -87,6 +87,11 @@ class AircraftProfile:
     # sim.flight.pilot.flare.Flare): this times ((V_0 / V)^2 - 1), V_0 the true airspeed at the flare height;
     # 0: none
     flare_lift_attitude_rad: float = 0.0
+    # a flare still airborne this far past the threshold (m) aims at a touchdown sink of at least
+    # flare_settle_sink_mps from there on (sim.flight.pilot.flare.Flare.tick): the crew lets a float
+    # settle rather than hold off for a soft landing; None: never
+    flare_settle_from_m: float | None = None
+    flare_settle_sink_mps: float = 0.0
     # the main gear's height at which the flare pulls the thrust to idle ("retard")
     retard_height_ft: float = 20.0
     # the approach speed's wind additive (sim.flight.pilot.autopilot.Autopilot.vapp_mps): this fraction of

@@ -156,6 +156,8 @@ class Flare(Controller):
         rx, ry = ap.dest.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
         if self._go_around(x, gear_h_m, rx):
             return
+        if prof.flare_settle_from_m is not None and rx > prof.flare_settle_from_m:
+            target = max(target, prof.flare_settle_sink_mps)  # a float let settle (the type's profile)
         if prof.flare_law == "exponential":
             rate = self._rate_exponential(x, gear_h_m, sink, target)
         else:
