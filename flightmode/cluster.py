@@ -60,6 +60,12 @@ def open_client(
                 "with `dask scheduler` (address tcp://HOST:PORT), or drop --scheduler to run on "
                 "this machine"
             ) from None
+        # a scheduler lost mid-run: the client's reconnect loop logs its tracebacks on standard error,
+        # while the caller turns the cancelled futures into one line (datasets.make); silenced as the
+        # local cluster's logs are, for the client's life
+        log = logging.getLogger("distributed.client")
+        level = log.level
+        log.setLevel(logging.CRITICAL + 1)
         try:
             try:
                 c.wait_for_workers(1, timeout=WORKER_WAIT_S)
@@ -70,6 +76,7 @@ def open_client(
             yield c
         finally:
             c.close()
+            log.setLevel(level)
         return
     if isinstance(workers, bool) or not isinstance(workers, int) or workers <= 0:
         raise ClusterError(f"--workers {workers!r}: must be a positive integer")

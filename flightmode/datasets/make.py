@@ -21,11 +21,14 @@ on (family, i, options), so a run killed at any point and resumed with ``--resum
 flights missing from the manifest and ends with exactly the files of an uninterrupted run. A flight
 that fails (a typed flightmode error, a worker that died, the ``--flight-timeout-s`` limit) is retried
 once, then recorded in the manifest with its error; it never stops the dataset.
+Two failures that are not the flight's stop the dataset with one line naming --resume (the manifest
+keeps the flights done): the Dask scheduler gone, and a full disk (no space, a file-size limit, a quota).
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import hashlib
 import json
 import time
@@ -476,8 +479,13 @@ def make_dataset(
         except ClusterError as e:
             raise DatasetError(str(e)) from None
         with _folder_lock(out):
-            _claim_folder(out, fam, options)
-            return _run(client, fam, n, out, options, on_start, on_flight)
+            try:
+                _claim_folder(out, fam, options)
+                return _run(client, fam, n, out, options, on_start, on_flight)
+            except OSError as e:  # the manifest, the card or the log on a full disk (written atomically)
+                if _disk_full(e):
+                    raise _disk_full_error(out, e, "the manifest or the card") from None
+                raise
 
 
 @contextlib.contextmanager
@@ -537,6 +545,7 @@ def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) 
         try:
             row = f.result()
         except Exception as e:
+            _stop_on_lost_scheduler_or_full_disk(client, e, out, i, len(rows), n)
             detail = f"{type(e).__name__}: {e}"
             if attempts[i] < ATTEMPTS:
                 attempts[i] += 1
@@ -568,6 +577,42 @@ def _run(client, fam, n: int, out: Path, options: Options, on_start, on_flight) 
 
     write_card(out, fam, rows, options)
     return rows
+
+
+# a write that failed for want of space (ENOSPC), a file-size limit (EFBIG) or a quota (EDQUOT): every
+# later flight would fail alike, so the dataset stops with one line instead of recording each as failed
+DISK_FULL_ERRNOS = (errno.ENOSPC, errno.EFBIG, errno.EDQUOT)
+
+
+def _disk_full(e: BaseException) -> bool:
+    return isinstance(e, OSError) and e.errno in DISK_FULL_ERRNOS
+
+
+def _disk_full_error(out: Path, e: OSError, what: str) -> DatasetError:
+    import os
+
+    return DatasetError(
+        f"{out}: {what} could not be written: {os.strerror(e.errno or 0)} (errno {e.errno}); nothing "
+        "half-written is left: free some space and run again with --resume"
+    )
+
+
+def _stop_on_lost_scheduler_or_full_disk(
+    client, e: BaseException, out: Path, i: int, done: int, n: int
+) -> None:
+    """A flight's failure that is not the flight's: the scheduler gone (Dask cancels every future when
+    its client loses the scheduler) or the disk full. A DatasetError naming it and --resume; the
+    manifest keeps the flights done (the flight's own files, if any, are removed)."""
+    from concurrent.futures import CancelledError
+
+    if isinstance(e, CancelledError) or client.status != "running":
+        raise DatasetError(
+            f"the Dask scheduler went away mid-run ({type(e).__name__}); {done} of {n} flights are in "
+            f"{out / MANIFEST}: start the scheduler and its workers again and run with --resume"
+        ) from None
+    if isinstance(e, OSError) and _disk_full(e):
+        _remove_flight_files(out, i)
+        raise _disk_full_error(out, e, f"flight {flight_id(i)}") from None
 
 
 # ---------------------------------------------------------------------- reading
