@@ -468,6 +468,20 @@ def _section_511(th: dict) -> list[str]:
             f"false statics, bound {pf['rate_upper_per_h']:.3g} /h: the target is "
             f"{'met' if pf['meets'] else 'not met'}.</p>"
         )
+    loop = th.get("loop_5_1_1")
+    if loop:
+        parts.append(
+            f"<p>Section 5.1.1's last step: P_M raised a decade at a time until eq. 14's P_FA at "
+            f"T_th {loop['time_threshold_s']:g} s is at most the target's {loop['pfa_max']:.3g} per check "
+            f"(its rate per hour x W_s / 3,600 s): {'met' if loop['met'] else 'not met'} at P_M "
+            f"{loop['pm']:.3g}, k {loop['k']:.3g} sigma^2, P_FA {loop['pfa']:.3g}.</p>"
+        )
+        parts.append(
+            _table(
+                loop["steps"],
+                [("pm", "P_M", ".3g"), ("k", "threshold, sigma^2", ".3g"), ("pfa", "P_FA (eq. 14)", ".3g")],
+            )
+        )
     return parts
 
 

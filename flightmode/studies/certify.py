@@ -544,6 +544,7 @@ def certify(
         method, weight = method_5_1_1  # a grid's (method, weight) pair
         th = threshold_from_static(result.static, target.pm, method, weight, window_5_1_1, target.confidence)
         th["p_fa"] = _pfa_near(result.phases, summary, method_5_1_1, window_5_1_1, th["empirical_k"], target)
+        th["loop_5_1_1"] = loop_5_1_1(th, result.phases, method_5_1_1, window_5_1_1, target)
     breakdowns = {"recommended": breakdown(result.points, rp, result.phases)}
     seed_point = (
         SEED000_POINT
@@ -765,6 +766,45 @@ def _pfa_near(phases, summary, method: tuple, window_s: float, k: float, target:
         "rate_upper_per_h": r["rate_upper_per_h"],
         "meets": bool(r["rate_upper_per_h"] <= target.rate_per_h),
     }
+
+
+def loop_5_1_1(th: dict, phases, method: tuple, window_s: float, target: Target) -> dict | None:
+    """Seed 000 section 5.1.1's last step on the swept flights
+    (:func:`flightmode.detector.statistics.threshold_for_pfa`): from the target's P_M, the threshold
+    k(P_M) from the truly static checks' survival (any axis), the P_FA of eq. 14 it gives,
+    P_FA = (P_FA^t)^(T_th / W_s), P_FA^t the in-window fraction of checks under k on all three axes at
+    the grid's k nearest at or above it (the conservative side: a higher k passes more checks), T_th
+    seed 000's 4 s; if P_FA is above the target's, P_M is raised a decade and k found again. The
+    target's P_FA is its false-static rate per check: ``rate_per_h`` x W_s / 3,600 s (eq. 14's P_FA is
+    per check). None when the sweep has no grid k at or above the first threshold."""
+    from flightmode.detector.statistics import threshold_for_pfa
+    from flightmode.studies.sweep import where
+
+    edges = np.asarray(th["survival_k"], float)
+    surv = np.asarray(th["survival_max"], float)
+    sel = where(phases, {"method": method[0], "weight": method[1], "window_s": window_s})
+    d = sel.select(["k", "checks", "under_all"]).to_pydict()
+    grid_k = sorted(set(d["k"]))
+    n_checks = RECOMMENDED.time_threshold_s / window_s  # eq. 14's exponent T_th / W_s
+
+    def k_of_pm(pm: float) -> float:
+        ok = np.flatnonzero(surv <= pm)
+        return float(edges[min(ok[0], edges.size - 1)])
+
+    def pfa_of_k(k: float) -> float:
+        above = [x for x in grid_k if x >= k]
+        if not above:
+            return math.inf  # the grid stops below the threshold: P_FA not measured
+        kg = above[0]
+        checks = sum(c for kk, c in zip(d["k"], d["checks"]) if kk == kg)
+        under = sum(u for kk, u in zip(d["k"], d["under_all"]) if kk == kg)
+        return (under / checks) ** n_checks if checks else math.inf
+
+    if not grid_k:
+        return None
+    pfa_max = target.rate_per_h * window_s / 3600.0
+    out = threshold_for_pfa(k_of_pm, pfa_of_k, target.pm, pfa_max)
+    return out | {"pfa_max": pfa_max, "time_threshold_s": RECOMMENDED.time_threshold_s, "grid_k": grid_k}
 
 
 def as_dict(cert: Certification) -> dict:

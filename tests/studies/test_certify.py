@@ -202,3 +202,44 @@ def test_bad_targets_and_inputs_are_one_line_errors(tmp_path):
         assert msg in r.output and "Traceback" not in r.output
         assert len(r.output.strip().splitlines()) == 1, r.output
     assert not any(tmp_path.iterdir())  # nothing half-written
+
+
+def test_section_5_1_1_loop_raises_p_m_until_eq_14_p_fa_meets_the_target():
+    """The loop on the swept flights: white static data at 100 Hz (1 s windows: thresholds near the
+    chi-square's, 1.86 sigma^2 at P_M 1e-6 down to 1.29 at 0.1) and phase rows whose in-window
+    fraction under k is crafted (0.5 at k 2, 0.05 at k 1.6, 0.001 at k 1.3). With T_th 4 s and W_s 1 s,
+    eq. 14 gives P_FA = f^4; the target 1e-4 /h is 1e-4 / 3,600 per 1 s check, 2.8e-8: reached only
+    at the grid's k 1.3 (1e-12; k 1.6 gives 6.25e-6). So the loop climbs P_M a decade at a time until
+    k(P_M) <= 1.3, which the chi-square puts at P_M 0.1 (k 1.29)."""
+    import pyarrow as pa
+    from scipy.stats import chi2
+
+    from flightmode.studies.certify import loop_5_1_1
+
+    rng = np.random.default_rng(11)
+    th = threshold_from_static(_static_table(rng, 400_000), 1e-6)
+    frac = {2.0: 0.5, 1.6: 0.05, 1.3: 0.001}
+    phases = pa.Table.from_pylist(
+        [
+            {
+                "method": "nmv",
+                "weight": 1.0,
+                "window_s": 1.0,
+                "k": k,
+                "checks": 100_000,
+                "under_all": int(f * 100_000),
+            }
+            for k, f in frac.items()
+        ]
+    )
+    loop = loop_5_1_1(th, phases, ("nmv", 1.0), 1.0, Target(rate_per_h=1e-4, pm=1e-6))
+    assert loop is not None and loop["pfa_max"] == pytest.approx(1e-4 / 3600.0)
+    steps = loop["steps"]
+    assert [s["pm"] for s in steps] == pytest.approx([1e-6 * 10**i for i in range(len(steps))])
+    assert all(b["k"] <= a["k"] for a, b in zip(steps, steps[1:]))  # P_M up, threshold down
+    assert loop["met"] and loop["pfa"] == pytest.approx(0.001**4)
+    assert 1.2 < loop["k"] <= 1.3 and all(s["k"] > 1.3 for s in steps[:-1])
+    assert loop["pm"] == pytest.approx(0.1)
+    # the thresholds are the measured survival's, within a bin (2.3 %) of the exact white-noise one
+    pm_axis = 1 - (1 - loop["pm"]) ** (1 / 3)
+    assert loop["k"] == pytest.approx(chi2.isf(pm_axis, 99) / 100, rel=0.05)
