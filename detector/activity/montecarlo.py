@@ -848,6 +848,11 @@ PAPER_NOTES = (
         "Tables 1-6 and 13 read cleanly otherwise: every value has a mean and a std, and Table 13's ranks "
         "order its AUCs without a tie or a gap."
     ),
+    (
+        "Table 13 does not follow Tables 2-4's accuracies: FSD-Prod has Table 2's best accuracy (0.947) and "
+        "the lowest AUC of all 24 cases (0.742); FSD-Ang./Sum, LTSD-Ang. and MBGTD-Ang. (accuracies 0.91-0.93) "
+        "rank 18-23 by AUC. How the paper's ROC curves were taken is not stated (section 4.1)."
+    ),
 )
 
 
