@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 from typing import Annotated
 
@@ -149,19 +150,28 @@ def dataset_cmd(
             if row["status"] != "ok" and not as_json:
                 progress.console.print(f"flight {row['flight_id']} failed: {row['error']}", highlight=False)
 
-        rows = make_dataset(
-            fam,
-            n,
-            out,
-            workers=workers,
-            scheduler=scheduler,
-            resume=resume,
-            truth=truth,
-            flight_timeout_s=flight_timeout_s,
-            rrd=rrd,
-            on_start=on_start,
-            on_flight=on_flight,
-        )
+        try:
+            rows = make_dataset(
+                fam,
+                n,
+                out,
+                workers=workers,
+                scheduler=scheduler,
+                resume=resume,
+                truth=truth,
+                flight_timeout_s=flight_timeout_s,
+                rrd=rrd,
+                on_start=on_start,
+                on_flight=on_flight,
+            )
+        except KeyboardInterrupt:  # Ctrl-C: every flight recorded so far is whole (atomic writes)
+            progress.stop()
+            print(
+                f"interrupted: {out} holds the flights finished so far; run the same command with "
+                "--resume to finish it",
+                file=sys.stderr,
+            )
+            raise typer.Exit(130) from None
     ok = sum(r["status"] == "ok" for r in rows.values() if r["index"] < n)
     if as_json:
         emit_json({"dataset": str(out), "flights_ok": ok, "flights_failed": n - ok})

@@ -86,6 +86,7 @@ def test_ctrl_c_leaves_a_resumable_dataset(tmp_path, family_file, reference):  #
             proc.wait()
     assert proc.returncode == 128 + signal.SIGINT, err  # 130: ended by the interrupt
     assert "Traceback" not in err, err
+    assert "run the same command with --resume" in err, err  # the one line that says what to do
     _wait_for(lambda: not _session_alive(proc.pid), "cluster process gone (after Ctrl-C)")
     # on disk: the manifest of the flights done, their files complete (their SHA-256 recorded), no temporary
     done = read_manifest(out)
