@@ -209,10 +209,15 @@ def _bench_sensor(source: str, info: dict | None) -> dict | None:
         )
     if source == "rest":
         return None
-    if info is None or "sensor" not in info:
+    if info is None:
         raise DetectorError(
             "--sigma2-from preset needs the run.json beside samples.parquet; "
             "use --sigma2-from rest for a bare samples file"
+        )
+    if not isinstance(info.get("sensor"), dict):
+        raise DetectorError(
+            "--sigma2-from preset: the run.json beside samples.parquet has no sensor summary (sensor); "
+            "fly the run again, or use --sigma2-from rest"
         )
     return info["sensor"]
 
