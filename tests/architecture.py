@@ -18,6 +18,7 @@ Three rules (DESIGN.md's "Rooms" and "Conventions"):
 from __future__ import annotations
 
 import ast
+import functools
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -90,41 +91,49 @@ def _resolve(importer: str, is_package: bool, node: ast.ImportFrom) -> str:
 def imports(root: Path) -> list[Import]:
     """Every import of a flightmode module by a flightmode module in the tree under ``root``."""
     mods = modules(root)
+    names = frozenset(mods)
     out: list[Import] = []
     for name, path in mods.items():
-        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
-        is_package = path.name == "__init__.py"
-        typing_only = {
-            id(n)
-            for block in ast.walk(tree)
-            if isinstance(block, ast.If)
-            and ast.unparse(block.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING")
-            for stmt in block.body
-            for n in ast.walk(stmt)
-        }
-        for node in ast.walk(tree):
-            if isinstance(node, ast.Import):
-                for alias in node.names:
-                    if alias.name.split(".")[0] == "flightmode":
-                        out.append(Import(name, alias.name, (), node.lineno, id(node) in typing_only))
-            elif isinstance(node, ast.ImportFrom):
-                target = _resolve(name, is_package, node)
-                if target.split(".")[0] != "flightmode":
-                    continue
-                plain = []
-                for alias in node.names:
-                    sub = f"{target}.{alias.name}"
-                    if sub in mods:  # ``from pkg import module``: a dependency on that module
-                        out.append(Import(name, sub, (), node.lineno, id(node) in typing_only))
-                    else:
-                        plain.append(alias.name)
-                if plain:
-                    out.append(Import(name, target, tuple(plain), node.lineno, id(node) in typing_only))
-        out.extend(_private_attributes(name, tree, mods))
+        out.extend(_file_imports(name, path.name == "__init__.py", path.read_text(encoding="utf-8"), names))
     return out
 
 
-def _private_attributes(name: str, tree: ast.Module, mods: dict[str, Path]) -> list[Import]:
+@functools.lru_cache(maxsize=4096)
+def _file_imports(name: str, is_package: bool, text: str, mods: frozenset[str]) -> tuple[Import, ...]:
+    """One module's imports (:func:`imports`), once per (module, text, the tree's modules) in a process:
+    a planted copy of the tree reads again only the files it changed."""
+    tree = ast.parse(text)
+    out: list[Import] = []
+    typing_only = {
+        id(n)
+        for block in ast.walk(tree)
+        if isinstance(block, ast.If) and ast.unparse(block.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING")
+        for stmt in block.body
+        for n in ast.walk(stmt)
+    }
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.split(".")[0] == "flightmode":
+                    out.append(Import(name, alias.name, (), node.lineno, id(node) in typing_only))
+        elif isinstance(node, ast.ImportFrom):
+            target = _resolve(name, is_package, node)
+            if target.split(".")[0] != "flightmode":
+                continue
+            plain = []
+            for alias in node.names:
+                sub = f"{target}.{alias.name}"
+                if sub in mods:  # ``from pkg import module``: a dependency on that module
+                    out.append(Import(name, sub, (), node.lineno, id(node) in typing_only))
+                else:
+                    plain.append(alias.name)
+            if plain:
+                out.append(Import(name, target, tuple(plain), node.lineno, id(node) in typing_only))
+    out.extend(_private_attributes(name, tree, mods))
+    return tuple(out)
+
+
+def _private_attributes(name: str, tree: ast.Module, mods: frozenset[str]) -> list[Import]:
     """``alias._x`` where ``alias`` names another flightmode module (``from pkg import mod as alias``,
     ``import pkg.mod as alias``): a private name reached across modules without importing it."""
     bound: dict[str, str] = {}
