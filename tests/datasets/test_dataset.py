@@ -17,28 +17,11 @@ from pathlib import Path
 import pytest
 
 from flightmode.datasets.make import DatasetError, check_request, make_dataset, read_manifest
+from tests.datasets.conftest import HOPS, N
 
 # one worker runs this module (pytest-xdist --dist loadgroup): the reference dataset is made once, and
 # two clusters of its own never compete with each other for the two cores
 pytestmark = pytest.mark.xdist_group("dataset")
-
-# the shortest hop (Birmingham - Manchester, 106 km: 45 min gate to gate, about 10 s of wall time)
-HOPS = """
-[family]
-name = "hops"
-description = "the shortest hop, both ways"
-seed = 5
-
-[aircraft]
-A320 = 1
-
-[routes]
-pairs = [["EGBB", "EGCC"], ["EGCC", "EGBB"]]
-
-[turbulence]
-patch_probability = 0.0
-"""
-N = 2
 
 
 def _files(root: Path) -> dict[str, str]:
@@ -55,22 +38,6 @@ def _manifest(root: Path):
     import pyarrow.parquet as pq
 
     return pq.read_table(root / "flights.parquet")
-
-
-@pytest.fixture(scope="module")
-def family_file(tmp_path_factory) -> Path:
-    p = tmp_path_factory.mktemp("family") / "hops.toml"
-    p.write_text(HOPS)
-    return p
-
-
-@pytest.fixture(scope="module")
-def reference(tmp_path_factory, family_file) -> Path:
-    """The uninterrupted dataset, made through the API on a LocalCluster of two worker processes."""
-    out = tmp_path_factory.mktemp("ref") / "ds"
-    rows = make_dataset(str(family_file), N, out, workers=2)
-    assert sorted(rows) == list(range(N)) and all(r["status"] == "ok" for r in rows.values())
-    return out
 
 
 @pytest.mark.slow

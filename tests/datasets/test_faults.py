@@ -21,7 +21,8 @@ from pathlib import Path
 import pytest
 
 from flightmode.datasets.make import read_manifest
-from tests.datasets.test_dataset import N, _files, _manifest, family_file, reference  # noqa: F401 (fixtures)
+from tests.datasets.conftest import N
+from tests.datasets.test_dataset import _files, _manifest
 
 pytestmark = [pytest.mark.xdist_group("dataset"), pytest.mark.slow]
 
@@ -70,7 +71,7 @@ def _same_as_reference(out: Path, ref: Path, compare_manifest: bool = True) -> N
 # ------------------------------------------------------------------------------------- Ctrl-C
 
 
-def test_ctrl_c_leaves_a_resumable_dataset(tmp_path, family_file, reference):  # noqa: F811
+def test_ctrl_c_leaves_a_resumable_dataset(tmp_path, family_file, reference):
     out = tmp_path / "ds"
     cmd = _cmd(family_file, out, "--workers", "1")
     proc = subprocess.Popen(
@@ -106,7 +107,7 @@ def _file_size_limit() -> None:  # in the child before exec: its writes past the
     resource.setrlimit(resource.RLIMIT_FSIZE, (FSIZE_LIMIT, FSIZE_LIMIT))
 
 
-def test_a_full_disk_is_one_line_leaves_nothing_half_written_and_resumes(tmp_path, family_file, reference):  # noqa: F811
+def test_a_full_disk_is_one_line_leaves_nothing_half_written_and_resumes(tmp_path, family_file, reference):
     out = tmp_path / "ds"
     cmd = _cmd(family_file, out, "--workers", "1")
     r = subprocess.run(cmd, capture_output=True, text=True, preexec_fn=_file_size_limit, timeout=WAIT_S)
@@ -174,7 +175,7 @@ def _busy_workers(address: str, at_least: int) -> dict[str, int]:
     return {w: pids[w] for w in busy}
 
 
-def test_a_worker_killed_mid_flight_the_flight_is_retried_on_the_other(tmp_path, family_file, reference):  # noqa: F811
+def test_a_worker_killed_mid_flight_the_flight_is_retried_on_the_other(tmp_path, family_file, reference):
     sched, address = _scheduler(tmp_path)
     procs = [sched, _worker(address), _worker(address)]
     out = tmp_path / "ds"
@@ -197,7 +198,7 @@ def test_a_worker_killed_mid_flight_the_flight_is_retried_on_the_other(tmp_path,
     assert [e["status"] for e in log] == ["ok", "ok"]  # the retry succeeded: no failure recorded
 
 
-def test_the_scheduler_gone_is_one_line_and_resume_finishes(tmp_path, family_file, reference):  # noqa: F811
+def test_the_scheduler_gone_is_one_line_and_resume_finishes(tmp_path, family_file, reference):
     sched, address = _scheduler(tmp_path)
     procs = [sched, _worker(address)]
     out = tmp_path / "ds"
