@@ -24,7 +24,10 @@ from flightmode.datasets.make import read_manifest
 from tests.datasets.conftest import N
 from tests.datasets.test_dataset import _files, _manifest
 
-pytestmark = [pytest.mark.xdist_group("dataset"), pytest.mark.slow]
+# a group of its own: the faults (about 130 s of real datasets) run on the other xdist worker than
+# test_dataset's group, side by side instead of one after the other (each worker makes the session's
+# reference dataset once: tests/datasets/conftest.py)
+pytestmark = [pytest.mark.xdist_group("faults"), pytest.mark.slow]
 
 TMP = ".*.tmp-*"  # what the atomic writer's temporaries look like (flightmode.atomic.TMP_GLOB)
 WAIT_S = 600.0  # for a flight on a loaded machine (about 10 s alone)
