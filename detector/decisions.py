@@ -96,23 +96,18 @@ class DecisionEvaluation:
 
 
 def check(t_s: Any, static: Any, labels: dict) -> None:
-    """A DetectorError unless ``static`` and the three labels have one row per sample of ``t_s``."""
+    """A DetectorError unless ``static`` and the three labels have one row per sample of ``t_s``
+    (the labels by :func:`flightmode.detector.evaluation.check_labels`)."""
     import numpy as np
+
+    from flightmode.detector.evaluation import check_labels
 
     n = np.asarray(t_s).shape[0]
     if np.asarray(static).shape != (n,):
         raise DetectorError(
             f"decisions have shape {np.asarray(static).shape}, the stream {n} samples: one per sample"
         )
-    for name in ("in_flight_window", "sensor_static", "phase"):
-        if name not in labels:
-            raise DetectorError(
-                f"label '{name}' missing: scoring needs in_flight_window, sensor_static and phase"
-            )
-        if np.asarray(labels[name]).shape[0] != n:
-            raise DetectorError(
-                f"label '{name}' has {np.asarray(labels[name]).shape[0]} rows, the stream {n}"
-            )
+    check_labels(t_s, None, labels)
 
 
 def score(t_s: Any, static: Any, labels: dict, *, grace_s: float = 0.0) -> DecisionEvaluation:
@@ -121,6 +116,7 @@ def score(t_s: Any, static: Any, labels: dict, *, grace_s: float = 0.0) -> Decis
     as a false static only when it lasts this long or longer."""
     import numpy as np
 
+    from flightmode.detector.evaluation import phi_coefficient
     from flightmode.intervals import true_runs
 
     check(t_s, static, labels)
@@ -168,18 +164,9 @@ def score(t_s: Any, static: Any, labels: dict, *, grace_s: float = 0.0) -> Decis
         suspend,
         response,
         acc,
-        _phi(dec, truth),
+        phi_coefficient(dec, truth),
         rest_after,
     )
-
-
-def _phi(a: Any, b: Any) -> float:
-    import numpy as np
-
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    if a.size < 2 or a.std() == 0 or b.std() == 0:
-        return math.nan  # undefined when either series is constant
-    return float(np.corrcoef(a, b)[0, 1])
 
 
 def held(n: int, index: Any, decided: Any) -> Any:

@@ -81,12 +81,12 @@ class Evaluation:
 
 def check_labels(t_s, acc_g, labels: dict) -> None:
     """A DetectorError unless ``labels`` holds in_flight_window, sensor_static and phase, one row per
-    sample of ``t_s``."""
+    sample of ``t_s`` (``acc_g`` unused: the stream's own checks are the detector's)."""
     n = np.asarray(t_s).shape[0]
     for name in ("in_flight_window", "sensor_static", "phase"):
         if name not in labels:
             raise DetectorError(
-                f"label '{name}' missing: evaluation needs in_flight_window, sensor_static and phase"
+                f"label '{name}' missing: scoring needs in_flight_window, sensor_static and phase"
             )
         if np.asarray(labels[name]).shape[0] != n:
             raise DetectorError(
@@ -126,13 +126,14 @@ def score(c: Checks, t_s: np.ndarray, labels: dict, params: DetectorParams, sigm
             if hit.size:
                 response = float(c.t_s[hit[0]] - t_rest)
     acc = float(np.mean(fin == truth)) if fin.size else math.nan
-    corr = _phi(fin, truth)
+    corr = phi_coefficient(fin, truth)
     return Evaluation(
         params, np.asarray(sigma2, float), c, events, int(in_w.sum()), missed, response, acc, corr
     )
 
 
-def _phi(a: np.ndarray, b: np.ndarray) -> float:
+def phi_coefficient(a: np.ndarray, b: np.ndarray) -> float:
+    """Pearson's coefficient of two 0/1 series (the phi coefficient); NaN when either is constant."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     if a.size < 2 or a.std() == 0 or b.std() == 0:
         return math.nan  # undefined when either series is constant

@@ -6,8 +6,9 @@ Integer form, per axis (all integers; the only floating-point step is the emulat
 ADC, which the part does in hardware, and the configuration of the threshold register):
 
 1. the count: ``c = clip(rint(a / lsb_g), -128, 127)`` (the LIS302DL at +-2 g: 8-bit two's complement,
-   18 mg/digit typ., datasheet figures in FACTS.md; rounding to nearest, ties to even, and saturation
-   as :mod:`flightmode.sim.sensor.accelerometer` quantises its ``lis302dl`` preset);
+   18 mg/digit typ., ST's LIS302DL datasheet, Rev 4, 2008; the LSB and the count range are those of
+   :mod:`flightmode.sim.sensor.accelerometer`'s ``lis302dl`` preset, rounding to nearest, ties to
+   even, and saturation as it quantises);
 2. running sums over the last ``N = round(W_s fs)`` counts (seed 000, eq. 2-3: add the new sample and
    its square, subtract the oldest's): ``S1 = sum c``, ``S2 = sum c^2``; exact in integers, so they
    never drift (the floating NMV has to re-anchor, :mod:`~flightmode.detector.moving_variance`);
@@ -28,7 +29,7 @@ sigma^2 (counts^2 per axis): ``sigma2_counts`` if given, else ``sigma2`` in g^2 
 parameter) over ``lsb_g^2``, else calibrated on the unit's rest recording
 (``rest``, quantised to counts, :func:`~flightmode.detector.flight_mode.calibrate_sigma2` with the
 quantisation floor 1/12 counts^2), else that floor itself: the calibration a truly still 8-bit part
-gives (its count is constant; FACTS.md's LIS302DL tension).
+gives (its count is constant: an 18 mg step is eight times the part's 2.23 mg noise, seed 000 Table 1).
 
 This module imports NumPy (and the floating detector, for the comparison) inside its functions.
 """
@@ -43,11 +44,7 @@ from flightmode.detector.interface import ACC_CHANNELS
 from flightmode.detector.recommended_point import POINT
 from flightmode.errors import DetectorError
 
-# LIS302DL at +-2 g: 18 mg/digit typ., 8-bit two's complement (FACTS.md "LIS302DL (datasheet
-# figures)"; sim/sensor/accelerometer.py's lis302dl preset: lsb_g 0.018, bits 8, range 2.3 g, so the
-# count saturates at -128 and +127)
-LSB_G = 0.018
-COUNT_MIN, COUNT_MAX = -128, 127
+_PART = "lis302dl"  # the sensor preset whose 8-bit counts the firmware reads (LSB_G, COUNT_MIN, COUNT_MAX)
 # the threshold register's fractional bits: one LSB = 1/256 counts^2, 1/85 of the default threshold
 # (k = 4 times the quantisation floor 1/12 counts^2)
 FRAC_BITS = 8
@@ -57,12 +54,34 @@ QUANTISATION_FLOOR = 1.0 / 12.0
 GAP_PERIODS = 1.5
 
 
-def to_counts(acc_g: Any, lsb_g: float = LSB_G):
-    """The 8-bit counts (int64 array) of accelerations in g: rint(a / lsb_g) clipped to [-128, 127]."""
+def _part() -> dict:
+    """The LIS302DL preset's LSB (g) and count range (:mod:`flightmode.sim.sensor.accelerometer`, the
+    one copy of those datasheet figures: 18 mg/digit, 8-bit two's complement, -128 to +127)."""
+    from flightmode.sim.sensor.accelerometer import get_preset
+
+    p = get_preset(_PART)
+    lo, hi = p.count_range
+    return {"LSB_G": p.lsb_g, "COUNT_MIN": lo, "COUNT_MAX": hi}
+
+
+def __getattr__(name: str):  # LSB_G, COUNT_MIN, COUNT_MAX: read from the preset when first asked for
+    if name in ("LSB_G", "COUNT_MIN", "COUNT_MAX"):
+        return _part()[name]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _lsb(lsb_g: float | None) -> float:
+    return _part()["LSB_G"] if lsb_g is None else float(lsb_g)
+
+
+def to_counts(acc_g: Any, lsb_g: float | None = None):
+    """The 8-bit counts (int64 array) of accelerations in g: rint(a / lsb_g) clipped to the part's
+    count range [-128, 127] (``lsb_g`` None: the part's 18 mg)."""
     import numpy as np
 
+    part = _part()
     a = np.asarray(acc_g, float)
-    return np.clip(np.rint(a / lsb_g), COUNT_MIN, COUNT_MAX).astype(np.int64)
+    return np.clip(np.rint(a / _lsb(lsb_g)), part["COUNT_MIN"], part["COUNT_MAX"]).astype(np.int64)
 
 
 def threshold_register(k: float, sigma2_counts: Any, frac_bits: int = FRAC_BITS):
@@ -86,7 +105,7 @@ class FixedNMV:
         k: float = POINT.k_sigma,
         time_threshold_s: float = POINT.time_threshold_s,
         sigma2_counts: Any = QUANTISATION_FLOOR,
-        lsb_g: float = LSB_G,
+        lsb_g: float | None = None,
         frac_bits: int = FRAC_BITS,
     ):
         import numpy as np
@@ -105,6 +124,7 @@ class FixedNMV:
             )
         if not k > 0 or not time_threshold_s > 0:
             raise DetectorError(f"nmv-fixed: k = {k} and time_threshold_s = {time_threshold_s} must be > 0")
+        lsb_g = _lsb(lsb_g)
         if not lsb_g > 0:
             raise DetectorError(f"nmv-fixed: lsb_g = {lsb_g}: the count's step must be > 0 g")
         if int(frac_bits) != frac_bits or not 0 <= frac_bits <= 16:
@@ -259,7 +279,7 @@ class _Detector:
         return self.engine.push(t_s, np.asarray(x, float)[:, self.cols])
 
 
-def sigma2_counts_of_rest(rest: Any, window: int, lsb_g: float = LSB_G):
+def sigma2_counts_of_rest(rest: Any, window: int, lsb_g: float | None = None):
     """sigma^2 per axis in counts^2 from the unit's rest recording in g (m, 3): the recording
     quantised to counts and calibrated as seed 000 section 5.1 step (1) asks
     (:func:`~flightmode.detector.flight_mode.calibrate_sigma2`, floor 1/12 counts^2)."""
@@ -276,7 +296,7 @@ def make(
     time_threshold_s: float = POINT.time_threshold_s,
     rest: Any = None,
     sigma2_counts: Any = None,
-    lsb_g: float = LSB_G,
+    lsb_g: float | None = None,
     frac_bits: int = FRAC_BITS,
     sigma2: Any = None,
 ):
@@ -286,6 +306,7 @@ def make(
     the rest recording ``rest`` (in the stream's channels), else the quantisation floor."""
     import numpy as np
 
+    lsb_g = _lsb(lsb_g)
     cols = _acc_columns(channels)
     if sigma2_counts is None and sigma2 is not None:
         sigma2_counts = np.asarray(sigma2, float) / (lsb_g * lsb_g)  # examples/nmv_fixed.c: the same
@@ -315,7 +336,7 @@ def compare_fixed_float(
     k: float = POINT.k_sigma,
     time_threshold_s: float = POINT.time_threshold_s,
     sigma2_counts: Any = QUANTISATION_FLOOR,
-    lsb_g: float = LSB_G,
+    lsb_g: float | None = None,
     frac_bits: int = FRAC_BITS,
 ) -> dict:
     """The integer detector against the floating one (:func:`flightmode.detector.flight_mode.detect`,
@@ -333,6 +354,7 @@ def compare_fixed_float(
       ``ceil(T_th / W_s)`` checks ending at it (eq. 8 carries no other difference);
     - the parameters, the registers and the thresholds.
     """
+    lsb_g = _lsb(lsb_g)
     import numpy as np
 
     from flightmode.detector.flight_mode import DetectorParams, detect
@@ -411,10 +433,7 @@ def compare_fixed_float(
 
 
 __all__ = [
-    "COUNT_MAX",
-    "COUNT_MIN",
     "FRAC_BITS",
-    "LSB_G",
     "QUANTISATION_FLOOR",
     "FixedNMV",
     "compare_fixed_float",

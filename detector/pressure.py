@@ -1,5 +1,5 @@
 """A pressure-rate detector, and the redundant suspension rule over it and seed 000's accelerometer
-detector (EASA's FAQ on cargo trackers, as quoted in FACTS: at least two independent sources;
+detector (EASA's FAQ on cargo trackers with transmitting devices: at least two independent sources;
 suspend when ANY says flying, resume only when ALL say on the ground).
 
 **Pressure detector.** Every ``check_s`` (every ``M = check_s fs`` samples, at fixed global positions,

@@ -69,13 +69,13 @@ Chain, per sample (vectorised; the only recursion, the outflow-valve lag, is ``s
 Figures and their quality (per type in :data:`CABIN_PROFILES`):
 
 - maximum cabin altitude: 14 CFR 25.841(a), 8,000 ft in normal operation; 787: 6,000 ft (Boeing's
-  published figure, FACTS);
+  published 787 cabin-altitude figure);
 - maximum differential: the 737's three bands 7.45 / 7.80 / 8.35 psid for a selected level up to
-  FL280 / FL280-370 / above FL370 (737 FCOM, FACTS); the other types *derived* so that the cabin is at
+  FL280 / FL280-370 / above FL370 (737 FCOM, pressurization system); the other types *derived* so that the cabin is at
   its maximum altitude at the type's certified ceiling (``AircraftProfile.ceiling_ft``, from the TCDS):
   A320 8.08 psi (the figure usually quoted is 8.06), Fokker 100 7.46, 787-8 9.43;
-- cabin rates: A320 climb 1,000 ft/min, descent 350 ft/min default, 750 ft/min at most (Airbus,
-  FACTS); the others 500 ft/min up and 300 ft/min down, the usual passenger-comfort figures (SAE
+- cabin rates: A320 climb 1,000 ft/min, descent 350 ft/min default, 750 ft/min at most (Airbus A320
+  FCOM, pressurization); the others 500 ft/min up and 300 ft/min down, the usual passenger-comfort figures (SAE
   ARP1270 "Aircraft Cabin Pressurization Criteria" recommends them: *recalled, not read*), 750 ft/min
   at most in descent (*assumption*: Airbus's figure);
 - pre-pressurisation 0.1 psi at 400 ft/min (A320 FCOM; borrowed by the others, above); the landing
