@@ -591,7 +591,8 @@ class RedundantDetector:
 
     def evaluation(self, t_s, x, labels: dict):
         """:func:`~flightmode.detector.pressure.evaluate_redundant` over the pushed stream (the
-        barometer's readings as the detector saw them)."""
+        barometer's readings as the detector saw them; the accelerometer's checks as pushed, not run
+        again)."""
         import numpy as np
 
         from flightmode.detector.pressure import evaluate_redundant
@@ -599,7 +600,17 @@ class RedundantDetector:
         tb = np.concatenate([np.zeros(0), *self._source.readings_t])
         pb = np.concatenate([np.zeros(0), *self._source.readings_pa])
         acc = take(x, self._acc)
-        return evaluate_redundant(t_s, acc, tb, pb, labels, self.params, self.sigma2, self.pressure_params)
+        return evaluate_redundant(
+            t_s,
+            acc,
+            tb,
+            pb,
+            labels,
+            self.params,
+            self.sigma2,
+            self.pressure_params,
+            acc_checks=self.accel.checks,
+        )
 
 
 def _redundant(method: str) -> Callable:

@@ -641,6 +641,7 @@ def evaluate_redundant(
     sigma2,
     pressure_params: PressureParams | None = None,
     t_pushback_s: float | None = None,
+    acc_checks: Checks | None = None,
 ) -> RedundantEvaluation:
     """Seed 000's detector, the pressure detector and the redundant rule over one labelled recording
     (``labels``: ``in_flight_window``, ``sensor_static``, ``phase`` per accelerometer sample; the
@@ -648,7 +649,8 @@ def evaluate_redundant(
     the accelerometer's, so the accelerometer alone and the rule are scored on the same checks.
     ``t_pushback_s`` (default: the window's first sample) starts "which suspended first"; the calm
     cruise windows are the runs of ``phase == "cruise"``; the gate response counts from the first
-    truly static sample after the window."""
+    truly static sample after the window. ``acc_checks``: the accelerometer detector's checks of this
+    stream when already run (a streaming detector's), else run here."""
     import dataclasses
 
     from flightmode.detector.evaluation import check_labels, score
@@ -661,7 +663,8 @@ def evaluate_redundant(
         if tb.shape[0] < 3:
             raise DetectorError("redundant rule: the pressure stream has fewer than 3 samples")
         pressure_params = PressureParams(fs_hz=round(1.0 / float(np.median(np.diff(tb))), 6))
-    acc_checks = detect(t_s, acc_g, accel_params, sigma2)
+    if acc_checks is None:
+        acc_checks = detect(t_s, acc_g, accel_params, sigma2)
     pc = detect_pressure(tb, baro_pa, pressure_params)
     rule = RedundantRule()
     rc = _cat_redundant([rule.push(acc_checks, pc), rule.finish()])

@@ -171,6 +171,29 @@ def test_the_redundant_rule_is_detector_pressures_rule_held_per_sample():
     assert (~rc.allowed & rc.accel_static).any()
 
 
+def test_the_redundant_rules_evaluation_from_its_pushed_checks_is_the_batch_one():
+    """nmv+baro's rich evaluation scores the accelerometer checks it already pushed (in chunks here)
+    instead of running the detector again: every figure equals evaluate_redundant's own run."""
+    from flightmode.detector.pressure import evaluate_redundant
+
+    t, x, rest = _stream(5)
+    loaded, ch, cols, params = _make("nmv+baro", {"baro_hold_s": 20.0})
+    det = _build(loaded, ch, params, rest, cols)
+    interface.decisions("nmv+baro", det, t, x[:, cols], chunk=333)
+    n = t.shape[0]
+    labels = {
+        "in_flight_window": (t >= 90.0) & (t < 240.0),
+        "sensor_static": (t < 90.0) | (t >= 240.0),
+        "phase": np.where((t >= 90.0) & (t < 240.0), "taxi_out", "gate").astype(object),
+    }
+    assert labels["phase"].shape == (n,)
+    got = det.evaluation(t, x[:, cols], labels)
+    want = evaluate_redundant(
+        t, x[:, :3], t[::4], x[::4, 6], labels, det.params, det.sigma2, det.pressure_params
+    )
+    assert got.summary() == want.summary()
+
+
 def test_two_source_is_the_and_of_its_two_detectors():
     """Suspend when ANY says flying, resume only when ALL say on the ground: per sample, the AND of
     the first and second detectors run alone (here AMVD and the pressure source)."""
