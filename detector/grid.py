@@ -22,8 +22,23 @@ from flightmode.detector.evaluation import Evaluation, score
 from flightmode.detector.flight_mode import DetectorParams, detect, final_static
 from flightmode.detector.moving_variance import DetectorError
 
-METHODS = ("nmv", "emv")
-REDUNDANT = ("nmv+baro", "emv+baro")  # the moving variance AND the pressure source (detector.pressure)
+# the kinds of registered detector (flightmode.detectors entry points, detector/builtin.py) whose grid
+# a sweep evaluates on its fast path: seed 000's moving variance, the redundant rule, seed 001's
+GRID_KINDS = ("moving_variance", "redundant", "activity")
+
+
+def grid_kind(name: str) -> str | None:
+    """The registered detector ``name``'s kind when the grid can sweep it, else None."""
+    from flightmode.detector import interface
+
+    if ":" in name:
+        return None  # a module path is a detector of the interface (--detector), not a grid method
+    try:
+        loaded = interface.load(name)
+    except DetectorError:
+        return None
+    kind = getattr(loaded.factory, "kind", None)
+    return kind if kind in GRID_KINDS else None
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,19 +75,20 @@ class Grid:
         from flightmode.detector.activity import registry
 
         for method, weight in self.methods:
-            if method not in METHODS and method not in REDUNDANT:
-                name, _, signal = method.partition(":")
-                if name not in registry.NAMES:
-                    from flightmode.errors import did_you_mean
+            name, _, signal = method.partition(":")
+            kind = grid_kind(name)  # the registry says which names the grid sweeps
+            if kind is None or (signal and kind != "activity"):
+                from flightmode.detector.interface import names as registered
+                from flightmode.errors import did_you_mean
 
-                    names = METHODS + REDUNDANT + registry.NAMES
-                    raise DetectorError(
-                        f"--method {method!r}: use nmv, emv, nmv+baro, emv+baro or one of seed 001's detectors "
-                        f"({', '.join(registry.NAMES)}, a flexible one with :acc, :gyr, :sum or "
-                        f":product){did_you_mean(name, names)}"
-                    )
+                raise DetectorError(
+                    f"--method {method!r}: use nmv, emv, nmv+baro, emv+baro or one of seed 001's detectors "
+                    f"({', '.join(registry.NAMES)}, a flexible one with :acc, :gyr, :sum or "
+                    f":product){did_you_mean(name, tuple(n for n in registered() if grid_kind(n)))}"
+                )
+            if signal:
                 d = registry.get(name)
-                if signal and signal not in d.signals:
+                if signal not in d.signals:
                     raise DetectorError(
                         f"--method {method!r}: {d.title} takes no input choice"
                         if not d.signals
@@ -181,4 +197,4 @@ def evaluate_grid(
                 yield p, score(c, t_s, labels, p, sigma2)
 
 
-__all__ = ["Grid", "evaluate_grid", "grid_of", "grid_from_text", "parse_axis", "METHODS", "REDUNDANT"]
+__all__ = ["Grid", "evaluate_grid", "grid_of", "grid_from_text", "parse_axis", "GRID_KINDS", "grid_kind"]

@@ -26,7 +26,7 @@ decision carried from before pushback into the in-flight window is the suspensio
 as a false static when it lasts ``grace_s`` or longer (default: seed 000's recommended W_s, the
 resolution at which the built-ins' checks judge it, so that both are judged alike).
 
-A registered built-in whose factory's ``kind`` has a grid (:data:`GRID_KINDS`: ``nmv``, ``emv``,
+A registered built-in whose factory's ``kind`` has a grid (:data:`flightmode.detector.grid.GRID_KINDS`: ``nmv``, ``emv``,
 ``nmv+baro``, seed 001's), or any factory with an attribute ``grid_method`` (a method name of
 :class:`flightmode.detector.grid.Grid`), whose points vary only ``weight``, ``window_s``, ``k`` and
 ``time_threshold_s``, is swept by the grid's fast path instead (each moving variance computed once,
@@ -47,8 +47,6 @@ from flightmode.errors import DetectorError, InputDataError
 
 GRID_AXES = {"weight": "weight", "window_s": "windows_s", "k": "ks", "time_threshold_s": "time_thresholds_s"}
 GRACE_S = RECOMMENDED.window_s  # seed 000 Table 9's W_s (module docstring)
-# the kinds of built-in (their factories' ``kind``: flightmode.detector.builtin) the grid sweeps itself
-GRID_KINDS = ("moving_variance", "redundant", "activity")
 
 
 @dataclass(frozen=True)
@@ -182,6 +180,8 @@ def fast_grid(entry: Entry):
 
     loaded = load(entry.spec)
     method = getattr(loaded.factory, "grid_method", None)
+    from flightmode.detector.grid import GRID_KINDS
+
     if method is None and getattr(loaded.factory, "kind", None) in GRID_KINDS and entry.spec in names():
         method = entry.spec  # a registered built-in with a grid: its name is the grid's method
     if not isinstance(method, str) or entry.channels not in (None, loaded.channels):
@@ -294,7 +294,6 @@ def run_entry(entry: Entry, cols: dict, row: dict, fs: float, sigma2_from: str, 
 
 __all__ = [
     "GRACE_S",
-    "GRID_KINDS",
     "Entry",
     "check",
     "context_of",

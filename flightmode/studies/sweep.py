@@ -202,16 +202,17 @@ def grid_kind(method: str) -> str:
     """The ``kind`` of a grid method's registered factory (``flightmode.detector.builtin``'s
     declaration: moving_variance, redundant, activity; a flexible one's ``name:signal`` by its name);
     a DetectorError for a method the grid cannot sweep (use ``--detector``)."""
+    from flightmode.detector import grid
     from flightmode.detector.interface import load
     from flightmode.errors import DetectorError
-    from flightmode.studies.detectors import GRID_KINDS
 
-    kind = getattr(load(method.partition(":")[0], what="--method").factory, "kind", None)
-    if kind not in GRID_KINDS:
+    kind = grid.grid_kind(method.partition(":")[0])
+    if kind is None:  # the registry's own error for an unknown name, else: no grid of its own
+        other = getattr(load(method.partition(":")[0], what="--method").factory, "kind", None)
         raise DetectorError(
-            f"--method {method}: no grid of its own ({kind}); sweep it with --detector {method}"
+            f"--method {method}: no grid of its own ({other}); sweep it with --detector {method}"
         )
-    return str(kind)
+    return kind
 
 
 def _evaluate(t, acc, gyr, labels, grid, fs, sigma2_from, row, cols):
