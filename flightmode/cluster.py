@@ -32,6 +32,19 @@ def _config() -> dict[str, Any]:
     }
 
 
+def dask_setup(worker: Any) -> None:
+    """The local cluster's worker preload (Dask calls a preload module's ``dask_setup`` as each worker
+    starts): the worker process ignores SIGINT. Ctrl-C at a terminal sends SIGINT to the whole
+    foreground process group, the LocalCluster's worker processes too; each then died printing
+    KeyboardInterrupt's traceback from its event loop over the one line the command prints. The
+    client alone handles the interrupt: it closes the cluster, whose nannies stop their workers."""
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 @contextmanager
 def open_client(
     workers: int = 2, scheduler: str | None = None, *, allowed_failures: int = 3
@@ -89,6 +102,7 @@ def open_client(
             dashboard_address=f"{HOST}:0",
             memory_limit=0,
             silence_logs=logging.CRITICAL,
+            preload=[__name__],  # dask_setup above: the workers leave Ctrl-C to the client
         )
     try:
         with Client(cluster) as c:

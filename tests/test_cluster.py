@@ -4,6 +4,7 @@ tasks of the standard library's own functions, so the workers import nothing of 
 from __future__ import annotations
 
 import operator
+import signal
 from urllib.parse import urlparse
 
 import pytest
@@ -29,6 +30,9 @@ def test_a_local_cluster_of_two_processes_maps_in_order_and_raises_a_failure():
         assert set(
             c.run(lambda: __import__("dask").config.get("distributed.worker.profile.enabled")).values()
         ) == {False}
+        # Ctrl-C is the client's: the worker processes ignore SIGINT (cluster.dask_setup), so the
+        # interrupt that reaches the whole process group prints no worker traceback
+        assert set(c.run(signal.getsignal, signal.SIGINT).values()) == {signal.SIG_IGN}
         seen = []
         args = [(i, i + 1) for i in range(6)]
         got = cluster.map_flights(
