@@ -18,6 +18,8 @@ from __future__ import annotations
 import dataclasses
 import os
 import pickle
+import shutil
+from pathlib import Path
 
 import pytest
 
@@ -303,6 +305,43 @@ def default_run(tmp_path_factory, fly_cached):
     out = tmp_path_factory.mktemp("runs")
     r = pipeline.run(sc, out=out, track=track)
     return r.written["run_json"].parent, r
+
+
+@pytest.fixture(scope="session")
+def family_file(_flight_cache_dir) -> Path:
+    """tests/hops.py's family as a file (shared by the workers)."""
+    from tests.hops import HOPS
+
+    p = _flight_cache_dir / "hops.toml"
+    if not p.exists():  # the same text from every worker: written whole, then renamed into place
+        tmp = p.with_suffix(f".tmp-{os.getpid()}")
+        tmp.write_text(HOPS)
+        os.replace(tmp, p)
+    return p
+
+
+@pytest.fixture(scope="session")
+def reference(_flight_cache_dir, family_file) -> Path:
+    """The uninterrupted dataset of tests/hops.py's family (two 106 km hops), made through the API on a
+    LocalCluster of two worker processes, once per session whatever the number of xdist workers: the
+    first worker to ask makes it, the other waits for it (tests only read it). test_dataset and
+    test_faults (each an xdist group of its own) compare their interrupted datasets with it; made once
+    per worker, the two were made at the same time, four Dask workers and two clients on two cores, at
+    100 s each."""
+    from filelock import FileLock
+
+    from flightmode.datasets.make import make_dataset
+    from tests.hops import N
+
+    out = _flight_cache_dir / "hops-reference"
+    done = out.with_name(out.name + ".complete")  # beside it: the tests compare the folder's files
+    with FileLock(str(out) + ".lock"):
+        if not done.exists():
+            shutil.rmtree(out, ignore_errors=True)  # what a worker that failed making it left
+            rows = make_dataset(str(family_file), N, out, workers=2)
+            assert sorted(rows) == list(range(N)) and all(r["status"] == "ok" for r in rows.values())
+            done.write_text("")
+    return out
 
 
 def pytest_collection_modifyitems(config, items):

@@ -55,16 +55,13 @@ def test_a_gyroscope_method_runs_with_the_defaults_on_a_gyroscope_flight(gyro_ru
 
 
 @pytest.mark.slow
-def test_detect_on_a_dataset_flight_regenerates_its_bench_recording(tmp_path):
+def test_detect_on_a_dataset_flight_regenerates_its_bench_recording(reference):
     """The dataset keeps no run.json; detect rebuilds the unit and its bench recording from the
     manifest's scenario and seed, so the default (--sigma2-from preset) gives exactly the figures
-    the flight's own detector wrote into the manifest."""
+    the flight's own detector wrote into the manifest (the session's reference dataset: tests/conftest.py)."""
     import pyarrow.parquet as pq
 
-    from flightmode.datasets.make import make_dataset
-
-    ds = tmp_path / "ds"
-    make_dataset("calm-short-haul", 1, ds, workers=1)
+    ds = reference
     row = pq.read_table(ds / "flights.parquet").to_pylist()[0]
     assert row["status"] == "ok", row
     j = CliRunner().invoke(app, ["detect", str(ds), "--flight", "0", "--json"])

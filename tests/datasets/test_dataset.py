@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from flightmode.datasets.make import DatasetError, check_request, make_dataset, read_manifest
-from tests.datasets.conftest import HOPS, N
+from tests.hops import HOPS, N
 
 # one worker runs this module (pytest-xdist --dist loadgroup): the reference dataset is made once, and
 # two clusters of its own never compete with each other for the two cores

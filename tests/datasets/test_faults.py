@@ -21,12 +21,12 @@ from pathlib import Path
 import pytest
 
 from flightmode.datasets.make import read_manifest
-from tests.datasets.conftest import N
 from tests.datasets.test_dataset import _files, _manifest
+from tests.hops import N
 
 # a group of its own: the faults (about 130 s of real datasets) run on the other xdist worker than
 # test_dataset's group, side by side instead of one after the other (each worker makes the session's
-# reference dataset once: tests/datasets/conftest.py)
+# reference dataset once: tests/conftest.py)
 pytestmark = [pytest.mark.xdist_group("faults"), pytest.mark.slow]
 
 TMP = ".*.tmp-*"  # what the atomic writer's temporaries look like (flightmode.atomic.TMP_GLOB)
