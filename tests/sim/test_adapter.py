@@ -1,5 +1,5 @@
 """The JSBSim adapter's derived channels: height above ground = altitude - terrain elevation; the
-angular acceleration = the rates' forward difference."""
+angular acceleration = the rates' forward difference. Its private model copies: none left behind."""
 
 import pytest
 
@@ -59,3 +59,40 @@ def test_angular_acceleration_is_the_rates_forward_difference(model, n_eng):
     derived = np.diff(rates, axis=0) * 120.0
     assert np.abs(acc[1:-1]).max() > 0.1  # the controls did move the aircraft
     np.testing.assert_allclose(derived[1:], acc[1:-1], rtol=0, atol=1e-6)
+
+
+def test_a_killed_processs_model_copy_is_removed_by_the_next_aircraft(tmp_path):
+    """A process SIGKILLed between its private model copy and the copy's removal leaves the copy; the
+    next aircraft made in that folder removes it, and nothing of a running process or of a copy
+    younger than STALE_COPY_S (another machine's process sharing the folder may still be loading)."""
+    import os
+    import subprocess
+    import sys
+    import time
+
+    from flightmode.sim.flight.jsbsim.adapter import COPY_PREFIX, STALE_COPY_S, JSBSimAircraft
+
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    )
+    dead_pid = int(dead.stdout)  # a process that has ended (its id is free)
+    old = time.time() - STALE_COPY_S - 60.0
+
+    def copy(pid: int, age_s: float | None, letters: str = "abcd1234"):
+        d = tmp_path / f"{COPY_PREFIX}{pid}-{letters}"
+        (d / "aircraft" / "A320").mkdir(parents=True)
+        if age_s is not None:
+            os.utime(d, (age_s, age_s))
+        return d
+
+    stale = copy(dead_pid, old)
+    young = copy(dead_pid, None, "young567")  # the same ended process's, made just now
+    alive = copy(os.getpid(), old)  # this process: running
+    other = tmp_path / "not-a-copy"
+    other.mkdir()
+    os.utime(other, (old, old))
+    JSBSimAircraft("A320", 1 / 120, 2, workdir=tmp_path)
+    assert not stale.exists()
+    assert young.exists() and alive.exists() and other.exists()
+    # and the aircraft's own copy is gone once loaded
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([young.name, alive.name, other.name])

@@ -11,6 +11,7 @@ Safety: the model is loaded from a sanitised private copy of its main XML
 from __future__ import annotations
 
 import math
+import os
 import shutil
 import tempfile
 from dataclasses import dataclass
@@ -91,6 +92,47 @@ def _channels(n_engines: int) -> tuple[Channel, ...]:
     return tuple(base)  # the every-step channels first, then the slow ones
 
 
+COPY_PREFIX = "flightmode-model-"  # + the process id + "-" + mkdtemp's letters
+STALE_COPY_S = 600.0  # a copy lives for the load (under a second): older ones are a killed process's
+
+
+def remove_stale_copies(root: Path) -> list[Path]:
+    """Remove the private model copies in ``root`` that a killed process left (SIGKILL between the copy
+    and its removal after loading: a dataset worker killed as a flight starts): those whose process no
+    longer runs and that are older than ``STALE_COPY_S`` (a process of another machine sharing the
+    folder, whose id means nothing here, has long finished loading by then). Returns what it removed."""
+    import time
+
+    removed = []
+    now = time.time()
+    try:
+        entries = list(os.scandir(root))
+    except OSError:
+        return removed
+    for e in entries:
+        if not e.name.startswith(COPY_PREFIX):
+            continue
+        pid = e.name[len(COPY_PREFIX) :].split("-", 1)[0]
+        try:
+            if not pid.isdigit() or now - e.stat().st_mtime < STALE_COPY_S or _running(int(pid)):
+                continue
+        except OSError:
+            continue
+        shutil.rmtree(e.path, ignore_errors=True)
+        removed.append(Path(e.path))
+    return removed
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True
+
+
 class JSBSimAircraft:
     """A JSBSim FDM with flightmode's safety settings, SI channels and fast property access.
 
@@ -113,8 +155,10 @@ class JSBSimAircraft:
         self.channels = _channels(n_engines)
         self.index = {c.name: i for i, c in enumerate(self.channels + DERIVED_CHANNELS)}
         self.n_every_step = sum(1 for c in self.channels if not c.slow)  # the first channels
+        root = Path(workdir if workdir is not None else tempfile.gettempdir())
+        remove_stale_copies(root)
         tmp = Path(
-            tempfile.mkdtemp(prefix="flightmode-model-", dir=workdir)
+            tempfile.mkdtemp(prefix=f"{COPY_PREFIX}{os.getpid()}-", dir=root)
         ).resolve()  # JSBSim needs absolute paths
         try:
             aircraft_path = private_model_copy(model, tmp, edits)
