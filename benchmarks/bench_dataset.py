@@ -104,14 +104,16 @@ def _in_window_s(path: Path) -> float:
 
 
 def _warm(scenario_tomls: list[str]) -> None:
-    """On a worker: import what a flight needs; fly, sense and detect each scenario's first minute."""
+    """On a worker: import what a flight needs; fly each scenario's first minute, and fly, sense and
+    detect the pattern circuit."""
     from flightmode.runs import pipeline
     from flightmode.scenarios.scenario import Scenario
 
-    for text in scenario_tomls:
+    for text in scenario_tomls:  # each type's model made and flown
         sc = Scenario.from_toml_text(text)
-        track = pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=60.0)
-        pipeline.run(sc, stages=("fly", "sense", "detect"), track=track)
+        pipeline.fly(sc, pipeline.streams_of(sc.seed).child("flight"), stop_after_s=60.0)
+    # sensing and detection need a whole flight: the built-in pattern circuit's
+    pipeline.run(Scenario.builtin("pattern"), stages=("fly", "sense", "detect"))
 
 
 def rate(n: int = 6, family: str = "airline-mix", workers: int = 2) -> dict:
@@ -128,7 +130,7 @@ def rate(n: int = 6, family: str = "airline-mix", workers: int = 2) -> dict:
         in_window_h = sum(_in_window_s(Path(d) / "ds" / r["samples_file"]) for r in ok) / 3600.0
         timings = [json.loads(line) for line in (Path(d) / "ds" / "timings.jsonl").read_text().splitlines()]
         # the same flights on workers already warm (imports done, each aircraft type flown for a minute
-        # in each worker): a dataset of thousands of flights pays that once per worker, not per six
+        # and the pattern circuit flown, sensed and detected in each worker): a dataset of thousands of flights pays that once per worker, not per six
         from flightmode.cluster import open_client
 
         first_of_type = {m.plan.aircraft: m.to_toml() for m in reversed(members)}

@@ -20,15 +20,29 @@ SCHEDULER_TIMEOUT = "5s"  # a scheduler address that does not answer in this tim
 WORKER_WAIT_S = 30.0  # a scheduler with no worker after this long is an error
 
 
+# glibc's largest dynamic mmap threshold on 64-bit systems (DEFAULT_MMAP_THRESHOLD_MAX, 4 Mi * sizeof(long):
+# mallopt(3), M_MMAP_THRESHOLD)
+GLIBC_MMAP_THRESHOLD_MAX = 32 * 2**20
+
+
 def _config() -> dict[str, Any]:
-    """The Dask settings every flightmode cluster runs with (measured on one flight in a worker:
-    13.6-14.3 s with Dask's defaults, 11.2-11.9 s with these; 9.1-10.1 s in a plain process):
-    no statistical profiler (it samples the task thread's stack every 10 ms) and a high
-    MALLOC_TRIM_THRESHOLD_ (Dask's 65536 hands memory back to the system at once, so every large
-    array of a flight is fresh pages again)."""
+    """The Dask settings every flightmode cluster runs with: no statistical profiler (it samples the
+    task thread's stack every 10 ms), and glibc's allocator as a plain process has it once warm.
+
+    Dask sets MALLOC_TRIM_THRESHOLD_ in its workers (65536: memory handed back to the system at once).
+    Setting any of glibc's thresholds turns off its dynamic mmap threshold (mallopt(3)), so every block
+    over 128 KiB, every array of a flight, was a fresh mmap whose pages the kernel zeroes again: one
+    flight's sensing took 2.3-2.5 s in a process started with that variable (2**30 as well) against
+    1.2 s without, the flying 7.3 s against 6.9 s (airline-mix member 2, a Fokker 100, 1.2 h). So the
+    workers get both thresholds where a warm plain process has them: mmap above glibc's dynamic
+    maximum (32 MiB), no trimming below 1 GiB (a flight's arrays are freed and made again each
+    flight: handing them back only to fault them in again costs time, and the workers have no memory
+    limit). Measured in a worker before the mmap threshold: the profiler off took one flight from
+    13.6-14.3 s to 11.2-11.9 s, against 9.1-10.1 s in a plain process."""
     return {
         "distributed.worker.profile.enabled": False,
         "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 2**30,
+        "distributed.nanny.pre-spawn-environ.MALLOC_MMAP_THRESHOLD_": GLIBC_MMAP_THRESHOLD_MAX,
     }
 
 

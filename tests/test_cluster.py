@@ -4,6 +4,7 @@ tasks of the standard library's own functions, so the workers import nothing of 
 from __future__ import annotations
 
 import operator
+import os
 import signal
 from urllib.parse import urlparse
 
@@ -30,6 +31,11 @@ def test_a_local_cluster_of_two_processes_maps_in_order_and_raises_a_failure():
         assert set(
             c.run(lambda: __import__("dask").config.get("distributed.worker.profile.enabled")).values()
         ) == {False}
+        # glibc's mmap threshold fixed at its dynamic maximum (cluster._config: Dask's trim threshold
+        # alone turned the dynamic one off, and sensing took twice as long in a worker)
+        assert set(c.run(os.environ.get, "MALLOC_MMAP_THRESHOLD_").values()) == {
+            str(cluster.GLIBC_MMAP_THRESHOLD_MAX)
+        }
         # Ctrl-C is the client's: the worker processes ignore SIGINT (cluster.dask_setup), so the
         # interrupt that reaches the whole process group prints no worker traceback
         assert set(c.run(signal.getsignal, signal.SIGINT).values()) == {signal.SIG_IGN}
