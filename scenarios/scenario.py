@@ -157,9 +157,15 @@ class Scenario:
     def resolve(cls, name_or_path: str | Path) -> Scenario:
         """A built-in name, or the path of a ``.toml`` file."""
         p = Path(name_or_path)
-        if p.suffix == ".toml" or p.exists():
+        if p.suffix == ".toml" or p.is_file():
             return cls.from_toml(p)
-        return cls.builtin(str(name_or_path))
+        # a folder of the same name (a dataset made with --out pattern) does not hide the built-in
+        try:
+            return cls.builtin(str(name_or_path))
+        except ScenarioError as e:
+            if p.is_dir():
+                raise ScenarioError(f"{p} is a folder, not a scenario .toml file: {e}") from None
+            raise
 
     # ------------------------------------------------------------------ properties
     @property

@@ -200,3 +200,20 @@ def test_a_patch_lies_en_route():
 def test_unknown_family_name():
     with pytest.raises(ScenarioError, match=r'unknown family .rough-ait. \(did you mean "rough-air"\?\)'):
         Family.resolve("rough-ait")
+
+
+def test_a_folder_named_like_a_built_in_does_not_hide_it(tmp_path, monkeypatch):
+    """`flightmode dataset airline-mix --out airline-mix`, run again from the same folder (a --resume),
+    read the dataset folder as the family file ("Is a directory"); a folder is never a family file."""
+    from flightmode.scenarios.scenario import Scenario
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "airline-mix").mkdir()
+    (tmp_path / "pattern").mkdir()
+    assert Family.resolve("airline-mix").text == Family.builtin("airline-mix").text
+    assert Scenario.resolve("pattern").digest() == Scenario.builtin("pattern").digest()
+    (tmp_path / "my-flights").mkdir()
+    with pytest.raises(ScenarioError, match=r"my-flights is a folder, not a family \.toml file"):
+        Family.resolve("my-flights")
+    with pytest.raises(ScenarioError, match=r"my-flights is a folder, not a scenario \.toml file"):
+        Scenario.resolve("my-flights")
