@@ -13,9 +13,9 @@ airborne time, weighted by each member's steps. Reported: the figure, the limit 
 (target >= 0.6); and beside them the same bare stepping measured in as many processes at once as there
 are workers (``_bench.concurrent_step_cost_table``), the limit the workers can reach on this machine
 when its cores slow each other down, and the figure against it. Then the same flights once more on a
-cluster whose workers are warm (imports done, each aircraft type flown for a minute in each worker), as
-the workers of a long dataset are after their first flights: the figure without the start-up that a
-six-flight run pays in full.
+cluster whose workers are warm (imports done; in each worker, each aircraft type flown for a minute and
+the pattern circuit flown, sensed and detected), as the workers of a long dataset are after their first
+flights: the figure without the start-up that a six-flight run pays in full.
 
 Without ``rate``:
 
@@ -129,8 +129,8 @@ def rate(n: int = 6, family: str = "airline-mix", workers: int = 2) -> dict:
         ok = [r for r in rows.values() if r["status"] == "ok"]
         in_window_h = sum(_in_window_s(Path(d) / "ds" / r["samples_file"]) for r in ok) / 3600.0
         timings = [json.loads(line) for line in (Path(d) / "ds" / "timings.jsonl").read_text().splitlines()]
-        # the same flights on workers already warm (imports done, each aircraft type flown for a minute
-        # and the pattern circuit flown, sensed and detected in each worker): a dataset of thousands of flights pays that once per worker, not per six
+        # the same flights on workers already warm (_warm): a dataset of thousands of flights pays the
+        # start-up once per worker, not once per three flights
         from flightmode.cluster import open_client
 
         first_of_type = {m.plan.aircraft: m.to_toml() for m in reversed(members)}
