@@ -25,8 +25,8 @@ from tests.datasets.test_dataset import _files, _manifest
 from tests.hops import N
 
 # a group of its own: the faults (about 130 s of real datasets) run on the other xdist worker than
-# test_dataset's group, side by side instead of one after the other (each worker makes the session's
-# reference dataset once: tests/conftest.py)
+# test_dataset's group, side by side instead of one after the other (the session's reference dataset is
+# made once for both workers: tests/conftest.py)
 pytestmark = [pytest.mark.xdist_group("faults"), pytest.mark.slow]
 
 TMP = ".*.tmp-*"  # what the atomic writer's temporaries look like (flightmode.atomic.TMP_GLOB)
