@@ -63,6 +63,11 @@ def _flights_done(out: Path) -> int:
     return len(read_manifest(out)) if (out / "flights.parquet").exists() else 0
 
 
+# Each test asks for the session's reference dataset only when it compares with it (not as a
+# fixture at its setup), so that this group's first interrupted dataset is made while test_dataset's
+# worker makes the reference, instead of this worker waiting idle for it (about 25 s)
+
+
 def _same_as_reference(out: Path, ref: Path, compare_manifest: bool = True) -> None:
     assert not list(out.rglob(TMP))  # no half-written file
     assert _files(out) == _files(ref)  # exactly the N flights, byte for byte
@@ -74,7 +79,7 @@ def _same_as_reference(out: Path, ref: Path, compare_manifest: bool = True) -> N
 # ------------------------------------------------------------------------------------- Ctrl-C
 
 
-def test_ctrl_c_leaves_a_resumable_dataset(tmp_path, family_file, reference):
+def test_ctrl_c_leaves_a_resumable_dataset(tmp_path, family_file, request):
     out = tmp_path / "ds"
     cmd = _cmd(family_file, out, "--workers", "1")
     proc = subprocess.Popen(
@@ -97,6 +102,7 @@ def test_ctrl_c_leaves_a_resumable_dataset(tmp_path, family_file, reference):
     assert 1 <= len(done) < N
     assert not list(out.rglob(TMP))
     subprocess.run([*cmd, "--resume"], check=True, capture_output=True, timeout=WAIT_S)
+    reference = request.getfixturevalue("reference")  # only now: the note above _same_as_reference
     _same_as_reference(out, reference)
 
 
@@ -110,7 +116,7 @@ def _file_size_limit() -> None:  # in the child before exec: its writes past the
     resource.setrlimit(resource.RLIMIT_FSIZE, (FSIZE_LIMIT, FSIZE_LIMIT))
 
 
-def test_a_full_disk_is_one_line_leaves_nothing_half_written_and_resumes(tmp_path, family_file, reference):
+def test_a_full_disk_is_one_line_leaves_nothing_half_written_and_resumes(tmp_path, family_file, request):
     out = tmp_path / "ds"
     cmd = _cmd(family_file, out, "--workers", "1")
     r = subprocess.run(cmd, capture_output=True, text=True, preexec_fn=_file_size_limit, timeout=WAIT_S)
@@ -124,6 +130,7 @@ def test_a_full_disk_is_one_line_leaves_nothing_half_written_and_resumes(tmp_pat
     assert not [p for p in out.rglob("part-*") if p.is_file()]
     assert _flights_done(out) == 0
     subprocess.run([*cmd, "--resume"], check=True, capture_output=True, timeout=WAIT_S)
+    reference = request.getfixturevalue("reference")  # only now: the note above _same_as_reference
     _same_as_reference(out, reference)
 
 
@@ -178,7 +185,7 @@ def _busy_workers(address: str, at_least: int) -> dict[str, int]:
     return {w: pids[w] for w in busy}
 
 
-def test_a_worker_killed_mid_flight_the_flight_is_retried_on_the_other(tmp_path, family_file, reference):
+def test_a_worker_killed_mid_flight_the_flight_is_retried_on_the_other(tmp_path, family_file, request):
     sched, address = _scheduler(tmp_path)
     procs = [sched, _worker(address), _worker(address)]
     out = tmp_path / "ds"
@@ -192,6 +199,7 @@ def test_a_worker_killed_mid_flight_the_flight_is_retried_on_the_other(tmp_path,
         assert run.returncode == 0, err
     finally:
         _kill_all(procs)
+    reference = request.getfixturevalue("reference")  # only now: the note above _same_as_reference
     _same_as_reference(out, reference, compare_manifest=False)
     # the manifest is the reference's but for the attempts: the killed worker's flight took two
     ours, ref = _manifest(out), _manifest(reference)
@@ -201,7 +209,7 @@ def test_a_worker_killed_mid_flight_the_flight_is_retried_on_the_other(tmp_path,
     assert [e["status"] for e in log] == ["ok", "ok"]  # the retry succeeded: no failure recorded
 
 
-def test_the_scheduler_gone_is_one_line_and_resume_finishes(tmp_path, family_file, reference):
+def test_the_scheduler_gone_is_one_line_and_resume_finishes(tmp_path, family_file, request):
     sched, address = _scheduler(tmp_path)
     procs = [sched, _worker(address)]
     out = tmp_path / "ds"
@@ -222,4 +230,5 @@ def test_the_scheduler_gone_is_one_line_and_resume_finishes(tmp_path, family_fil
     assert all(r["status"] == "ok" for r in read_manifest(out).values())
     assert not list(out.rglob(TMP))
     subprocess.run([*cmd[:-2], "--workers", "2", "--resume"], check=True, capture_output=True, timeout=WAIT_S)
+    reference = request.getfixturevalue("reference")  # only now: the note above _same_as_reference
     _same_as_reference(out, reference)
