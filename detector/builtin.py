@@ -194,7 +194,7 @@ class MovingVarianceDetector:
 
         from flightmode.detector.evaluation import check_labels, score
 
-        check_labels(t_s, take(x, self._acc), labels)
+        check_labels(t_s, labels)
         return score(self.checks, t_s, labels, self.params, self.sigma2)
 
 
@@ -369,7 +369,7 @@ class ActivityDetector:
         from flightmode.detector.flight_mode import DetectorParams
 
         p = self.params
-        check_labels(t_s, take(x, self._acc), labels)
+        check_labels(t_s, labels)
         dp = dataclasses.replace(
             DetectorParams(fs_hz=p.fs_hz),
             window_s=p.window_s,

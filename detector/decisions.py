@@ -107,7 +107,7 @@ def check(t_s: Any, static: Any, labels: dict) -> None:
         raise DetectorError(
             f"decisions have shape {np.asarray(static).shape}, the stream {n} samples: one per sample"
         )
-    check_labels(t_s, None, labels)
+    check_labels(t_s, labels)
 
 
 def score(t_s: Any, static: Any, labels: dict, *, grace_s: float = 0.0) -> DecisionEvaluation:

@@ -79,9 +79,9 @@ class Evaluation:
         }
 
 
-def check_labels(t_s, acc_g, labels: dict) -> None:
+def check_labels(t_s, labels: dict) -> None:
     """A DetectorError unless ``labels`` holds in_flight_window, sensor_static and phase, one row per
-    sample of ``t_s`` (``acc_g`` unused: the stream's own checks are the detector's)."""
+    sample of ``t_s``."""
     n = np.asarray(t_s).shape[0]
     for name in ("in_flight_window", "sensor_static", "phase"):
         if name not in labels:
@@ -98,7 +98,7 @@ def evaluate(
     t_s: np.ndarray, acc_g: np.ndarray, labels: dict, params: DetectorParams, sigma2: np.ndarray
 ) -> Evaluation:
     """Run the detector over a labelled stream and score it (module docstring)."""
-    check_labels(t_s, acc_g, labels)
+    check_labels(t_s, labels)
     return score(detect(t_s, acc_g, params, sigma2), t_s, labels, params, sigma2)
 
 
@@ -153,7 +153,7 @@ def pfa_table(
     """Rows in the form of seed 000 Tables 4-5 (module docstring), one per (T_sigma, T_th). ``checks``:
     the detector already run over this stream with these parameters (``detect``), to count another
     window of the same stream without running it again."""
-    check_labels(t_s, acc_g, labels)
+    check_labels(t_s, labels)
     window = np.asarray(labels["in_flight_window"], bool)
     # the moving variance does not depend on T_sigma or T_th: one pass, then eq. 7-8 per row
     c = detect(t_s, acc_g, params, sigma2) if checks is None else checks

@@ -80,8 +80,9 @@ def to_counts(acc_g: Any, lsb_g: float | None = None):
     import numpy as np
 
     part = _part()
+    lsb = part["LSB_G"] if lsb_g is None else float(lsb_g)
     a = np.asarray(acc_g, float)
-    return np.clip(np.rint(a / _lsb(lsb_g)), part["COUNT_MIN"], part["COUNT_MAX"]).astype(np.int64)
+    return np.clip(np.rint(a / lsb), part["COUNT_MIN"], part["COUNT_MAX"]).astype(np.int64)
 
 
 def threshold_register(k: float, sigma2_counts: Any, frac_bits: int = FRAC_BITS):

@@ -657,7 +657,7 @@ def evaluate_redundant(
     from flightmode.detector.flight_mode import detect
     from flightmode.intervals import true_runs
 
-    check_labels(t_s, acc_g, labels)
+    check_labels(t_s, labels)
     tb = np.asarray(t_baro_s, float)
     if pressure_params is None:
         if tb.shape[0] < 3:

@@ -356,16 +356,9 @@ class Family:
 
     @classmethod
     def resolve(cls, name_or_path: str | Path) -> Family:
-        p = Path(name_or_path)
-        if p.suffix == ".toml" or p.is_file():
-            return cls.from_toml(p)
-        # a folder of the same name (a dataset made with --out airline-mix) does not hide the built-in
-        try:
-            return cls.builtin(str(name_or_path))
-        except ScenarioError as e:
-            if p.is_dir():
-                raise ScenarioError(f"{p} is a folder, not a family .toml file: {e}") from None
-            raise
+        from flightmode.scenarios.scenario import resolve_name
+
+        return resolve_name(cls, name_or_path, "family")
 
     def with_model(self, overrides: Mapping[str, float]) -> Family:
         """This family with its ``[model]`` table replaced by ``overrides`` (name -> value; ``{}``: none):

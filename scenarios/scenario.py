@@ -42,6 +42,22 @@ class SensorChoice:
     gyro: str | None = None  # a gyroscope preset sampled with the accelerometer (None: none)
 
 
+def resolve_name(cls: Any, name_or_path: str | Path, what: str) -> Any:
+    """``cls.from_toml(path)`` for a ``.toml`` path or any file, else ``cls.builtin(name)``: the
+    resolution of :class:`Scenario` and :class:`~flightmode.scenarios.family.Family` (``what``: which,
+    for the error). A folder of a built-in's name (a dataset made with ``--out airline-mix``, run again
+    from beside it) does not hide the built-in; a folder that is none is a ScenarioError naming it."""
+    p = Path(name_or_path)
+    if p.suffix == ".toml" or p.is_file():
+        return cls.from_toml(p)
+    try:
+        return cls.builtin(str(name_or_path))
+    except ScenarioError as e:
+        if p.is_dir():
+            raise ScenarioError(f"{p} is a folder, not a {what} .toml file: {e}") from None
+        raise
+
+
 @dataclass(frozen=True, slots=True)
 class Scenario:
     """A validated scenario. ``plan`` is what the flight side flies, ``carrier`` the bag's life around
@@ -156,16 +172,7 @@ class Scenario:
     @classmethod
     def resolve(cls, name_or_path: str | Path) -> Scenario:
         """A built-in name, or the path of a ``.toml`` file."""
-        p = Path(name_or_path)
-        if p.suffix == ".toml" or p.is_file():
-            return cls.from_toml(p)
-        # a folder of the same name (a dataset made with --out pattern) does not hide the built-in
-        try:
-            return cls.builtin(str(name_or_path))
-        except ScenarioError as e:
-            if p.is_dir():
-                raise ScenarioError(f"{p} is a folder, not a scenario .toml file: {e}") from None
-            raise
+        return resolve_name(cls, name_or_path, "scenario")
 
     # ------------------------------------------------------------------ properties
     @property

@@ -265,7 +265,7 @@ def evaluate_activity(t_s, acc_g, gyr_dps, labels: dict, p: ActivityParams, rest
     from flightmode.detector.evaluation import check_labels, score
     from flightmode.detector.flight_mode import DetectorParams
 
-    check_labels(t_s, acc_g, labels)
+    check_labels(t_s, labels)
     c = activity_checks(t_s, acc_g, gyr_dps, p, rest)
     dp = dataclasses.replace(
         DetectorParams(fs_hz=p.fs_hz),

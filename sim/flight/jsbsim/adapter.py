@@ -94,6 +94,7 @@ def _channels(n_engines: int) -> tuple[Channel, ...]:
 
 COPY_PREFIX = "flightmode-model-"  # + the process id + "-" + mkdtemp's letters
 STALE_COPY_S = 600.0  # a copy lives for the load (under a second): older ones are a killed process's
+_SWEPT: set[Path] = set()  # the folders this process has swept (JSBSimAircraft)
 
 
 def remove_stale_copies(root: Path) -> list[Path]:
@@ -156,7 +157,9 @@ class JSBSimAircraft:
         self.index = {c.name: i for i, c in enumerate(self.channels + DERIVED_CHANNELS)}
         self.n_every_step = sum(1 for c in self.channels if not c.slow)  # the first channels
         root = Path(workdir if workdir is not None else tempfile.gettempdir())
-        remove_stale_copies(root)
+        if root not in _SWEPT:  # once per process and folder: a killed process's copies predate this one
+            _SWEPT.add(root)
+            remove_stale_copies(root)
         tmp = Path(
             tempfile.mkdtemp(prefix=f"{COPY_PREFIX}{os.getpid()}-", dir=root)
         ).resolve()  # JSBSim needs absolute paths
