@@ -15,6 +15,20 @@ Rank correlation: Spearman's rho of the two AUC rankings over the cases both hav
 correlation of the ranks, ties given their average rank; Spearman 1904, Am. J. Psychol. 15:72).
 
 Thresholds on the paper's scales: :mod:`~flightmode.detector.activity.scales`.
+
+The AUC's floor (:func:`auc_floor`). A ROC curve rises monotonically from (0, 0) to (1, 1), so one
+that passes through an operating point (FPR f, TPR t) stays at or above t for every FPR >= f: its
+area is at least t (1 - f). The accuracy there is a = pi t + (1 - pi)(1 - f), pi the active share of
+the samples. On that line t (1 - f) is a downward parabola, least at an end (t = 1 or f = 0):
+
+    AUC >= floor(a, pi) = max(0, min((a - pi) / (1 - pi), (a - (1 - pi)) / pi)),
+
+which is 2a - 1 at pi = 1/2 and lower on either side. Seed 001's AUC is taken "at the optimal
+parameters" (section 3.1.2) and its accuracy is the best over thresholds there, so the two columns
+of one case must satisfy it. For a fixed pi the floor is one straight line in a (clipped at 0, a
+convex function), so the mean AUC over runs is at least the floor of the mean accuracy. The paper
+does not print pi; a paper AUC below the floor is impossible for every pi in
+[pi_lo, 1 - pi_lo], pi_lo = (1 - a) / (1 - AUC) (:func:`auc_floor_interval`).
 """
 
 from __future__ import annotations
@@ -123,6 +137,59 @@ def auc_rank_correlation(rows) -> tuple[float, int]:
     return spearman(ours, paper), len(pairs)
 
 
+# ---------------------------------------------------------------- the AUC's floor
+def auc_floor(accuracy, activity_fraction):
+    """The least area of any ROC curve through an operating point of accuracy ``accuracy`` on a
+    record whose active share of samples is ``activity_fraction`` (module docstring); arrays
+    broadcast."""
+    a = np.asarray(accuracy, float)
+    pi = np.asarray(activity_fraction, float)
+    if np.any((pi <= 0) | (pi >= 1)):
+        raise ValueError(f"auc_floor: activity_fraction must be in (0, 1), got {activity_fraction!r}")
+    f = np.maximum(0.0, np.minimum((a - pi) / (1.0 - pi), (a - (1.0 - pi)) / pi))
+    return float(f) if f.ndim == 0 else f
+
+
+def auc_floor_interval(accuracy: float, auc_value: float) -> tuple[float, float] | None:
+    """The active shares pi for which an AUC of ``auc_value`` is below the floor of an operating
+    point of accuracy ``accuracy`` (:func:`auc_floor`): (pi_lo, 1 - pi_lo), or None when no pi makes
+    it impossible (the floor peaks at pi = 1/2 at 2a - 1)."""
+    if auc_value >= 2.0 * accuracy - 1.0:
+        return None
+    lo = (1.0 - accuracy) / (1.0 - auc_value)
+    return lo, 1.0 - lo
+
+
+def auc_floor_table(result) -> list[dict]:
+    """Per case: the paper's accuracy and AUC, the floor its accuracy puts under its AUC at our runs'
+    mean active share, the shares for which its AUC is impossible; our mean AUC and the mean of our
+    runs' floors (each run at its own share: every run's AUC is at or above its floor)."""
+    from flightmode.detector.activity.montecarlo import label, paper_row
+
+    pi = float(np.mean([r["activity_fraction"] for r in result.rows]))
+    out = []
+    for name, signal in result.config.grid.cases():
+        mine = [r for r in result.rows if r["detector"] == name and r["signal"] == signal]
+        p = paper_row(name, signal)
+        ours_floor = auc_floor([r["accuracy"] for r in mine], [r["activity_fraction"] for r in mine])
+        row = {
+            "label": label(name, signal),
+            "pi": pi,
+            "ours_auc": float(np.mean([r["auc"] for r in mine])),
+            "ours_floor": float(np.mean(ours_floor)),
+            "ours_below": int(np.sum(np.array([r["auc"] for r in mine]) < ours_floor - 1e-12)),
+            "paper_accuracy": p.accuracy[0] if p else math.nan,
+            "paper_auc": p.auc if p else math.nan,
+        }
+        if p:
+            row["paper_floor"] = auc_floor(p.accuracy[0], pi)
+            row["paper_impossible_for"] = auc_floor_interval(p.accuracy[0], p.auc)
+        else:
+            row["paper_floor"], row["paper_impossible_for"] = math.nan, None
+        out.append(row)
+    return out
+
+
 # ---------------------------------------------------------------- grid edges
 def grid_edges(result) -> list[dict]:
     """Per case of a :class:`montecarlo.MonteCarloResult`: the grid's window (and shift) range, our
@@ -201,6 +268,30 @@ def format_compare(result) -> str:
             f"{_f(r['paper_threshold_mean'], '.4g'):>9} +- {_f(r['paper_threshold_std'], '.3g'):<7}  "
             f"{sc.unit} ({sc.why})"
         )
+    fl = auc_floor_table(result)
+    out += [
+        "",
+        "AUC floor (any ROC through an operating point of accuracy a, active share pi, has AUC >= "
+        f"min((a - pi)/(1 - pi), (a - 1 + pi)/pi); pi = {fl[0]['pi']:.3f}, our runs' mean):",
+        f"{'case':<11} {'paper acc':>9} {'paper AUC':>9} {'its floor':>9}  {'impossible for pi in':<20} "
+        f"{'our AUC':>8} {'our floor':>9} {'runs below':>10}",
+    ]
+    for r in fl:
+        iv = r["paper_impossible_for"]
+        iv_s = f"[{iv[0]:.3f}, {iv[1]:.3f}]" if iv else "-"
+        out.append(
+            f"{r['label']:<11} {_f(r['paper_accuracy'], '9.4f')} {_f(r['paper_auc'], '9.4f')} "
+            f"{_f(r['paper_floor'], '9.4f')}  {iv_s:<20} {r['ours_auc']:>8.4f} {r['ours_floor']:>9.4f} "
+            f"{r['ours_below']:>10d}"
+        )
+    bad = [r["label"] for r in fl if r["paper_impossible_for"] and r["paper_floor"] > r["paper_auc"]]
+    out.append(
+        f"  the paper's AUC is below the floor of its own accuracy at pi = {fl[0]['pi']:.3f} in {len(bad)} "
+        f"cases{': ' + ', '.join(bad) if bad else ''}"
+    )
+    if bad:
+        rho_ok, k_ok = auc_rank_correlation([r for r in rows if r["label"] not in bad])
+        out.append(f"  AUC ranking without them: Spearman's rho = {_f(rho_ok, '.3f')} over {k_ok} cases")
     out += [
         "",
         "Grid edges: the grid's range, our mean best value, the fraction of runs at the low / high edge, the paper's",
@@ -228,6 +319,9 @@ __all__ = [
     "PAPER_N",
     "PAPER_SCALES",
     "PaperScale",
+    "auc_floor",
+    "auc_floor_interval",
+    "auc_floor_table",
     "auc_rank_correlation",
     "format_compare",
     "grid_edges",

@@ -3,6 +3,8 @@ records, grid-searched as the paper did)."""
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -70,6 +72,18 @@ def activity_synth_cmd(
             "--mbcd-bandwidth", help="One fixed MBCD kernel width for every input (default: Silverman)."
         ),
     ] = None,
+    period_scale: Annotated[
+        float,
+        typer.Option(
+            "--period-scale",
+            help="Scale the still, activity and seated/lying lengths and the record's duration by this "
+            "factor (1: 2-8 s still, 3-10 s active, 120 s records; a record keeps its number of periods).",
+        ),
+    ] = 1.0,
+    detectors: Annotated[
+        str | None,
+        typer.Option("--detectors", help="Comma-separated detectors to grid-search (default: all nine)."),
+    ] = None,
 ) -> None:
     """The activity-detector study's Monte Carlo: N synthesized records, every detector grid-searched.
 
@@ -77,7 +91,7 @@ def activity_synth_cmd(
     1-6 and 13 printed beside the paper's."""
     from flightmode.detector.activity import compare as cmp
     from flightmode.detector.activity import montecarlo as mc
-    from flightmode.detector.activity.synth import ACTIVITIES, FIGURE2_SEQUENCE
+    from flightmode.detector.activity.synth import ACTIVITIES, DEFAULT_RANGES, FIGURE2_SEQUENCE
 
     if n < 1:
         raise ScenarioError(f"--n {n}: the number of runs must be a positive integer")
@@ -89,11 +103,28 @@ def activity_synth_cmd(
         raise ScenarioError(f"--mix {mix}: use uniform or figure2")
     if mix == "figure2" and activities is not None:
         raise ScenarioError("--mix figure2 fixes the activities: drop --activities")
+    if not (math.isfinite(period_scale) and period_scale > 0):
+        raise ScenarioError(f"--period-scale {period_scale}: give a positive factor (1: the default lengths)")
     acts = ACTIVITIES if activities is None else tuple(a.strip() for a in activities.split(",") if a.strip())
     if mix == "figure2":
         acts = FIGURE2_SEQUENCE
+    dets = (
+        {}
+        if detectors is None
+        else {"detectors": tuple(d.strip() for d in detectors.split(",") if d.strip())}
+    )
+    k = period_scale
+    r0 = DEFAULT_RANGES
+    ranges = dataclasses.replace(
+        r0,
+        still_s=(r0.still_s[0] * k, r0.still_s[1] * k),
+        activity_s=(r0.activity_s[0] * k, r0.activity_s[1] * k),
+        posture_rest_s=(r0.posture_rest_s[0] * k, r0.posture_rest_s[1] * k),
+    )
     cfg = mc.MonteCarloConfig(
-        grid=mc.Grid() if grid == "wide" else mc.Grid.narrow(),
+        duration_s=mc.MonteCarloConfig().duration_s * k,
+        ranges=ranges,
+        grid=mc.Grid(**dets) if grid == "wide" else mc.Grid.narrow(**dets),
         alignment=window,
         sigma_acc_g=sigma_acc_g,
         sigma_gyr_dps=sigma_gyr_dps,
@@ -115,6 +146,7 @@ def activity_synth_cmd(
                         "z": cmp.z_table(mc.summary(res), n),
                         "auc_rank_rho": cmp.auc_rank_correlation(mc.summary(res))[0],
                         "edges": cmp.grid_edges(res),
+                        "auc_floor": cmp.auc_floor_table(res),
                     }
                     if compare
                     else {}

@@ -200,3 +200,53 @@ def test_the_wide_grid_holds_every_paper_optimum_inside_it():
         if p.shift is not None:
             lo, hi = e["shift"]
             assert lo <= p.shift[0] < hi, p  # shift 1 is the least there is (LTSD: 1.27-1.78)
+
+
+def test_no_roc_lies_below_the_floor_of_its_best_operating_point_and_the_floor_is_reached():
+    """auc_floor is a theorem about monotone curves: on random merits (including merits unrelated to
+    the truth, merits that rank it backwards and tied merits) the trapezoid AUC of the swept ROC is at
+    least the floor of the best accuracy over thresholds, at the record's own active share. Float
+    sums only: 1e-12. And it is tight: with 40 % active, the ROC (0,0)-(0,t)-(1,t)-(1,1) (the top t of
+    the positives score above every negative, the rest below) has AUC t, and its best accuracy
+    0.4 t + 0.6 has the floor t."""
+    rng = np.random.default_rng(53)
+    for trial in range(300):
+        n = int(rng.integers(20, 400))
+        y = rng.random(n) < rng.uniform(0.1, 0.9)
+        if y.all() or not y.any():
+            continue
+        kind = trial % 3
+        m = rng.normal(size=n) + (rng.uniform(-2.0, 3.0) * y if kind else 0.0)
+        if kind == 2:
+            m = np.round(m, 1)  # ties: diagonal ROC segments
+        s = mc.sweep(m, y)
+        fpr, tpr = mc.roc_curve(m, y)
+        assert mc.auc(fpr, tpr) >= cmp.auc_floor(float(s.accuracy.max()), float(y.mean())) - 1e-12, trial
+    y = np.array([True] * 40 + [False] * 60)
+    m = np.concatenate([np.full(30, 2.0), np.full(10, 0.0), np.full(60, 1.0)])  # t = 30/40
+    s = mc.sweep(m, y)
+    fpr, tpr = mc.roc_curve(m, y)
+    assert mc.auc(fpr, tpr) == pytest.approx(0.75, abs=1e-12)
+    assert float(s.accuracy.max()) == pytest.approx(0.9) and cmp.auc_floor(0.9, 0.4) == pytest.approx(0.75)
+    assert cmp.auc_floor(0.9, 0.5) == pytest.approx(0.8) and cmp.auc_floor(0.3, 0.5) == 0.0
+    with pytest.raises(ValueError, match="activity_fraction"):
+        cmp.auc_floor(0.9, 1.0)
+
+
+def test_five_of_the_papers_aucs_are_below_the_floor_of_its_own_accuracies():
+    """Seed 001's Table 13 against its Tables 2-4: FSD-Ang/Sum/Prod, LTSD-Ang and MBGTD-Ang have an
+    AUC no ROC through an operating point of their printed accuracy can have, at any active share
+    between 0.352 and 0.648 (our Figure-2-sequence runs: 0.355-0.558 per run, 0.452 on average, in
+    docs/seed001_tables_n500.txt); every other case is possible at every share. The interval's end is
+    (1 - a) / (1 - AUC) (MBGTD-Ang: 0.0886 / 0.2522 = 0.3513)."""
+    bad = {}
+    for p in mc.PAPER_TABLES:
+        iv = cmp.auc_floor_interval(p.accuracy[0], p.auc)
+        if iv is not None:
+            bad[mc.label(p.detector, p.signal)] = iv
+            assert cmp.auc_floor(p.accuracy[0], 0.5) > p.auc
+            assert cmp.auc_floor(p.accuracy[0], iv[0]) == pytest.approx(p.auc, abs=1e-12)
+        else:
+            assert all(cmp.auc_floor(p.accuracy[0], pi) <= p.auc for pi in np.linspace(0.01, 0.99, 99))
+    assert sorted(bad) == sorted(["FSD-Ang.", "FSD-Sum", "FSD-Prod", "LTSD-Ang.", "MBGTD-Ang."])
+    assert max(lo for lo, _ in bad.values()) == pytest.approx(0.0886 / 0.2522, abs=1e-4)

@@ -239,3 +239,31 @@ def test_the_cli_runs_the_study_and_prints_the_paper_beside_it(tmp_path):
     assert (
         r.exit_code == 2 and r.output.strip() == "error: --n 0: the number of runs must be a positive integer"
     )
+
+
+def test_the_cli_scales_the_periods_and_restricts_the_detectors(tmp_path):
+    """--period-scale k multiplies the still, activity and seated/lying ranges and the record's length
+    by k and nothing else (the study's config in results.json); --detectors grid-searches only those;
+    a bad factor or detector is one line, exit 2."""
+    from typer.testing import CliRunner
+
+    from flightmode.cli.main import app
+    from flightmode.detector.activity.synth import DEFAULT_RANGES
+
+    base = ["activity", "synth", "--n", "1", "--detectors", "amd,shod", "--window", "centred", "--json"]
+    r = CliRunner().invoke(app, [*base, "--period-scale", "4", "--out", str(tmp_path / "x4")])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.output[r.output.index("{") :])
+    assert [t["label"] for t in d["tables"]] == ["AMD", "SHOD"]
+    with open(tmp_path / "x4" / "results.json") as f:
+        cfg = json.load(f)["config"]
+    assert cfg["duration_s"] == 480.0
+    for name, v in cfg["ranges"].items():
+        v0 = getattr(DEFAULT_RANGES, name)
+        k = 4.0 if name in ("still_s", "activity_s", "posture_rest_s") else 1.0
+        assert v == [v0[0] * k, v0[1] * k], name
+    for bad, msg in (("0", "--period-scale 0.0"), ("nan", "--period-scale nan")):
+        r = CliRunner().invoke(app, ["activity", "synth", "--n", "1", "--period-scale", bad])
+        assert r.exit_code == 2 and r.output.strip().startswith(f"error: {msg}"), r.output
+    r = CliRunner().invoke(app, ["activity", "synth", "--n", "1", "--detectors", "amdx"])
+    assert r.exit_code == 2 and 'did you mean "amd"' in r.output
