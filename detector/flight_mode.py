@@ -105,9 +105,9 @@ def final_static(temporary: np.ndarray, after_reset: np.ndarray, need: int, carr
     return temp & (run >= need)
 
 
-# calibration blocks: 10 windows (10 s at the recommended 1 s window). A block keeps the noise's
-# low-frequency part (its mean takes 2.3 % of sigma^2 for the LIS302DL's coloured noise, 0.1 % for
-# white), and one knock or a bag set down differently loses one block, not the estimate
+# calibration blocks: 10 windows (10 s at the recommended 1 s window). A block's own mean takes only
+# 1/N of sigma^2 (0.1 % for the LIS302DL's white noise at 100 Hz) and averages the noise's wandering
+# amplitude over ten windows, and one knock or a bag set down differently loses one block, not the estimate
 CALIBRATION_BLOCK_WINDOWS = 10
 # a quiet block's variance is within a few per cent of the median block's; 5 times it is a knock or
 # a change of orientation inside the block, never noise
@@ -122,10 +122,10 @@ def calibrate_sigma2(acc_g: np.ndarray, window: int, lsb_g: float | None = None)
     axis is dropped (a disturbance: somebody knocked the bench, the bag was set down differently),
     and sigma^2 is the mean variance of the blocks kept.
 
-    Not the median of 1 s window variances: the static noise is coloured (its Gauss-Markov part,
-    :mod:`~flightmode.sim.sensor.accelerometer`), so a 1 s window loses a fifth of the variance to its
-    own mean and the median of a skewed distribution sits lower still, at 0.74 sigma^2, while the
-    thresholds k sigma^2 of Table 2 are multiples of the noise variance itself.
+    Not the median of 1 s window variances: the static noise's amplitude wanders
+    (:mod:`~flightmode.sim.sensor.accelerometer`), so the 1 s variances are skewed (spread 0.37
+    sigma^2) and their median sits at 0.94 sigma^2, while the thresholds k sigma^2 of Table 2 are
+    multiples of the noise variance itself.
 
     Quantised output: a native 8-bit LIS302DL at rest can output a constant count, so the measured
     variance may be (nearly) zero and a threshold k sigma^2 would then be zero too (every check

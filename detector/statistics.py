@@ -22,14 +22,16 @@ Coloured noise (:func:`nmv_moments_acov`, :func:`pm_acov`): for a stationary Gau
 autocovariance r(m) the MV is a quadratic form, MV = x^T C x / N with C = I - 1 1^T / N (the
 centring projector), so its mean and variance follow from r(m) exactly and its distribution is a
 weighted sum of chi-square(1) variables with weights the eigenvalues of C R C / N (R the Toeplitz
-matrix of r). sim.sensor.accelerometer's coloured LIS302DL noise (white + Gauss-Markov) is fitted
-with these to the spread Table 2 implies (tests/sim/test_noise_colour.py).
+matrix of r). No stationary Gaussian noise fits seed 000's Tables 2 and 3 together (the spread
+needs correlation, the flat Table 3 forbids it): sim.sensor.accelerometer's LIS302DL noise is white
+with a wandering amplitude (:func:`nmv_moments_am` its moments, exact; :func:`pm_am` its P_M,
+conditional on the amplitude a quadratic form as above, the amplitude sampled), fitted with these to
+Table 2's spread (tests/sim/test_noise_colour.py).
 
-Section 5.1.1's steps as functions: eq. 13 inverted (:func:`k_of_pm_gaussian`), the exact threshold of
-a coloured noise (:func:`k_of_pm_acov`), and the last step, "if not [P_FA below the maximum], then
-P_M is increased and a new MV threshold is computed" (:func:`threshold_for_pfa`, any k(P_M) and
-P_FA(k) passed in). White noise whose variance varies between windows (:func:`pm_variance_mixture`)
-is the what-if beside it: Table 2's spread with a white spectrum (seed 000 Table 3; flightmode seeds 000).
+Section 5.1.1's steps as functions: eq. 13 inverted (:func:`k_of_pm_gaussian`), the threshold of a
+coloured or modulated noise (:func:`k_of_pm_acov`, :func:`k_of_pm_am`), and the last step, "if not
+[P_FA below the maximum], then P_M is increased and a new MV threshold is computed"
+(:func:`threshold_for_pfa`, any k(P_M) and P_FA(k) passed in).
 """
 
 from __future__ import annotations
@@ -133,9 +135,8 @@ def pm_acov(threshold: float, acov: np.ndarray, n: int) -> float:
 
     numerically exact to the quadrature's ~1e-10 absolute error. Below 1e-8, where that error would
     show, the Lugannani-Rice saddlepoint formula (Butler, "Saddlepoint Approximations with
-    Applications", 2007, eq. 1.21) takes over: for the LIS302DL presets' coloured noise it is within
-    4 % of Imhof from P 5e-3 to 4e-6 (tests/sim/test_noise_colour.py), for white noise within
-    0.02 % of the exact chi-square."""
+    Applications", 2007, eq. 1.21) takes over: for white noise it is within 0.02 % of the exact
+    chi-square below 1e-8 (0.6 % at 1e-3 to 1e-6, tests/sim/test_noise_colour.py)."""
     lam = _mv_weights(acov, n)
     scale = float(lam.sum())  # work in units of the MV mean
     lam, t = lam / scale, threshold / scale
@@ -224,29 +225,176 @@ def threshold_for_pfa(
         i += 1
 
 
-def mixture_cv_for_spread(spread: float, n: int) -> float:
-    """The coefficient of variation of a window-to-window noise variance v (white noise within a
-    window) that gives the N-sample NMV the relative spread ``spread`` (sigma_MV / E[MV]):
-    MV = v S with S = chi2_{N-1} / N independent of v, so (spread^2 + 1) = (1 + cv^2)(1 + 2/(N - 1))."""
-    c2 = (1.0 + spread**2) / (1.0 + 2.0 / (n - 1)) - 1.0
-    if c2 < 0:
-        raise DetectorError(
-            f"spread {spread:g} is below white noise's sqrt(2/(N-1)) = {math.sqrt(2 / (n - 1)):.3f}"
-        )
-    return math.sqrt(c2)
+def _am_cov_a2(depth: float, phi: float, n: int) -> np.ndarray:
+    """cov(a_j^2, a_k^2) at lags 0..n-1 of the amplitude a = (1 + depth g) / sqrt(1 + depth^2), g a
+    unit stationary AR(1) of coefficient ``phi``: (4 d^2 rho + 2 d^4 rho^2) / (1 + d^2)^2, rho = phi^m
+    (g_j, g_k jointly Gaussian: cov(g_j, g_k^2) = 0, cov(g_j^2, g_k^2) = 2 rho^2)."""
+    rho = phi ** np.arange(n, dtype=float)
+    return (4.0 * depth**2 * rho + 2.0 * depth**4 * rho**2) / (1.0 + depth**2) ** 2
 
 
-def pm_variance_mixture(k: float, n: int, cv: float) -> float:
-    """P(MV >= k sigma^2) for white Gaussian noise whose variance varies from window to window as a
-    gamma variable of mean sigma^2 and coefficient of variation ``cv`` (0: :func:`pm_exact`):
-    E_v[P(chi2_{N-1} >= N k / v)]. Its spectrum stays white and its mean MV (N-1)/N sigma^2 at every
-    window, while its spread grows with cv (:func:`mixture_cv_for_spread`)."""
-    from scipy.integrate import quad
-    from scipy.stats import gamma
+def nmv_moments_am(n: int, depth: float, phi: float) -> tuple[float, float]:
+    """Mean and standard deviation of the N-sample NMV (1/N, seed 000 eq. 1) of amplitude-modulated
+    white noise x_k = a_k w_k (w white, unit variance; a as :func:`_am_cov_a2`, E[a^2] = 1), in units
+    of its variance. With Q = x^T C x = N MV and c(m) = cov(a_j^2, a_{j+m}^2):
 
-    if cv == 0:
-        return pm_exact(k, n)
-    a = 1.0 / cv**2
-    f = lambda v: gamma.pdf(v, a, scale=1.0 / a) * chi2.sf(n * k / v, n - 1)  # noqa: E731
-    hi = float(gamma.isf(1e-30, a, scale=1.0 / a))
-    return float(quad(f, 1e-12, hi, limit=500, points=[1.0, k], epsabs=1e-40, epsrel=1e-9)[0])
+        E[Q]   = N - 1                                  (the carrier is white: any modulation)
+        var[Q] = 2 sum_jk C_jk^2 (1 + c(j-k)) + (1 - 1/N)^2 sum_jk c(j-k),
+
+    the first term E[var(Q | a)] = E[2 tr((C A^2)^2)], the second var(E[Q | a]) = var(tr(C A^2)).
+    depth 0 gives :func:`nmv_moments`."""
+    c = _am_cov_a2(depth, phi, n)
+    lags = np.arange(n)
+    mult = np.where(lags == 0, n, 2 * (n - lags)).astype(float)  # pairs (j, k) at |j - k| = m
+    sum_c = float((mult * c).sum())
+    diag = (1.0 - 1.0 / n) ** 2
+    off = 1.0 / n**2
+    # sum_jk C_jk^2 (1 + c): the diagonal (m = 0) carries (1 - 1/N)^2, every other pair 1/N^2
+    first = n * diag * (1.0 + c[0]) + off * float((mult[1:] * (1.0 + c[1:])).sum())
+    var_q = 2.0 * first + diag * sum_c
+    return (n - 1) / n, math.sqrt(var_q) / n
+
+
+def nmv_lag1_am(n: int, depth: float, phi: float) -> float:
+    """Correlation of two consecutive non-overlapping N-sample NMVs of amplitude-modulated white
+    noise (:func:`nmv_moments_am`): given the amplitude the two windows' carriers are independent,
+    so cov(Q1, Q2) = cov(E[Q1 | a], E[Q2 | a]) = (1 - 1/N)^2 sum_{j in 1, k in 2} c(k - j), the pairs
+    at lag m across the boundary numbering min(m, 2N - m)."""
+    c = _am_cov_a2(depth, phi, 2 * n)
+    m = np.arange(1, 2 * n)
+    cross = float((c[1:] * np.minimum(m, 2 * n - m)).sum())
+    sd = nmv_moments_am(n, depth, phi)[1] * n
+    return (1.0 - 1.0 / n) ** 2 * cross / sd**2
+
+
+def am_depth_for_spread(spread: float, n: int, phi: float) -> float:
+    """The modulation depth whose N-sample NMV has the relative spread ``spread`` (sigma_MV / E[MV],
+    :func:`nmv_moments_am`); at least white noise's sqrt(2 / (N - 1))."""
+    white = nmv_moments(n)[1] / nmv_moments(n)[0]
+    if spread <= white:
+        raise DetectorError(f"spread {spread:g} is below white noise's {white:.3f}")
+
+    def f(d):
+        m, s = nmv_moments_am(n, d, phi)
+        return s / m - spread
+
+    hi = 1.0
+    while f(hi) < 0:
+        hi *= 2.0
+        if hi > 1e3:
+            raise DetectorError(f"spread {spread:g}: no modulation depth reaches it at phi {phi:g}")
+    return float(brentq(f, 0.0, hi, xtol=1e-12))
+
+
+def am_paths(
+    n: int, depth: float, phi: float, paths: int, rng: np.random.Generator, shift: float = 0.0
+) -> np.ndarray:
+    """``paths`` stationary amplitude sequences of length n, (paths, n), as the sensor draws them
+    (:mod:`flightmode.sim.sensor.accelerometer`): g[0] ~ N(0, 1), g[k] = phi g[k-1] +
+    sqrt(1 - phi^2) e[k], a = (1 + depth g) / sqrt(1 + depth^2); ``shift`` adds a constant to g
+    (the importance-sampling proposals of :func:`pm_am`)."""
+    return (1.0 + depth * (_ar1_paths(n, phi, paths, rng) + shift)) / math.sqrt(1.0 + depth**2)
+
+
+def _ar1_paths(n: int, phi: float, paths: int, rng: np.random.Generator) -> np.ndarray:
+    from scipy.signal import lfilter
+
+    g0 = rng.standard_normal((paths, 1))
+    e = rng.standard_normal((paths, n - 1)) * math.sqrt(1.0 - phi**2)
+    return np.concatenate([g0, lfilter([1.0], [1.0, -phi], e, axis=1, zi=phi * g0)[0]], axis=1)
+
+
+def _saddlepoint_rows(lam: np.ndarray, t: float) -> np.ndarray:
+    """Lugannani-Rice P(sum_j lam_ij chi2_1 >= t) for every row i of ``lam`` (all weights > 0):
+    :func:`pm_saddlepoint` vectorised, the saddlepoint found by bisection on every row at once (K' is
+    increasing on (-inf, 1 / (2 max lam)); a t below a row's mean puts its saddlepoint below 0)."""
+    lam = np.asarray(lam, float)
+    hi = 0.5 / lam.max(axis=1) * (1.0 - 1e-13)
+    lo = np.full(lam.shape[0], -lam.shape[1] / t)  # K'(lo) < (N - 1) / (2 |lo|) <= t / 2
+    for _ in range(64):  # the bracket, under 1e3 wide, to 1e-16 (double precision's grain)
+        mid = 0.5 * (lo + hi)
+        below = (lam / (1.0 - 2.0 * lam * mid[:, None])).sum(axis=1) < t
+        lo = np.where(below, mid, lo)
+        hi = np.where(below, hi, mid)
+    s = 0.5 * (lo + hi)
+    one = 1.0 - 2.0 * lam * s[:, None]
+    k0 = -0.5 * np.log(one).sum(axis=1)
+    k2 = (2.0 * lam**2 / one**2).sum(axis=1)
+    w = np.sign(s) * np.sqrt(np.maximum(2.0 * (s * t - k0), 0.0))
+    v = s * np.sqrt(k2)
+    near = np.abs(v) < 1e-6  # at the mean the formula is 0/0: its limit, 1/2 - K3 / (6 sqrt(2 pi) K2^1.5)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = norm.sf(w) + norm.pdf(w) * (1.0 / v - 1.0 / w)
+    if near.any():
+        k3 = (8.0 * lam**3).sum(axis=1)
+        p = np.where(near, 0.5 - k3 / (6.0 * math.sqrt(2.0 * math.pi) * k2**1.5), p)
+    return np.clip(p, 0.0, 1.0)
+
+
+# defensive mixture importance sampling (Hesterberg, Technometrics 37, 1995): the tail of the NMV
+# comes from windows whose amplitude stays high, so paths are drawn in equal shares with g's mean
+# shifted by each of these (units of its sd; 0 keeps the plain draw in the mixture)
+AM_SHIFTS: tuple[float, ...] = (0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
+_AM_WEIGHTS: dict = {}
+
+
+def _am_weights(n: int, depth: float, phi: float, paths: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """(conditional weights (paths, N - 1), likelihood ratios (paths,)) of :func:`pm_am`; the last
+    four sets are kept (a threshold search calls pm_am with the same paths many times). The ratio of a
+    path g is p(g) / sum_j (1/J) q_j(g), q_j the AR(1) law with mean ``AM_SHIFTS[j]``: for a
+    stationary AR(1) of unit variance, log q_j/p = mu_j u - mu_j^2 c / 2 with u = 1' Sigma^-1 g and
+    c = 1' Sigma^-1 1, Sigma^-1 tridiagonal (1' Sigma^-1 = (1 - phi) [1, 1 - phi, ..., 1 - phi, 1]
+    / (1 - phi^2))."""
+    key = (n, depth, phi, paths, seed)
+    if key not in _AM_WEIGHTS:
+        rng = np.random.default_rng(seed)
+        mus = np.asarray(AM_SHIFTS)
+        per = -(-paths // mus.size)
+        g = np.concatenate([_ar1_paths(n, phi, per, rng) + mu for mu in mus])
+        row = np.full(n, (1.0 - phi) ** 2)
+        row[0] = row[-1] = 1.0 - phi
+        row /= 1.0 - phi**2
+        u, c = g @ row, float(row.sum())
+        log_q_over_p = mus[None, :] * u[:, None] - 0.5 * mus[None, :] ** 2 * c
+        ratio = 1.0 / np.exp(log_q_over_p).mean(axis=1)
+        a = (1.0 + depth * g) / math.sqrt(1.0 + depth**2)
+        cm = np.eye(n) - 1.0 / n
+        lam = np.linalg.eigvalsh(a[:, :, None] * cm[None] * a[:, None, :])[:, 1:] / n
+        if len(_AM_WEIGHTS) >= 4:
+            _AM_WEIGHTS.pop(next(iter(_AM_WEIGHTS)))
+        _AM_WEIGHTS[key] = (np.maximum(lam, 1e-300), ratio)  # the centring's zero eigenvalue dropped
+    return _AM_WEIGHTS[key]
+
+
+def pm_am(
+    k: float, n: int, depth: float, phi: float, paths: int = 4096, seed: int = 0
+) -> tuple[float, float]:
+    """P(MV >= k sigma^2) for the N-sample NMV of amplitude-modulated white noise (units of its
+    variance sigma^2) and the standard error of that estimate: (P_M, SE). Conditional on an
+    amplitude path a, the NMV is a Gaussian quadratic form, sum_j l_j chi2_1 with l the nonzero
+    eigenvalues of A C A / N (A = diag(a)); its tail is the Lugannani-Rice saddlepoint
+    (:func:`pm_saddlepoint`), averaged over ``paths`` amplitude paths drawn from ``seed``
+    (Rao-Blackwellised Monte Carlo: the carrier's randomness is integrated exactly, only the
+    modulation's is sampled, with the mixture importance sampling of ``AM_SHIFTS``). The same seed
+    gives the same paths at every k, so k -> P_M is smooth (:func:`k_of_pm_am`). Depth 0 is white
+    noise: :func:`pm_exact`, SE 0."""
+    if depth == 0:
+        return pm_exact(k, n), 0.0
+    lam, ratio = _am_weights(n, depth, phi, paths, seed)
+    p = _saddlepoint_rows(lam, k) * ratio
+    return float(p.mean()), float(p.std(ddof=1) / math.sqrt(p.size))
+
+
+def k_of_pm_am(pm: float, n: int, depth: float, phi: float, paths: int = 4096, seed: int = 0) -> float:
+    """The threshold k (units of sigma^2) with P(MV >= k sigma^2) = ``pm`` (:func:`pm_am`, its paths
+    fixed by ``seed``)."""
+    if not 0.0 < pm < 0.5:
+        raise DetectorError(f"P_M = {pm:g}: the threshold needs 0 < P_M < 0.5 (above the MV mean)")
+
+    def f(k):
+        return math.log(max(pm_am(k, n, depth, phi, paths, seed)[0], 1e-300)) - math.log(pm)
+
+    lo, hi = 1.0, 2.0
+    while f(hi) > 0:
+        lo, hi = hi, hi * 2.0
+    return float(brentq(f, lo, hi, xtol=1e-9))

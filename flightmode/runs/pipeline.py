@@ -354,7 +354,7 @@ def drift_laws_m(recording: Recording, span_s: float) -> tuple[float, float]:
     from flightmode.sim.sensor.accelerometer import get_preset, noise_random_walk_sigma_g
     from flightmode.units import G0_MPS2
 
-    # the noise's density at 0 Hz (its coloured part included) is what integrates into a random walk
+    # the noise's density at 0 Hz is what integrates into a random walk (white: noise_g at the ODR)
     noise = noise_random_walk_sigma_g(get_preset(recording.preset)) * G0_MPS2
     law = float(predicted_random_walk_m(noise, recording.odr_hz, span_s)) if noise > 0 else math.nan
     offset = float(np.linalg.norm(recording.unit["offset_g"])) * G0_MPS2

@@ -7,32 +7,31 @@ perfect unit of the preset lying still, one hour at the preset's rate (3,600 one
 axis), sigma^2 measured from it as a tracker would (:func:`~flightmode.detector.flight_mode.calibrate_sigma2`).
 
 - **Table 2**, three ways: the paper's P_M; eq. 13 with the mean and spread of our measured 1 s NMVs
-  (units of the measured sigma^2); the exact P_M of our noise model (the LIS302DL presets' white +
-  Gauss-Markov noise: the NMV is a Gaussian quadratic form, :func:`~flightmode.detector.statistics.pm_acov`).
-  The Gaussian approximation's error is their ratio. The measured fraction (Monte Carlo) is shown
-  beside the exact value where the hour resolves it.
+  (units of the measured sigma^2); the P_M of our noise model (the LIS302DL presets' white noise with
+  a modulated amplitude, :mod:`~flightmode.sim.sensor.accelerometer`: conditional on the amplitude the
+  NMV is a Gaussian quadratic form, integrated exactly; the amplitude is Monte Carlo,
+  :func:`~flightmode.detector.statistics.pm_am`, with its standard error). The Gaussian
+  approximation's error is their ratio. The measured fraction is shown beside it where the hour
+  resolves it, and the white chi-square and the white + Gauss-Markov model this one replaced beside
+  those.
 - **Table 3**: the mean NMV against the window on the same data, with the definitions that could
-  move it: 1/N (eq. 1) or 1/(N - 1) normalisation, sigma^2 as the noise variance or as the mean 1 s
-  NMV (section 4.1 reads sigma^2 off the 1 s NMV), white noise, the native 8-bit part.
-  Finding: the paper's 1.2 sigma^2 at 0.5 s is out of reach of every definition. A stationary noise's
-  mean NMV is r(0) - var(window mean) <= sigma^2 with eq. 1's 1/N, and at most N/(N-1) sigma^2 =
-  1.02 sigma^2 (N = 50) with 1/(N-1); sigma^2 read off the 1 s NMV makes 0.5 s smaller still (0.84:
-  the mean loses more of a shorter window); quantisation (the native 8-bit part) moves the level, not
-  the direction. The cell is one significant digit (0.55-0.65) and the text says the 0.5 s trace is
-  "slightly noisier": read off a plot, not a mean. The 1-3 s cells (1.00, 1.02, 1.02, i.e. within
-  +-0.01 of flat) are the model's to match, and ours are not: the Gauss-Markov part fitted to Table
-  2's spread loses 19 % of sigma^2 to a 1 s window's mean and rises 15 % from 1 to 3 s. White noise
-  whose variance varies from window to window (:func:`~flightmode.detector.statistics.pm_variance_mixture`,
-  CV 0.34) has the same Table 2 spread, a white spectrum (section 4.1, Fig. 4) and a flat Table 3
-  (the white column): the candidate if the noise model is revisited (it is not changed here: the
-  sensor tests pin the Gauss-Markov fit and every recording would change).
+  move it: 1/N (eq. 1) or 1/(N - 1) normalisation, white noise, the Gauss-Markov model before issue
+  53, the native 8-bit part. The 1-3 s cells (1.00, 1.02, 1.02 sigma^2: flat within 2 %) are the
+  model's to match: ours (0.990, 0.995, 0.997) do, the Gauss-Markov model's (0.81, 0.90, 0.93) did
+  not, and that is why the noise model changed in issue 53 (a correlated Gaussian noise loses part of
+  its variance to a short window's mean; a white carrier loses (N-1)/N at every window, whatever
+  its amplitude does). The paper's 1.2 sigma^2 at 0.5 s is out of reach of every definition: a
+  stationary noise's mean NMV is r(0) - var(window mean) <= sigma^2 with eq. 1's 1/N, and at most
+  N/(N-1) sigma^2 = 1.02 sigma^2 (N = 50) with 1/(N-1); quantisation (the native 8-bit part) moves
+  the level, not the direction. The cell is one significant digit (0.55-0.65) and the text says the
+  0.5 s trace is "slightly noisier": read off a plot, not a mean.
 - **Table 9** at its rate: the bench model sampled at 64 Hz (the 60-70 Hz band's only rate giving
   N = 64, a power of two, at W_s = 1 s; the LIS302DL itself offers only 100 and 400 Hz: a tracker
   would decimate), its P_M at 2.5 and 4 sigma^2, the EMV weights Table 9 allows there, the LE bounds.
   :func:`table9_flight` senses a flown run again at 66.7 Hz (the sensing's 800 Hz over 12; 64 Hz does
   not divide it) and at its own rate, and tabulates P_FA at Table 9's thresholds for both.
-- **Section 5.1.1's loop** (:func:`~flightmode.detector.statistics.threshold_for_pfa`) on the exact
-  k(P_M) of our noise and the paper's flight-2 P_FA (Table 5, T_th 4 s), from Table 9's P_M 6e-19 to
+- **Section 5.1.1's loop** (:func:`~flightmode.detector.statistics.threshold_for_pfa`) on the
+  k(P_M) of our noise (:func:`~flightmode.detector.statistics.k_of_pm_am`) and the paper's flight-2 P_FA (Table 5, T_th 4 s), from Table 9's P_M 6e-19 to
   Table 9's P_FA 3e-10.
 """
 
@@ -67,27 +66,33 @@ def window_mvs(acc_g: np.ndarray, n: int, ddof: int = 0) -> np.ndarray:
     return acc_g[: m * n].reshape(m, n, -1).var(axis=1, ddof=ddof)
 
 
+# The noise model before issue 53 (white + first-order Gauss-Markov, fitted to Table 2's spread alone):
+# kept as a what-if column beside ours, so the tables show why it was replaced (module docstring)
+GM_BEFORE = {"fraction": 0.77, "tau_s": 0.146}
+
+
+def gm_before_acov(fs_hz: float, n: int) -> np.ndarray:
+    """Autocovariance (units of sigma^2) of the Gauss-Markov model used before issue 53 at ``fs_hz``:
+    (1 - q) delta(m) + q phi^|m|, phi = exp(-1 / (fs tau))."""
+    q, phi = GM_BEFORE["fraction"], math.exp(-1.0 / (fs_hz * GM_BEFORE["tau_s"]))
+    r = q * phi ** np.arange(n, dtype=float)
+    r[0] = 1.0
+    return r
+
+
 def table2(acc_g: np.ndarray, preset, sigma2: np.ndarray, window_s: float = 1.0) -> list[dict]:
     """Table 2 three ways (module docstring), per axis pooled (the three axes' noise is alike)."""
     from flightmode.detector.seed000 import TABLE2
-    from flightmode.detector.statistics import (
-        mixture_cv_for_spread,
-        pm_acov,
-        pm_exact,
-        pm_gaussian,
-        pm_variance_mixture,
-    )
-    from flightmode.sim.sensor.accelerometer import noise_autocovariance_g2
+    from flightmode.detector.statistics import pm_acov, pm_am, pm_exact, pm_gaussian
 
     n = int(round(window_s * preset.odr_hz))
     v = window_mvs(acc_g, n) / sigma2[None, :]  # units of the measured sigma^2
     mu, sd = float(v.mean()), float(v.std(axis=0).mean())
-    acov = noise_autocovariance_g2(preset, n)
-    cv = mixture_cv_for_spread(sd / mu, n)  # the what-if: white noise, variance varying, same spread
+    gm = gm_before_acov(preset.odr_hz, n)
     rows = []
     for k, (pm_paper, time_error) in TABLE2.items():
         pg = pm_gaussian(k, n, sigma_mv=sd, mu=mu)
-        pe = pm_acov(k * acov[0], acov, n)
+        pe, pe_se = pm_am(k, n, preset.noise_am_depth, preset.noise_am_phi)
         hits = int((v >= k).sum())
         rows.append(
             {
@@ -96,10 +101,10 @@ def table2(acc_g: np.ndarray, preset, sigma2: np.ndarray, window_s: float = 1.0)
                 "paper_time_error": time_error,
                 "eq13_measured_P_M": pg,
                 "exact_P_M": pe,
+                "exact_P_M_se": pe_se,
                 "gaussian_over_exact": pg / pe,
                 "white_exact_P_M": pm_exact(k, n),
-                "mixture_P_M": pm_variance_mixture(k, n, cv),  # T = k x its noise variance
-                "mixture_cv": cv,
+                "gm_before_P_M": pm_acov(k, gm, n),
                 "measured_P_M": hits / v.size,
                 "measured_hits": hits,
                 "checks": int(v.size),
@@ -115,13 +120,11 @@ def table3(acc_g: np.ndarray, preset, sigma2: np.ndarray, native_g: np.ndarray |
     """Table 3 with the definitions beside it (module docstring); all in units of sigma^2."""
     from flightmode.detector.flight_mode import calibrate_sigma2
     from flightmode.detector.seed000 import TABLE3
-    from flightmode.detector.statistics import nmv_moments_acov
-    from flightmode.sim.sensor.accelerometer import noise_autocovariance_g2
+    from flightmode.detector.statistics import nmv_moments_acov, nmv_moments_am
 
     fs = preset.odr_hz
     n1 = int(round(fs))
-    acov = noise_autocovariance_g2(preset, int(round(max(WINDOWS_S) * fs)))
-    exact_1s = nmv_moments_acov(acov, n1)[0] / acov[0]
+    gm = gm_before_acov(fs, int(round(max(WINDOWS_S) * fs)))
     native = None
     if native_g is not None:
         from flightmode.sim.sensor.accelerometer import get_preset
@@ -131,14 +134,14 @@ def table3(acc_g: np.ndarray, preset, sigma2: np.ndarray, native_g: np.ndarray |
     rows = []
     for w in WINDOWS_S:
         n = int(round(w * fs))
-        exact = nmv_moments_acov(acov, n)[0] / acov[0]
+        exact = nmv_moments_am(n, preset.noise_am_depth, preset.noise_am_phi)[0]
         row = {
             "window_s": w,
             "paper": TABLE3[w],
             "measured": float((window_mvs(acc_g, n) / sigma2[None, :]).mean()),
             "exact": exact,
             "exact_unbiased": exact * n / (n - 1),  # 1/(N - 1) normalisation
-            "exact_per_1s_mean": exact / exact_1s,  # sigma^2 := the mean 1 s NMV (section 4.1)
+            "gm_before": nmv_moments_acov(gm, n)[0],
             "white": (n - 1) / n,
         }
         if native is not None:
@@ -151,17 +154,15 @@ def table9(seed: int = 1) -> dict:
     """Table 9's rate: the bench model at 64 Hz (module docstring)."""
     from flightmode.detector.flight_mode import calibrate_sigma2
     from flightmode.detector.seed000 import TABLE9_BITS, emv_les, nmv_les, power_of_two_weights
-    from flightmode.detector.statistics import pm_acov
-    from flightmode.sim.sensor.accelerometer import noise_autocovariance_g2
+    from flightmode.detector.statistics import pm_am
 
     acc, p = bench(fs_hz=TABLE9_FS_HZ, seed=seed)
     n = int(round(p.odr_hz))  # W_s = 1 s
     s2 = calibrate_sigma2(acc, n, p.lsb_g)
     v = window_mvs(acc, n) / s2[None, :]
-    acov = noise_autocovariance_g2(p, n)
     out = {"fs_hz": p.odr_hz, "n": n, "checks": int(v.size), "mean_mv": float(v.mean())}
     for k in (2.5, 4.0):
-        out[f"exact_P_M_{k:g}"] = pm_acov(k * acov[0], acov, n)
+        out[f"exact_P_M_{k:g}"] = pm_am(k, n, p.noise_am_depth, p.noise_am_phi)[0]
         out[f"measured_P_M_{k:g}"] = float((v >= k).mean())
     out["emv_weights"] = power_of_two_weights(n)
     lo, hi = TABLE9_BITS
@@ -174,11 +175,9 @@ def loop_5_1_1(preset, window_s: float = 1.0) -> dict:
     """Section 5.1.1's loop (module docstring): P_FA(k) log-linear between Table 5's cells (T_th
     4 s; outside 3-5 sigma^2 the end segments extended)."""
     from flightmode.detector.seed000 import PFA_KS, TABLE9, TABLES_4_5
-    from flightmode.detector.statistics import k_of_pm_acov, threshold_for_pfa
-    from flightmode.sim.sensor.accelerometer import noise_autocovariance_g2
+    from flightmode.detector.statistics import k_of_pm_am, threshold_for_pfa
 
     n = int(round(window_s * preset.odr_hz))
-    acov = noise_autocovariance_g2(preset, n)
     logp = [math.log10(r[1]) for r in TABLES_4_5[5]["P_FA"]]
 
     def pfa_of_k(k: float) -> float:
@@ -188,7 +187,8 @@ def loop_5_1_1(preset, window_s: float = 1.0) -> dict:
 
     pfa_max = float(TABLE9["P_FA"].split()[-1])
     pm_start = float(TABLE9["P_M"].split()[-1])
-    return threshold_for_pfa(lambda pm: k_of_pm_acov(pm, acov, n), pfa_of_k, pm_start, pfa_max) | {
+    d, phi = preset.noise_am_depth, preset.noise_am_phi
+    return threshold_for_pfa(lambda pm: k_of_pm_am(pm, n, d, phi), pfa_of_k, pm_start, pfa_max) | {
         "pfa_max": pfa_max
     }
 
@@ -233,23 +233,23 @@ def format_tables(r: dict) -> str:
         f"{t2[0]['checks']} checks; measured mu {t2[0]['mu']:.3f}, sigma_MV {t2[0]['sigma_mv']:.3f} sigma^2)"
     )
     out.append(
-        "  T_sigma | paper P_M (TimeError) | eq.13 measured moments | exact (our noise) | eq13/exact | measured"
-        " | white exact | white, varying variance"
+        "  T_sigma | paper P_M (TimeError) | eq.13 measured moments | exact (our noise) +- SE | eq13/exact | measured"
+        " | white exact | Gauss-Markov model before issue 53"
     )
     for x in t2:
         out.append(
             f"  {x['T_sigma']:>4g} s2 | {_e(x['paper_P_M'])} ({x['paper_time_error']}) | "
-            f"{_e(x['eq13_measured_P_M'])} | {_e(x['exact_P_M'])} | {x['gaussian_over_exact']:.1e} | "
-            f"{_e(x['measured_P_M'])} ({x['measured_hits']}/{x['checks']}) | {_e(x['white_exact_P_M'])} | "
-            f"{_e(x['mixture_P_M'])}"
+            f"{_e(x['eq13_measured_P_M'])} | {_e(x['exact_P_M'])} +- {_e(x['exact_P_M_se'])} | "
+            f"{x['gaussian_over_exact']:.1e} | {_e(x['measured_P_M'])} ({x['measured_hits']}/{x['checks']}) | "
+            f"{_e(x['white_exact_P_M'])} | {_e(x['gm_before_P_M'])}"
         )
     out.append(
-        f"  (white, varying variance: gamma window variances, CV {t2[0]['mixture_cv']:.3f}, fitted to the same "
-        "spread; its Table 3 is the white column)"
+        "  (exact: the modulated noise's NMV integrated over its carrier, Monte Carlo over the amplitude;"
+        " the Gauss-Markov column is the model this one replaced, same spread, Table 3 rising)"
     )
     out.append("")
     out.append("Table 3 (mean NMV on static data, sigma^2):")
-    cols = ("paper", "measured", "exact", "exact_unbiased", "exact_per_1s_mean", "white", "native_8bit")
+    cols = ("paper", "measured", "exact", "exact_unbiased", "gm_before", "white", "native_8bit")
     out.append("  W_s  | " + " | ".join(cols))
     for x in r["table3"]:
         out.append(f"  {x['window_s']:>3g} s | " + " | ".join(f"{x[c]:.3f}" if c in x else "-" for c in cols))
@@ -289,7 +289,7 @@ def format_tables(r: dict) -> str:
     lp = r["loop_5_1_1"]
     out.append("")
     out.append(
-        f"Section 5.1.1 loop (exact k(P_M) of our noise, Table 5's P_FA at T_th 4 s, target P_FA <= {_e(lp['pfa_max'])}):"
+        f"Section 5.1.1 loop (k(P_M) of our noise, pm_am; Table 5's P_FA at T_th 4 s, target P_FA <= {_e(lp['pfa_max'])}):"
     )
     for s in lp["steps"]:
         out.append(f"  P_M {_e(s['pm'])} -> k {s['k']:.2f} sigma^2 -> P_FA {_e(s['pfa'])}")

@@ -14,8 +14,8 @@ an integer multiple of the output data rate (ODR):
 3. the part's anti-alias low-pass (``bandwidth_hz``; a 2nd-order Butterworth, ``sosfilt``), or none
    (e-obs: seed 003 section 8 says it has no anti-alias filter, so vibration aliases);
 4. sampling at the ODR (every k-th internal sample: whatever the filter let through aliases);
-5. output noise, sigma ``noise_g`` per axis: white, or white plus a first-order Gauss-Markov part
-   (the section "Coloured noise" below), independent between axes;
+5. output noise, sigma ``noise_g`` per axis: white, its amplitude modulated for the LIS302DL presets
+   (the section "Modulated noise" below), independent between axes;
 6. quantisation to counts (``round(a / lsb)``, plus the zero-g count for offset-binary ADCs) and
    saturation at the part's range (counts clip at the representable extremes).
 
@@ -28,37 +28,43 @@ an almost constant count and its variance is far below (2.23 mg)^2 (an 18 mg ste
 preset ``lis302dl-logged16`` models seed 000's logger: the same part, stored at 16 bits over the
 +-2.3 g range (0.07 mg steps), so the noise survives and the static variance is 5.0e-6 g^2.
 
-Coloured noise. Seed 000's Table 2 (P_M 6e-3 at 2 sigma^2, 8e-6 at 2.5 sigma^2 for 1 s windows of
-100 samples, eq. 13) implies a spread of the static 1-s moving variance of 0.35-0.40 sigma^2, where 100
-white samples give 0.14 sigma^2 (detector.statistics): the logged static noise had only about 15
-independent samples per second. The LIS302DL presets therefore add to the white noise a first-order
-Gauss-Markov process (exponentially correlated noise, the standard model of correlated inertial-sensor
-noise: IEEE Std 952-1997, Annex C; Maybeck, "Stochastic Models, Estimation and Control", vol. 1,
-section 4.11), sampled exactly at the ODR as an AR(1) sequence. Per axis, at the output samples k:
+Modulated noise. Seed 000 describes the logged static noise three ways: its spectrum is white
+("approximated as an independent white noise", section 4.1, Fig. 4); the mean 1-3 s moving variance is
+flat (Table 3: 0.5, 0.51, 0.51 x 1e-5 g^2 at 1, 2, 3 s, i.e. 1.00, 1.02, 1.02 sigma^2); and the 1 s MV
+spreads far more than 100 white samples allow (Table 2 via eq. 13: P_M 6e-3 at 2 sigma^2 and 8e-6 at
+2.5 sigma^2 imply sigma_MV 0.35-0.40 sigma^2, where white noise gives 0.14), while consecutive 1 s MVs
+are "approximated as independent" (section 5.1.1). A stationary Gaussian noise cannot have all three: a
+spread that wide needs correlation, and a correlated noise loses part of its variance to a short
+window's mean, so its Table 3 rises with the window (the white + Gauss-Markov model used before issue
+53 rose 15 % from 1 to 3 s, and its density below 1 Hz was 1.5 mg/sqrt(Hz), 7.5 times the 200
+ug/sqrt(Hz) of the analog sister part LIS302SG's datasheet). White noise whose amplitude wanders has all
+three: the LIS302DL presets draw
 
-    n[k] = w[k] + g[k],   w ~ N(0, (1 - q) sigma^2) white,
-    g[k] = phi g[k-1] + sqrt(1 - phi^2) sqrt(q) sigma e[k],   e ~ N(0, 1),   phi = exp(-1 / (ODR tau)),
+    n[k] = sigma (1 + d g[k]) / sqrt(1 + d^2) w[k],   w ~ N(0, 1) white,
+    g[k] = phi g[k-1] + sqrt(1 - phi^2) e[k],           e ~ N(0, 1),  phi = exp(-1 / (ODR tau)),
 
-with sigma = ``noise_g`` (the total: the static variance stays sigma^2), q = ``noise_gm_fraction``
-(the Gauss-Markov share of the variance) and tau = ``noise_gm_tau_s``. Autocovariance
-r(m) = sigma^2 ((1 - q) delta(m) + q phi^|m|); one-sided PSD (:func:`noise_psd_g2_per_hz`)
-S(f) = (2 / ODR) sigma^2 [(1 - q) + q (1 - phi^2) / (1 - 2 phi cos(2 pi f / ODR) + phi^2)], the
-sampled form of the Lorentzian 4 q sigma^2 tau / (1 + (2 pi f tau)^2) on a white floor. g starts in
-its stationary distribution (no power-on transient) and its state is carried from chunk to chunk.
-
-The fit (tests/sim/test_noise_colour.py re-derives it): tau makes sigma_MV / E[MV] of the 100-sample
-NMV equal 0.373, the mean of the spreads Table 2's rows 2 and 2.5 sigma^2 imply (the rows the
-paper's 35 h of static data can resolve; rows 3 and 4 are eq. 13 extrapolated 5-9 sigma_MV into
-a tail the skewed MV distribution does not have); q = 0.77 is the member of that one-parameter
-family whose spectrum is the flattest (least max/min PSD ratio): seed 000 section 4.1 calls the
-static noise "approximated as an independent white noise" (Fig. 4). Then tau = 0.146 s (corner
-1.1 Hz), the white floor is 150 ug/sqrt(Hz) (the analog sister LIS302SG's datasheet lists 200), and
-the mean 1-s NMV is 0.81 sigma^2: a window this correlated loses a fifth of the variance to its
-own mean. Below the corner the density is 1.5 mg/sqrt(Hz) (:func:`noise_random_walk_sigma_g`).
+per axis, with sigma = ``noise_g`` (the variance stays sigma^2), d = ``noise_am_depth`` and tau =
+``noise_am_tau_s``. The autocovariance is sigma^2 delta(m) (w is white and independent of g): the
+spectrum is flat (:func:`noise_psd_g2_per_hz`), its density sigma sqrt(2 / ODR) = 315 ug/sqrt(Hz) at
+100 Hz, and the mean N-sample MV is (N - 1)/N sigma^2 at every window (Table 3 flat). The wandering
+amplitude widens the MV's spread (detector.statistics.nmv_moments_am, exact). The fit
+(tests/sim/test_noise_colour.py re-derives it): tau = 0.1 s, the longest tenth of a second at which
+consecutive 1 s MVs correlate by less than 0.05 (0.041: section 5.1.1's independence; a longer tau
+correlates them more: 0.15 at 0.3 s, 0.44 at 1 s), and d = 0.450, which gives the 100-sample NMV the spread 0.373
+sigma^2 (the mean of the spreads Table 2's rows 2 and 2.5 sigma^2 imply: the rows the paper's 35 h
+of static data can resolve; rows 3 and 4 are eq. 13 extrapolated into a tail the skewed MV
+distribution does not have). Its P_M, exact up to the Monte Carlo over amplitude paths
+(detector.statistics.pm_am): 1.3e-2 at 2 sigma^2, 1.3e-3 at 2.5 sigma^2 (the paper 6e-3, 8e-6:
+eq. 13's Gaussian tail is thinner than any skewed distribution with that spread). g starts in its
+stationary distribution (no power-on transient) and its state is carried from chunk to chunk. The
+sample kurtosis is 4.9 (3 for Gaussian noise): a noise that is a little burstier than Gaussian. The
+form (a Gaussian carrier, its amplitude a Gauss-Markov process) is flightmode's assumption: the seed
+gives the three properties, not a mechanism, and no datasheet describes the part's noise beyond its level.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -83,10 +89,10 @@ class AccelerometerPreset:
     cross_axis_tol: float  # per-unit cross-axis coupling drawn uniformly in +-tol
     burst_interval_s: float | None = None  # e-obs: a burst every ACC interval
     burst_samples: int | None = None  # e-obs: samples per axis in a burst
-    # coloured noise (module docstring): the Gauss-Markov share of noise_g^2 (0: white) and its
-    # correlation time in seconds
-    noise_gm_fraction: float = 0.0
-    noise_gm_tau_s: float | None = None
+    # modulated noise (module docstring): the depth d of the amplitude's modulation (0: plain white
+    # noise) and the modulation's correlation time in seconds
+    noise_am_depth: float = 0.0
+    noise_am_tau_s: float | None = None
 
     def validate(self) -> None:
         if self.odr_hz not in self.allowed_odr_hz:
@@ -96,14 +102,13 @@ class AccelerometerPreset:
             )
         if self.noise_g < 0 or self.range_g <= 0:
             raise SensorError(f"sensor '{self.name}': noise must be >= 0 and range > 0")
-        if not 0.0 <= self.noise_gm_fraction <= 1.0:
+        if not (math.isfinite(self.noise_am_depth) and self.noise_am_depth >= 0.0):
             raise SensorError(
-                f"sensor '{self.name}': noise_gm_fraction {self.noise_gm_fraction:g} must be in [0, 1]"
+                f"sensor '{self.name}': noise_am_depth {self.noise_am_depth:g} must be a finite number >= 0"
             )
-        if self.noise_gm_fraction > 0 and not (self.noise_gm_tau_s is not None and self.noise_gm_tau_s > 0):
+        if self.noise_am_depth > 0 and not (self.noise_am_tau_s is not None and self.noise_am_tau_s > 0):
             raise SensorError(
-                f"sensor '{self.name}': a Gauss-Markov noise part needs noise_gm_tau_s > 0 "
-                f"(got {self.noise_gm_tau_s})"
+                f"sensor '{self.name}': a modulated noise needs noise_am_tau_s > 0 (got {self.noise_am_tau_s})"
             )
         if self.lsb_g is not None and (self.bits is None or self.lsb_g <= 0):
             raise SensorError(f"sensor '{self.name}': a quantised output needs bits and lsb_g > 0")
@@ -115,11 +120,11 @@ class AccelerometerPreset:
         # continuous sampling
 
     @property
-    def noise_gm_phi(self) -> float:
-        """AR(1) coefficient of the Gauss-Markov part at the ODR, exp(-1 / (ODR tau)); 0 if white."""
-        if self.noise_gm_fraction == 0 or self.noise_gm_tau_s is None:
+    def noise_am_phi(self) -> float:
+        """AR(1) coefficient of the modulation at the ODR, exp(-1 / (ODR tau)); 0 if unmodulated."""
+        if self.noise_am_depth == 0 or self.noise_am_tau_s is None:
             return 0.0
-        return float(np.exp(-1.0 / (self.odr_hz * self.noise_gm_tau_s)))
+        return float(np.exp(-1.0 / (self.odr_hz * self.noise_am_tau_s)))
 
     @property
     def count_range(self) -> tuple[int, int]:
@@ -150,9 +155,10 @@ _LIS302DL = AccelerometerPreset(
     offset_tol_g=0.040,
     sensitivity_tol=0.10,
     cross_axis_tol=0.02,
-    # seed 000 Table 2 via the fit in the module docstring (tests/sim/test_noise_colour.py)
-    noise_gm_fraction=0.77,
-    noise_gm_tau_s=0.146,
+    # seed 000 Tables 2 and 3 and section 4.1 via the fit in the module docstring
+    # (tests/sim/test_noise_colour.py)
+    noise_am_depth=0.450,
+    noise_am_tau_s=0.1,
 )
 
 # e-obs per-axis sampling frequencies (seed 003). The note prints no table of settings; it gives a
@@ -240,29 +246,39 @@ def get_preset(name: str) -> AccelerometerPreset:
 
 def noise_autocovariance_g2(preset: AccelerometerPreset, n_lags: int) -> np.ndarray:
     """Autocovariance of the output noise per axis at lags 0..n_lags-1 output samples, in g^2:
-    sigma^2 ((1 - q) delta(m) + q phi^|m|) (module docstring)."""
-    var, q, phi = preset.noise_g**2, preset.noise_gm_fraction, preset.noise_gm_phi
-    r = q * var * phi ** np.arange(n_lags, dtype=float) if q > 0 else np.zeros(n_lags)
-    r[0] = var
+    sigma^2 delta(m), modulated or not (module docstring)."""
+    r = np.zeros(n_lags)
+    r[0] = preset.noise_g**2
     return r
 
 
 def noise_psd_g2_per_hz(preset: AccelerometerPreset, f_hz: np.ndarray) -> np.ndarray:
-    """One-sided PSD of the output noise per axis (g^2/Hz) at ``f_hz`` in [0, ODR/2]: the white floor
-    plus the AR(1) (sampled Lorentzian) part; it integrates to noise_g^2 over [0, ODR/2]."""
+    """One-sided PSD of the output noise per axis (g^2/Hz) at ``f_hz`` in [0, ODR/2]: flat,
+    2 noise_g^2 / ODR (module docstring); it integrates to noise_g^2 over [0, ODR/2]."""
     f = np.asarray(f_hz, float)
-    var, q, phi, fs = preset.noise_g**2, preset.noise_gm_fraction, preset.noise_gm_phi, preset.odr_hz
-    gm = q * (1.0 - phi**2) / (1.0 - 2.0 * phi * np.cos(2.0 * np.pi * f / fs) + phi**2)
-    return 2.0 / fs * var * ((1.0 - q) + gm)
+    return np.full(f.shape, 2.0 / preset.odr_hz * preset.noise_g**2)
+
+
+def noise_variance_spread_factor(preset: AccelerometerPreset) -> float:
+    """F with var(sample variance of n output samples) = F sigma^4 / n for n much longer than the
+    modulation's memory: the long-run variance of the squared noise over sigma^4, 3 E[a^4] - 1 +
+    2 sum_m cov(a_k^2, a_k+m^2) (module docstring; 2 for white Gaussian noise, 15.0 for the
+    LIS302DL presets: a static variance is known to sqrt(15 / n), not sqrt(2 / n))."""
+    d, phi = preset.noise_am_depth, preset.noise_am_phi
+    if d == 0:
+        return 2.0
+    s4 = (1.0 + d * d) ** 2
+    ea4 = (1.0 + 6.0 * d * d + 3.0 * d**4) / s4
+    # sum over m >= 1 of (4 d^2 phi^m + 2 d^4 phi^2m) / s4, in closed form
+    tail = (4.0 * d * d * phi / (1.0 - phi) + 2.0 * d**4 * phi**2 / (1.0 - phi**2)) / s4
+    return float(3.0 * ea4 - 1.0 + 2.0 * tail)
 
 
 def noise_random_walk_sigma_g(preset: AccelerometerPreset) -> float:
-    """The white-noise sigma at the ODR with this noise's PSD at 0 Hz,
-    sigma sqrt((1 - q) + q (1 + phi) / (1 - phi)) = sqrt(sum_m r(m)): what integrates into velocity
-    and position random walks over times much longer than tau. For the LIS302DL presets 4.8 noise_g
-    (1.5 mg/sqrt(Hz)); a random-walk law that takes noise_g as white underestimates by that factor."""
-    q, phi = preset.noise_gm_fraction, preset.noise_gm_phi
-    return float(preset.noise_g * np.sqrt((1.0 - q) + q * (1.0 + phi) / (1.0 - phi)))
+    """The white-noise sigma at the ODR with this noise's PSD at 0 Hz, sqrt(sum_m r(m)): what
+    integrates into velocity and position random walks. The noise is white (modulated or not), so
+    it is noise_g."""
+    return float(preset.noise_g)
 
 
 @dataclass(frozen=True, slots=True)
@@ -331,7 +347,7 @@ class SensorChain:
         self._zi = None
         self._phase = 0  # index within the next chunk of the next internal sample to keep
         self._n_out = 0
-        self._gm_zi = None  # lfilter state of the Gauss-Markov noise, (1, 3): phi g[last]
+        self._am_zi = None  # lfilter state of the noise's modulation, (1, 3): phi g[last]
 
     def __call__(self, f_sensor_g: np.ndarray, t0_s: float, rng: np.random.Generator) -> Measurement:
         """Sense a chunk (N, 3); ``t0_s`` is the time of the first sample of the whole stream."""
@@ -384,24 +400,22 @@ class SensorChain:
 
     def _noise(self, m: int, rng: np.random.Generator) -> np.ndarray:
         """Output noise for the next ``m`` output samples (m, 3), continuing the stream exactly: the
-        draws are taken in sample order (per sample: 3 white, then 3 Gauss-Markov innovations), so
-        any chunking consumes ``rng`` identically, and the AR(1) state is carried in ``_gm_zi``."""
+        draws are taken in sample order (per sample: 3 white, then 3 modulation innovations), so
+        any chunking consumes ``rng`` identically, and the AR(1) state is carried in ``_am_zi``."""
         p = self.preset
-        if p.noise_gm_fraction == 0:
+        if p.noise_am_depth == 0:
             return rng.normal(0.0, p.noise_g, (m, 3))
         from scipy.signal import lfilter
 
-        var, q, phi = p.noise_g**2, p.noise_gm_fraction, p.noise_gm_phi
-        if self._gm_zi is None:  # g[-1] from the stationary N(0, q sigma^2): no start-up transient
-            self._gm_zi = phi * np.sqrt(q * var) * rng.standard_normal((1, 3))
+        d, phi = p.noise_am_depth, p.noise_am_phi
+        if self._am_zi is None:  # g[-1] from the stationary N(0, 1): no start-up transient
+            self._am_zi = phi * rng.standard_normal((1, 3))
         z = rng.standard_normal((m, 6))
         if m == 0:
             return np.zeros((0, 3))
-        # g[k] = phi g[k-1] + sqrt(1 - phi^2) sqrt(q) sigma e[k]  (module docstring)
-        g, self._gm_zi = lfilter(
-            [1.0], [1.0, -phi], np.sqrt((1.0 - phi**2) * q * var) * z[:, 3:], axis=0, zi=self._gm_zi
-        )
-        return np.sqrt((1.0 - q) * var) * z[:, :3] + g
+        # g[k] = phi g[k-1] + sqrt(1 - phi^2) e[k]; n = sigma (1 + d g) / sqrt(1 + d^2) w  (module docstring)
+        g, self._am_zi = lfilter([1.0], [1.0, -phi], np.sqrt(1.0 - phi**2) * z[:, 3:], axis=0, zi=self._am_zi)
+        return (p.noise_g / np.sqrt(1.0 + d * d)) * (1.0 + d * g) * z[:, :3]
 
 
 def measure(

@@ -26,13 +26,9 @@ def test_path_prints_the_aided_error_first_and_the_drift_laws(pattern_run):
     assert rows["tridiagonal"]["final_m"] < 1e-3
     # the random-walk law, computed here from the LIS302DL's noise (seed 000 Table 1: 2.23 mg) at
     # 100 Hz over the span: sigma_x(t) = sigma_a sqrt(dt) t^1.5 / sqrt(3), sigma_a being the white
-    # level with the noise's 0 Hz density: sigma sqrt((1 - q) + q (1 + phi) / (1 - phi)) for its
-    # Gauss-Markov share q and lag-one correlation phi
-    from flightmode.sim.sensor.accelerometer import get_preset
-
-    pr = get_preset(info["sensor"]["preset"])
-    q, phi = pr.noise_gm_fraction, pr.noise_gm_phi
-    sigma_a = 2.23e-3 * math.sqrt((1 - q) + q * (1 + phi) / (1 - phi)) * 9.80665
+    # level with the noise's 0 Hz density: the noise is white (its amplitude modulated: that leaves
+    # the density flat), so sigma_a is the 2.23 mg itself
+    sigma_a = 2.23e-3 * 9.80665
     expect = sigma_a * math.sqrt(1 / 100.0) * laws["span_s"] ** 1.5 / math.sqrt(3.0)
     assert laws["random_walk"] == expect or abs(laws["random_walk"] / expect - 1) < 1e-12
     # a constant offset b integrates to b t^2 / 2: the unit's own offset (run.json) over the span

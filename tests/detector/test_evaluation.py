@@ -152,18 +152,16 @@ def test_turn_on_response_nmv_is_the_time_threshold_and_emv_weight_speeds_the_mv
 
 
 def test_bench_calibration_gives_the_noise_or_the_quantisation_floor():
-    from flightmode.sim.sensor.accelerometer import get_preset, noise_autocovariance_g2
+    from flightmode.sim.sensor.accelerometer import get_preset, noise_variance_spread_factor
 
     rng = np.random.default_rng(5)
     # 60 s at 100 Hz in six 10 s blocks, each variance about the block's own mean: expected sigma^2
-    # less the variance of a 1000-sample mean of the coloured noise, (1/N)(r0 + 2 sum (1 - m/N) r(m))
-    n = 1000
-    r = noise_autocovariance_g2(get_preset("lis302dl-logged16"), n)
-    m = np.arange(1, n)
-    expect = r[0] - (r[0] + 2 * np.sum((1 - m / n) * r[1:])) / n
-    assert expect / SIG**2 == pytest.approx(0.977, abs=0.002)  # 2.3 % lost to the block means
-    # one bench's estimate scatters by ~5 % (the noise's correlation leaves ~660 independent
-    # samples of 6000: sqrt(2/660)); the mean of 10 benches is within 4 x 5 % / sqrt(10) = 6.3 %
+    # less the variance of a 1000-sample mean of the (white) noise, sigma^2 / 1000
+    expect = SIG**2 * (1 - 1 / 1000)
+    # one bench's estimate scatters by sqrt(F / 6000) = 5.0 % (F = 15, the modulated noise's
+    # noise_variance_spread_factor); the mean of 10 benches is within 4 x 5.0 % / sqrt(10) = 6.3 %
+    spread = noise_variance_spread_factor(get_preset("lis302dl-logged16"))
+    assert math.sqrt(spread / 6000) == pytest.approx(0.050, abs=0.001)
     s2 = np.array([unit_sigma2("lis302dl-logged16", 100.0, None, 100, rng) for _ in range(10)])
     np.testing.assert_allclose(s2.mean(axis=0), expect, rtol=0.063)
     # the native 8-bit part (18 mg steps, 8 sigma of noise) lying flat, a perfect unit: the axes at

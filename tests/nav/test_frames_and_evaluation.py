@@ -122,7 +122,7 @@ def test_default_flight_sensor_noise_grows_as_the_random_walk(fly_cached):
     e = np.linalg.norm(recurrence_path(t, d, np.zeros(3), np.zeros(3))(t), axis=1)
     k = np.unique(np.geomspace(10 * 100, t.shape[0] - 1, 40).astype(int))
     p = np.polyfit(np.log(t[k]), np.log(e[k] + 1e-9), 1)[0]
-    # the noise's 0 Hz density (its Gauss-Markov part included) sets the walk: 4.8 x the 2.23 mg
+    # the noise's 0 Hz density sets the walk: white, so the 2.23 mg itself
     from flightmode.sim.sensor.accelerometer import noise_random_walk_sigma_g
 
     sig_rw = noise_random_walk_sigma_g(get_preset("lis302dl-logged16")) * 9.80665

@@ -166,7 +166,7 @@ def test_section_5_1_1_threshold_from_white_static_data_is_the_chi_square_quanti
     assert th["gaussian_measured_k"] == pytest.approx(th["gaussian_white_k"], abs=0.01)
     # the Gaussian (eq. 13) underestimates the chi-square's heavier right tail: its k is lower
     assert th["gaussian_white_k"] < k_exact
-    # a wider spread (coloured noise, as seed 000's Table 2 implies) moves the measured threshold up
+    # a wider spread (as seed 000's Table 2 implies) moves the measured threshold up
     wide = threshold_from_static(_static_table(rng, 400_000, colour=2.5), 1e-3)
     assert wide["empirical_k"] > th["empirical_k"] + 0.5
     # too few checks to see P_M: said, not hidden

@@ -429,3 +429,29 @@ def test_the_papers_dynamic_part_is_the_in_flight_window_while_the_engines_run()
     assert part["in_flight_window"].tolist() == [False, True, True, True, True, False, False, False]
     assert part["phase"] is phase and part["sensor_static"] is labels["sensor_static"]
     assert labels["in_flight_window"] is window and window.sum() == 6  # the caller's labels untouched
+
+
+def test_table3_rows_pass_a_white_noise_and_fail_the_gauss_markov_one():
+    """seed 000 Table 3 in validate (_table3_checks): 3 h of white noise at 100 Hz (the LIS302DL
+    presets' kind) gives 2 s / 1 s and 3 s / 1 s ratios of 199/200 / (99/100) = 1.005 and 1.007,
+    inside (1.00, 1.04) widened by 3 standard errors (~0.6 % here); the white + Gauss-Markov noise used
+    before issue 53 (77 % of the variance, tau 0.146 s) gives 1.11 and 1.15, outside. Nothing static:
+    no row."""
+    from scipy.signal import lfilter
+
+    from flightmode.studies.validate import _table3_checks
+
+    rng = np.random.default_rng(53)
+    n = 3 * 3600 * 100
+    static = np.ones(n, bool)
+    white = rng.standard_normal((n, 3)) * 2.23e-3
+    rows = _table3_checks(white, static, 100)
+    assert [r.passed for r in rows] == [True, True]
+    assert [round(r.value, 3) for r in rows] == pytest.approx([1.005, 1.007], abs=0.004)
+    phi, q = np.exp(-1 / 14.6), 0.77
+    gm = lfilter([1.0], [1.0, -phi], rng.standard_normal((n, 3)) * np.sqrt((1 - phi**2) * q), axis=0)
+    coloured = (np.sqrt(1 - q) * rng.standard_normal((n, 3)) + gm) * 2.23e-3
+    rows = _table3_checks(coloured, static, 100)
+    assert [r.passed for r in rows] == [False, False]
+    assert [r.value for r in rows] == pytest.approx([0.895 / 0.806, 0.928 / 0.806], abs=0.01)
+    assert _table3_checks(white, np.zeros(n, bool), 100) == []
