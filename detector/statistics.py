@@ -286,14 +286,11 @@ def am_depth_for_spread(spread: float, n: int, phi: float) -> float:
     return float(brentq(f, 0.0, hi, xtol=1e-12))
 
 
-def am_paths(
-    n: int, depth: float, phi: float, paths: int, rng: np.random.Generator, shift: float = 0.0
-) -> np.ndarray:
+def am_paths(n: int, depth: float, phi: float, paths: int, rng: np.random.Generator) -> np.ndarray:
     """``paths`` stationary amplitude sequences of length n, (paths, n), as the sensor draws them
     (:mod:`flightmode.sim.sensor.accelerometer`): g[0] ~ N(0, 1), g[k] = phi g[k-1] +
-    sqrt(1 - phi^2) e[k], a = (1 + depth g) / sqrt(1 + depth^2); ``shift`` adds a constant to g
-    (the importance-sampling proposals of :func:`pm_am`)."""
-    return (1.0 + depth * (_ar1_paths(n, phi, paths, rng) + shift)) / math.sqrt(1.0 + depth**2)
+    sqrt(1 - phi^2) e[k], a = (1 + depth g) / sqrt(1 + depth^2)."""
+    return (1.0 + depth * _ar1_paths(n, phi, paths, rng)) / math.sqrt(1.0 + depth**2)
 
 
 def _ar1_paths(n: int, phi: float, paths: int, rng: np.random.Generator) -> np.ndarray:
