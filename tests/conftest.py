@@ -21,7 +21,13 @@ import pickle
 import shutil
 from pathlib import Path
 
-import pytest
+# The suite runs one xdist worker per core, so BLAS threads of its own would only contend with the
+# other worker: the stacked 100 x 100 eigenproblems of statistics.pm_am took 55 s instead of 1 s so.
+# Set before anything here imports NumPy (a variable the caller set is kept).
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import pytest  # noqa: E402
 
 # The fast tier's longest flight, as planned: a flight's ``stop_after_s``, or for a whole flight the
 # pipeline's own time limit (sim.flight.simulate.max_duration_s: its ground time and the distance at
