@@ -945,25 +945,19 @@ def vibration_line_db(f_hz: np.ndarray, psd: np.ndarray, noise_psd: np.ndarray |
     return float(10.0 * np.log10(ratio[k])), float(f_hz[cand[k]])
 
 
-def _static_window_mvs(acc: np.ndarray, static: np.ndarray, m: int) -> np.ndarray:
-    """The NMV (1/m, seed 000 eq. 1) of every non-overlapping m-sample window wholly in ``static``,
-    the axes pooled (independent), 1-D."""
-    k = acc.shape[0] // m
-    whole = static[: k * m].reshape(k, m).all(axis=1)
-    return acc[: k * m].reshape(k, m, -1)[whole].var(axis=1).ravel()
-
-
 def _table3_checks(acc: np.ndarray, static: np.ndarray, n: int) -> list[Check]:
     """Seed 000 Table 3 on the truly static samples outside the flight: the mean NMV of 2 s and 3 s
     windows over that of 1 s windows (``n`` samples), against ``TABLE3_RATIO_BOUNDS`` widened by 3
     standard errors of the ratio (each mean's sd / sqrt(windows x axes), combined as independent:
     conservative, the two means share their samples)."""
-    one = _static_window_mvs(acc, static, n)
+    from flightmode.studies.seed000 import window_mvs
+
+    one = window_mvs(acc, n, keep=static).ravel()  # the axes pooled (independent)
     if one.size < 100 or not one.mean() > 0:
         return []
     out = []
     for w in TABLE3_WINDOWS_S:
-        v = _static_window_mvs(acc, static, int(round(w * n)))
+        v = window_mvs(acc, int(round(w * n)), keep=static).ravel()
         if v.size < 30:
             continue
         r = float(v.mean() / one.mean())
