@@ -229,3 +229,13 @@ def power_of_two_weights(n: int, w_max: float = 5.0) -> list[float]:
             out.append(w)
         k += 1
     return sorted(out)
+
+
+def window_mvs(acc_g: np.ndarray, n: int, ddof: int = 0, keep: np.ndarray | None = None) -> np.ndarray:
+    """The NMV of every non-overlapping n-sample window (the checks of seed 000 eq. 7), (m, 3);
+    with ``keep`` (a boolean per sample), only the windows whose every sample it keeps."""
+    m = acc_g.shape[0] // n
+    w = acc_g[: m * n].reshape(m, n, -1)
+    if keep is not None:
+        w = w[np.asarray(keep, bool)[: m * n].reshape(m, n).all(axis=1)]
+    return w.var(axis=1, ddof=ddof)

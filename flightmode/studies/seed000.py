@@ -42,6 +42,8 @@ import math
 
 import numpy as np
 
+from flightmode.detector.seed000 import window_mvs
+
 BENCH_S = 3600.0
 PRESET = "lis302dl-logged16"
 WINDOWS_S = (0.5, 1.0, 2.0, 3.0)
@@ -58,16 +60,6 @@ def bench(preset_name: str = PRESET, fs_hz: float | None = None, seed: int = 0, 
         p = dataclasses.replace(p, odr_hz=float(fs_hz), allowed_odr_hz=(*p.allowed_odr_hz, float(fs_hz)))
     m = bench_static(p, UnitDraw(), np.random.default_rng(seed), duration_s)
     return m.acc_g, p
-
-
-def window_mvs(acc_g: np.ndarray, n: int, ddof: int = 0, keep: np.ndarray | None = None) -> np.ndarray:
-    """The NMV of every non-overlapping n-sample window (the checks of seed 000 eq. 7), (m, 3);
-    with ``keep`` (a boolean per sample), only the windows whose every sample it keeps."""
-    m = acc_g.shape[0] // n
-    w = acc_g[: m * n].reshape(m, n, -1)
-    if keep is not None:
-        w = w[np.asarray(keep, bool)[: m * n].reshape(m, n).all(axis=1)]
-    return w.var(axis=1, ddof=ddof)
 
 
 # The noise model before issue 53 (white + first-order Gauss-Markov, fitted to Table 2's spread alone):
