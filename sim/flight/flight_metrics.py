@@ -37,6 +37,13 @@ def _last_span_start(track: FlightTrack, phase: str) -> int:
     return first if idx.size == 0 else first + int(idx[-1]) + 1
 
 
+def touchdown_index(track: FlightTrack) -> int:
+    """The touchdown sample: the first weight-on-wheels sample of the (last) flare. The sample before it
+    is the touchdown's sink (the flight's hard-landing check reads the same one while flying)."""
+    f0 = _last_span_start(track, "flare")
+    return f0 + int(np.argmax(track.wow[f0:]))
+
+
 def takeoff_accel_mps2(track: FlightTrack) -> float:
     """WRAP's takeoff acceleration: the mean along the ground roll, brake release to liftoff (ground
     speed at liftoff over the roll's time). Needs only the track up to liftoff."""
@@ -73,10 +80,8 @@ def flight_metrics(track: FlightTrack, plan: FlightPlan) -> dict[str, float]:
     c0, c1 = _phase_span(track, "cruise")
     m["cruise_alt_m"] = float(np.median(track.alt_m[c0 : c1 + 1]))
     m["max_alt_m"] = float(track.alt_m.max())
-    # touchdown: first weight-on-wheels sample after the (last) flare
-    f0 = _last_span_start(track, "flare")
-    i_td = f0 + int(np.argmax(track.wow[f0:]))
-    m["touchdown_sink_mps"] = float(-vs[i_td - 1])
+    i_td = touchdown_index(track)
+    m["touchdown_sink_mps"] = float(-vs[i_td - 1])  # the sample the hard-landing check reads (simulate.fly)
     m["touchdown_ias_mps"] = float(track.ias_mps[i_td])
     m["touchdown_gs_mps"] = float(gs[i_td])
     frame = RunwayFrame(plan.destination)

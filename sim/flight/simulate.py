@@ -184,6 +184,27 @@ def fly(
     ext_slow = slow.extend
     tick_steps = array("q")
     changes: list[tuple[int, int, int]] = [(0, pilot.phase_code, pilot.severity_code)]
+    i_wow, i_vd = ac.index["wow"], ac.index["v_down_mps"]
+    if max(i_wow, i_vd) >= nf:
+        raise RuntimeError(
+            "jsbsim.adapter: wow and v_down_mps must be recorded every step (not slow channels)"
+        )
+    flare_code = PHASE_CODE["flare"]
+
+    def contact_sink_mps() -> float:
+        """The sink (m/s) at the last recorded step before the main gear's first contact in the last
+        flare: the sample flight_metrics' touchdown_sink_mps reads from the track (Pilot.contact_sink_mps)."""
+        k = len(changes) - 1
+        while changes[k][1] != flare_code:
+            k -= 1
+        while k > 0 and changes[k - 1][1] == flare_code:  # the last flare span's first row
+            k -= 1
+        row, rows = changes[k][0], len(data) // nf
+        while row < rows and data[row * nf + i_wow] <= 0.5:
+            row += 1
+        return data[(row - 1) * nf + i_vd] * scales_list[i_vd]
+
+    pilot.contact_sink_mps = contact_sink_mps
     limit_steps = int(max_duration_s(plan) * fdm_hz)
     step = 0
     terrain_m = plan.origin.elevation_m

@@ -16,6 +16,7 @@ off the runway (and, at touchdown, a hard landing; off the taxiway while taxiing
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 from flightmode.errors import FlightDivergedError
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITIES, SEVERITY_CODE
@@ -88,6 +89,12 @@ class Pilot:
         self._progress: tuple[float, float] | None = None  # (least distance to go so far m, when s)
         self._next_progress_check = 0.0
         self.gust_sigma_mps: float | None = None  # turbulent air: sigma_w above 2000 ft; None: still air
+        # the touchdown sink (m/s, down positive) at the last step before the main gear's first contact
+        # in this flare: set by the flight loop, which records every step (the pilot sees only its
+        # ticks, up to three steps after the contact, when the struts have already slowed the sink).
+        # The one measure of a touchdown's sink: the hard-landing check and the touchdown event read it,
+        # and flight_metrics' touchdown_sink_mps is the same sample of the track
+        self.contact_sink_mps: Callable[[], float] | None = None
 
     def set_cg_height(self, cg_height_m: float) -> None:
         """The CG's height above ground with the aircraft settled on its gear (measured: it depends
