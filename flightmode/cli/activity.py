@@ -63,7 +63,8 @@ def activity_synth_cmd(
         str,
         typer.Option(
             "--mix",
-            help="uniform: each activity drawn at random; figure2: the paper's Figure 2 sequence, cycling.",
+            help="uniform: each activity drawn at random; figure2: the paper's Figure 2 sequence, cycling; "
+            "sequence: the --activities in their order, cycling (repeats allowed).",
         ),
     ] = "uniform",
     mbcd_bandwidth: Annotated[
@@ -99,10 +100,14 @@ def activity_synth_cmd(
         raise ScenarioError(f"--window {window}: use causal or centred")
     if grid not in ("wide", "narrow"):
         raise ScenarioError(f"--grid {grid}: use wide or narrow")
-    if mix not in ("uniform", "figure2"):
-        raise ScenarioError(f"--mix {mix}: use uniform or figure2")
+    if mix not in ("uniform", "figure2", "sequence"):
+        raise ScenarioError(f"--mix {mix}: use uniform, figure2 or sequence")
     if mix == "figure2" and activities is not None:
-        raise ScenarioError("--mix figure2 fixes the activities: drop --activities")
+        raise ScenarioError(
+            "--mix figure2 fixes the activities: drop --activities, or give them with --mix sequence"
+        )
+    if mix == "sequence" and activities is None:
+        raise ScenarioError("--mix sequence takes the activities in order: give them with --activities")
     if not (math.isfinite(period_scale) and period_scale > 0):
         raise ScenarioError(f"--period-scale {period_scale}: give a positive factor (1: the default lengths)")
     acts = ACTIVITIES if activities is None else tuple(a.strip() for a in activities.split(",") if a.strip())
@@ -129,7 +134,7 @@ def activity_synth_cmd(
         sigma_acc_g=sigma_acc_g,
         sigma_gyr_dps=sigma_gyr_dps,
         activities=acts,
-        sequence=mix == "figure2",
+        sequence=mix != "uniform",
         mbcd_bandwidth=mbcd_bandwidth,
     )
     with CountingBar("runs", n, quiet=as_json) as bar:
