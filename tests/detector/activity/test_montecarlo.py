@@ -267,3 +267,29 @@ def test_the_cli_scales_the_periods_and_restricts_the_detectors(tmp_path):
         assert r.exit_code == 2 and r.output.strip().startswith(f"error: {msg}"), r.output
     r = CliRunner().invoke(app, ["activity", "synth", "--n", "1", "--detectors", "amdx"])
     assert r.exit_code == 2 and 'did you mean "amd"' in r.output
+
+
+def test_the_cli_takes_a_sequence_of_activities_in_order(tmp_path):
+    """--mix sequence with --activities takes them in order, cycling: given the Figure 2 sequence it is
+    --mix figure2, number for number (the same draws in the same order); without --activities, or
+    --activities beside --mix figure2, it is one line, exit 2."""
+    from typer.testing import CliRunner
+
+    from flightmode.cli.main import app
+    from flightmode.detector.activity.synth import FIGURE2_SEQUENCE
+
+    base = ["activity", "synth", "--n", "1", "--seed", "3", "--detectors", "amd", "--json"]
+    docs = []
+    for extra in (["--mix", "figure2"], ["--mix", "sequence", "--activities", ",".join(FIGURE2_SEQUENCE)]):
+        r = CliRunner().invoke(app, [*base, *extra])
+        assert r.exit_code == 0, r.output
+        docs.append(json.loads(r.output[r.output.index("{") :])["tables"])
+    assert docs[0] == docs[1]
+    r = CliRunner().invoke(app, [*base, "--mix", "sequence", "--activities", "walking,constant_rate"])
+    assert r.exit_code == 0, r.output
+    for bad, msg in (
+        (["--mix", "sequence"], "--mix sequence takes the activities in order"),
+        (["--mix", "figure2", "--activities", "walking"], "--mix figure2 fixes the activities"),
+    ):
+        r = CliRunner().invoke(app, [*base, *bad])
+        assert r.exit_code == 2 and r.output.strip().startswith(f"error: {msg}"), r.output
