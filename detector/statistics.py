@@ -46,6 +46,7 @@ from scipy.special import erfc
 from scipy.stats import chi2, norm
 
 from flightmode.errors import DetectorError
+from flightmode.sim.sensor.accelerometer import noise_am_cov_a2
 
 
 def nmv_moments(n: int) -> tuple[float, float]:
@@ -225,17 +226,9 @@ def threshold_for_pfa(
         i += 1
 
 
-def _am_cov_a2(depth: float, phi: float, n: int) -> np.ndarray:
-    """cov(a_j^2, a_k^2) at lags 0..n-1 of the amplitude a = (1 + depth g) / sqrt(1 + depth^2), g a
-    unit stationary AR(1) of coefficient ``phi``: (4 d^2 rho + 2 d^4 rho^2) / (1 + d^2)^2, rho = phi^m
-    (g_j, g_k jointly Gaussian: cov(g_j, g_k^2) = 0, cov(g_j^2, g_k^2) = 2 rho^2)."""
-    rho = phi ** np.arange(n, dtype=float)
-    return (4.0 * depth**2 * rho + 2.0 * depth**4 * rho**2) / (1.0 + depth**2) ** 2
-
-
 def nmv_moments_am(n: int, depth: float, phi: float) -> tuple[float, float]:
     """Mean and standard deviation of the N-sample NMV (1/N, seed 000 eq. 1) of amplitude-modulated
-    white noise x_k = a_k w_k (w white, unit variance; a as :func:`_am_cov_a2`, E[a^2] = 1), in units
+    white noise x_k = a_k w_k (w white, unit variance; a as :func:`noise_am_cov_a2`, E[a^2] = 1), in units
     of its variance. With Q = x^T C x = N MV and c(m) = cov(a_j^2, a_{j+m}^2):
 
         E[Q]   = N - 1                                  (the carrier is white: any modulation)
@@ -243,7 +236,7 @@ def nmv_moments_am(n: int, depth: float, phi: float) -> tuple[float, float]:
 
     the first term E[var(Q | a)] = E[2 tr((C A^2)^2)], the second var(E[Q | a]) = var(tr(C A^2)).
     depth 0 gives :func:`nmv_moments`."""
-    c = _am_cov_a2(depth, phi, n)
+    c = noise_am_cov_a2(depth, phi, n)
     lags = np.arange(n)
     mult = np.where(lags == 0, n, 2 * (n - lags)).astype(float)  # pairs (j, k) at |j - k| = m
     sum_c = float((mult * c).sum())
@@ -260,7 +253,7 @@ def nmv_lag1_am(n: int, depth: float, phi: float) -> float:
     noise (:func:`nmv_moments_am`): given the amplitude the two windows' carriers are independent,
     so cov(Q1, Q2) = cov(E[Q1 | a], E[Q2 | a]) = (1 - 1/N)^2 sum_{j in 1, k in 2} c(k - j), the pairs
     at lag m across the boundary numbering min(m, 2N - m)."""
-    c = _am_cov_a2(depth, phi, 2 * n)
+    c = noise_am_cov_a2(depth, phi, 2 * n)
     m = np.arange(1, 2 * n)
     cross = float((c[1:] * np.minimum(m, 2 * n - m)).sum())
     sd = nmv_moments_am(n, depth, phi)[1] * n

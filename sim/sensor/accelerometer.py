@@ -259,19 +259,28 @@ def noise_psd_g2_per_hz(preset: AccelerometerPreset, f_hz: np.ndarray) -> np.nda
     return np.full(f.shape, 2.0 / preset.odr_hz * preset.noise_g**2)
 
 
+def noise_am_cov_a2(depth: float, phi: float, n: int) -> np.ndarray:
+    """cov(a_j^2, a_k^2) at lags 0..n-1 of the noise's amplitude a = (1 + depth g) / sqrt(1 + depth^2),
+    g a unit stationary AR(1) of coefficient ``phi`` (module docstring): (4 d^2 rho + 2 d^4 rho^2) /
+    (1 + d^2)^2, rho = phi^m (g_j, g_k jointly Gaussian: cov(g_j, g_k^2) = 0, cov(g_j^2, g_k^2) = 2 rho^2).
+    The one copy of the amplitude's moments: the spread of a static variance below and the NMV's
+    statistics (:mod:`flightmode.detector.statistics`) are built on it."""
+    rho = phi ** np.arange(n, dtype=float)
+    return (4.0 * depth**2 * rho + 2.0 * depth**4 * rho**2) / (1.0 + depth**2) ** 2
+
+
 def noise_variance_spread_factor(preset: AccelerometerPreset) -> float:
     """F with var(sample variance of n output samples) = F sigma^4 / n for n much longer than the
     modulation's memory: the long-run variance of the squared noise over sigma^4, 3 E[a^4] - 1 +
-    2 sum_m cov(a_k^2, a_k+m^2) (module docstring; 2 for white Gaussian noise, 15.0 for the
-    LIS302DL presets: a static variance is known to sqrt(15 / n), not sqrt(2 / n))."""
+    2 sum_m cov(a_k^2, a_k+m^2) = 2 + 3 c(0) + 2 sum_m>=1 c(m) (E[a^2] = 1, so E[a^4] = 1 + c(0);
+    c = :func:`noise_am_cov_a2`, summed until phi^m < 1e-17). 2 for white Gaussian noise, 15.0 for the
+    LIS302DL presets: a static variance is known to sqrt(15 / n), not sqrt(2 / n)."""
     d, phi = preset.noise_am_depth, preset.noise_am_phi
     if d == 0:
         return 2.0
-    s4 = (1.0 + d * d) ** 2
-    ea4 = (1.0 + 6.0 * d * d + 3.0 * d**4) / s4
-    # sum over m >= 1 of (4 d^2 phi^m + 2 d^4 phi^2m) / s4, in closed form
-    tail = (4.0 * d * d * phi / (1.0 - phi) + 2.0 * d**4 * phi**2 / (1.0 - phi**2)) / s4
-    return float(3.0 * ea4 - 1.0 + 2.0 * tail)
+    lags = 2 if phi <= 0.0 else 2 + math.ceil(math.log(1e-17) / math.log(phi))
+    c = noise_am_cov_a2(d, phi, lags)
+    return float(2.0 + 3.0 * c[0] + 2.0 * c[1:].sum())
 
 
 def noise_random_walk_sigma_g(preset: AccelerometerPreset) -> float:

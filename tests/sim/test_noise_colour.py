@@ -14,7 +14,6 @@ from scipy.signal import welch
 
 from flightmode.detector.moving_variance import MovingVariance
 from flightmode.detector.statistics import (
-    _am_cov_a2,
     _saddlepoint_rows,
     am_depth_for_spread,
     am_paths,
@@ -34,9 +33,11 @@ from flightmode.sim.sensor.accelerometer import (
     bench_static,
     draw_unit,
     get_preset,
+    noise_am_cov_a2,
     noise_autocovariance_g2,
     noise_psd_g2_per_hz,
     noise_random_walk_sigma_g,
+    noise_variance_spread_factor,
 )
 from flightmode.studies.seed000 import gm_before_acov
 
@@ -71,7 +72,7 @@ def test_the_nmv_moments_of_modulated_noise():
 
     d, phi = 0.450, _phi(0.1)
     cm = np.eye(N) - 1.0 / N
-    c = toeplitz(_am_cov_a2(d, phi, N))
+    c = toeplitz(noise_am_cov_a2(d, phi, N))
     var_q = 2.0 * (cm**2 * (1.0 + c)).sum() + (1.0 - 1.0 / N) ** 2 * c.sum()
     m, s = nmv_moments_am(N, d, phi)
     assert m == pytest.approx((N - 1) / N, rel=1e-12)
@@ -201,7 +202,7 @@ def test_chunked_sensing_equals_one_piece_with_modulated_noise():
     y = x * x - (x * x).mean(axis=0)
     d = p.noise_am_depth
     ea4 = (1 + 6 * d**2 + 3 * d**4) / (1 + d**2) ** 2
-    expect = _am_cov_a2(d, p.noise_am_phi, 2)[1] / (3 * ea4 - 1)
+    expect = noise_am_cov_a2(d, p.noise_am_phi, 2)[1] / (3 * ea4 - 1)
     assert expect == pytest.approx(0.144, abs=0.001)
     np.testing.assert_allclose((y[1:] * y[:-1]).sum(axis=0) / (y * y).sum(axis=0), expect, atol=0.07)
 
@@ -217,9 +218,7 @@ def test_mean_static_variance_is_5e_6_g2_and_the_bench_sees_the_mv_model():
         np.tile([0.0, 0.0, 1.0], (n, 1)), 0.0, np.random.default_rng(21)
     ).acc_g
     d = p.noise_am_depth
-    c = _am_cov_a2(d, p.noise_am_phi, 2000)
-    ea4 = (1 + 6 * d**2 + 3 * d**4) / (1 + d**2) ** 2
-    se = SIGMA_G**2 * math.sqrt((3 * ea4 - 1 + 2 * c[1:].sum()) / n)
+    se = SIGMA_G**2 * math.sqrt(noise_variance_spread_factor(p) / n)
     np.testing.assert_allclose(x.var(axis=0), SIGMA_G**2, atol=5 * se)
     assert SIGMA_G**2 == pytest.approx(5e-6, rel=0.01)
     mu, s_mv = nmv_moments_am(N, d, p.noise_am_phi)
@@ -273,3 +272,21 @@ def test_monte_carlo_mv_spread_and_pm_agree_with_analytic_and_table2():
     # over 100 times as often (1.3e-3 against 8e-6)
     assert 1.5 < rows[0][3] / SEED_TABLE2[2.0] < 3.5
     assert rows[1][3] > 100 * SEED_TABLE2[2.5]
+
+
+def test_the_spread_factor_is_the_closed_form_sum_of_the_amplitude_covariances():
+    """noise_variance_spread_factor sums noise_am_cov_a2 over its lags; the geometric series in closed
+    form, 3 E[a^4] - 1 + 2 (4 d^2 phi / (1 - phi) + 2 d^4 phi^2 / (1 - phi^2)) / (1 + d^2)^2, is the same
+    number to rounding (the truncated tail is below 1e-16 of it): 15.0 for the LIS302DL presets, 2 for
+    white Gaussian noise."""
+    p = get_preset("lis302dl-logged16")
+    d, phi = p.noise_am_depth, p.noise_am_phi
+    s4 = (1 + d * d) ** 2
+    closed = (
+        3 * (1 + 6 * d**2 + 3 * d**4) / s4
+        - 1
+        + 2 * (4 * d**2 * phi / (1 - phi) + 2 * d**4 * phi**2 / (1 - phi**2)) / s4
+    )
+    assert noise_variance_spread_factor(p) == pytest.approx(closed, rel=1e-12)
+    assert closed == pytest.approx(15.0, abs=0.05)
+    assert noise_variance_spread_factor(dataclasses.replace(p, noise_am_depth=0.0)) == 2.0
