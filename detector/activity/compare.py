@@ -224,6 +224,38 @@ def grid_edges(result) -> list[dict]:
     return out
 
 
+# the columns of error_table: groups of synth.PERIOD_KINDS (a posture's transitions together, its rest
+# together), and the jump's flight beside the whole jump
+ERROR_GROUPS: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("still", ("still",)),
+    ("walking", ("walking",)),
+    ("running", ("running",)),
+    ("jumping", ("jumping",)),
+    ("of it in flight", ("jumping_flight",)),
+    ("transitions", ("sit_down", "lie_down", "stand_up")),
+    ("seated/lying", ("seated", "lying")),
+    ("constant rate", ("constant_rate",)),
+    ("constant acc.", ("constant_acc",)),
+)
+
+
+def error_table(result) -> list[dict]:
+    """Per case: its errors by period (:func:`montecarlo.errors_by_kind`, mean over runs, share of all
+    samples) in the groups of :data:`ERROR_GROUPS`, and 1 - accuracy (their total without the flight
+    column, which is part of the jumps')."""
+    from flightmode.detector.activity.montecarlo import label
+
+    out = []
+    for name, signal in result.config.grid.cases():
+        mine = [r for r in result.rows if r["detector"] == name and r["signal"] == signal]
+        row = {"label": label(name, signal), "detector": name, "signal": signal}
+        for col, kinds in ERROR_GROUPS:
+            row[col] = float(np.mean([sum(r[f"err_{k}"] for k in kinds) for r in mine]))
+        row["error"] = float(np.mean([1.0 - r["accuracy"] for r in mine]))
+        out.append(row)
+    return out
+
+
 # ---------------------------------------------------------------- the text
 def _f(v, fmt):
     return f"{v:{fmt}}" if v is not None and np.isfinite(v) else "-"
@@ -231,7 +263,8 @@ def _f(v, fmt):
 
 def format_compare(result) -> str:
     """The comparison as text: z-scores of accuracy, correlation and AUC (Tables 1-6, 13), the AUC
-    rank correlation, the thresholds on the paper's scales and the grid edges."""
+    rank correlation, the thresholds on the paper's scales, the AUC floor, where each case errs and
+    the grid edges."""
     from flightmode.detector.activity.montecarlo import summary
 
     rows = summary(result)
@@ -292,6 +325,17 @@ def format_compare(result) -> str:
     if bad:
         rho_ok, k_ok = auc_rank_correlation([r for r in rows if r["label"] not in bad])
         out.append(f"  AUC ranking without them: Spearman's rho = {_f(rho_ok, '.3f')} over {k_ok} cases")
+    out += [
+        "",
+        "Where each case errs: share of all samples (%) it marks wrongly, by period (mean over runs; 'of it in "
+        "flight': the jumps' samples under 0.5 g)",
+        f"{'case':<11} {'error':>6} " + " ".join(f"{c:>{max(len(c), 6)}}" for c, _ in ERROR_GROUPS),
+    ]
+    for r in error_table(result):
+        out.append(
+            f"{r['label']:<11} {100 * r['error']:>6.2f} "
+            + " ".join(f"{100 * r[c]:>{max(len(c), 6)}.2f}" for c, _ in ERROR_GROUPS)
+        )
     out += [
         "",
         "Grid edges: the grid's range, our mean best value, the fraction of runs at the low / high edge, the paper's",

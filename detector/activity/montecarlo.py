@@ -47,6 +47,12 @@ evaluation places it). Both are run and compared in docs/seed001_tables_n50.txt.
 Cost, per 120 s run at 50 Hz with the default (wide) grid: 8-12 s of one core, most of it LTSD and
 FSD at shift 1 and MBCD at 22-32 samples; :meth:`Grid.narrow` (the N = 500 study's grid) about 3 s.
 
+Where each case errs: every run row also holds ``err_<kind>``, the share of the record's samples that the
+case's marker gets wrong inside periods of each kind (synth.PERIOD_KINDS), at its best point; they sum to
+1 - accuracy. ``err_jumping_flight`` is the part of ``err_jumping`` in a jump's flight (|a| below
+``JUMP_FLIGHT_G``): there |a| |w| is near 0 whatever the rotation, so the Prod input loses the jump
+(:func:`errors_by_kind`; docs/seed001_tables_n50.txt section 6).
+
 Reproducibility: run i uses the generator of ``SeedSequence(seed, spawn_key=(i,))`` (the i-th child
 of ``SeedSequence(seed)``), whatever the order or the worker it runs on; the recording and the bench
 each take a named stream of it (:func:`~flightmode.streams.as_streams`).
@@ -60,7 +66,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from flightmode.detector.activity.synth import ACTIVITIES, DEFAULT_RANGES, Ranges
+from flightmode.detector.activity.synth import ACTIVITIES, DEFAULT_RANGES, PERIOD_KINDS, Ranges
 from flightmode.errors import DetectorError, did_you_mean
 
 SIGNALS = ("acc", "gyr", "sum", "product")
@@ -69,6 +75,10 @@ TABLE_OF = {"amvd": 1, "amd": 1, "ared": 1, "shod": 1, "fsd": 2, "ltsd": 3, "mbg
 MAGNITUDE = ("amvd", "amd", "ared", "shod")
 SPECTRUM = ("ltsd", "fsd")
 MEMORY = ("mbgtd", "mbcd")
+# a jump's flight: the sensor in free fall reads |a| near 0 (our jumps: synth._jumps); 0.5 g splits the
+# flight from the contact push (which peaks at 2-3 g) at any noise level the study uses
+JUMP_FLIGHT_G = 0.5
+ERROR_KINDS = (*PERIOD_KINDS, "jumping_flight")
 
 
 # ---------------------------------------------------------------- configuration
@@ -423,6 +433,27 @@ def grid_search(
     return GridBest(best[0], best[1], corr_max, best[2], best[3], best[4], best[5], tuple(surface))
 
 
+def period_index(periods, n: int) -> np.ndarray:
+    """(n,) index into synth.PERIOD_KINDS of every sample's period."""
+    kind = np.zeros(n, np.int64)
+    for p in periods:
+        kind[p.start : p.stop] = PERIOD_KINDS.index(p.kind)
+    return kind
+
+
+def errors_by_kind(merit, threshold: float, truth, kind: np.ndarray, flight: np.ndarray) -> dict[str, float]:
+    """{"err_<kind>": share of all samples that the marker ``merit >= threshold`` (NaN: active) gets
+    wrong in periods of each synth.PERIOD_KINDS kind, ..., "err_jumping_flight": the part of
+    err_jumping where ``flight`` holds}. The shares sum to 1 - accuracy."""
+    m = np.asarray(merit, float)
+    y = np.asarray(truth).astype(bool)
+    wrong = ~(np.where(np.isnan(m), np.inf, m) < threshold) != y
+    counts = np.bincount(kind[wrong], minlength=len(PERIOD_KINDS)) / y.size
+    out = {f"err_{k}": float(c) for k, c in zip(PERIOD_KINDS, counts)}
+    out["err_jumping_flight"] = float((wrong & flight).sum() / y.size)
+    return out
+
+
 def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
     """Run ``index`` of the study: {"index", "rows": [one dict per (detector, signal)], "roc":
     {(detector, signal): TPR at the config's FPR grid}}. Pure: the same (index, seed, config) give the
@@ -451,6 +482,8 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
     )
     bench = still_recording(streams.rng("bench"), config.bench_s, **sensor)
     truth = rec.marker.astype(bool)
+    kind = period_index(rec.periods, truth.size)
+    flight = (kind == PERIOD_KINDS.index("jumping")) & (np.linalg.norm(rec.acc_g, axis=1) < JUMP_FLIGHT_G)
     fpr_grid = np.linspace(0.0, 1.0, config.roc_points)
     sigma_acc_g = float(np.sqrt(np.mean(np.var(bench.acc_g, axis=0))))  # as _bench_figures has it
     rows, roc = [], {}
@@ -486,6 +519,7 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
                 "shift": math.nan if b.shift is None else float(b.shift),
                 "auc": auc(fpr, tpr),
                 "activity_fraction": float(truth.mean()),
+                **errors_by_kind(b.merit, b.threshold, truth, kind, flight),
             }
         )
     return {"index": int(index), "rows": rows, "roc": roc}

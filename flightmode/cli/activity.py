@@ -46,7 +46,8 @@ def activity_synth_cmd(
         bool,
         typer.Option(
             "--compare",
-            help="Also print z-scores against the paper, the AUC rank correlation and the grid edges.",
+            help="Also print z-scores against the paper, the AUC rank correlation, the AUC floor, where each "
+            "case errs (by period kind) and the grid edges.",
         ),
     ] = False,
     sigma_acc_g: Annotated[
@@ -152,6 +153,7 @@ def activity_synth_cmd(
                         "auc_rank_rho": cmp.auc_rank_correlation(mc.summary(res))[0],
                         "edges": cmp.grid_edges(res),
                         "auc_floor": cmp.auc_floor_table(res),
+                        "errors_by_period": cmp.error_table(res),
                     }
                     if compare
                     else {}

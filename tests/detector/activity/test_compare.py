@@ -158,6 +158,11 @@ def _crafted():
                     "shift": float(s),
                     "auc": a + 0.01 * run,
                     "activity_fraction": 0.5,
+                    # its errors: a third in the jumps' flight, the rest in the still periods
+                    **{f"err_{k}": 0.0 for k in mc.ERROR_KINDS},
+                    "err_still": (1.0 - acc - 0.01 * run) * 2 / 3,
+                    "err_jumping": (1.0 - acc - 0.01 * run) / 3,
+                    "err_jumping_flight": (1.0 - acc - 0.01 * run) / 3,
                 }
             )
     fpr = np.linspace(0, 1, 3)
@@ -167,6 +172,10 @@ def _crafted():
 
 def test_grid_edges_rank_correlation_and_z_table_on_a_crafted_study():
     res = _crafted()
+    err = {r["label"]: r for r in cmp.error_table(res)}
+    assert err["AMVD"]["error"] == pytest.approx(0.12) and err["FSD-Acc."]["error"] == pytest.approx(0.09)
+    assert err["AMVD"]["still"] == pytest.approx(0.08) and err["AMVD"]["jumping"] == pytest.approx(0.04)
+    assert err["AMVD"]["of it in flight"] == err["AMVD"]["jumping"] and err["AMVD"]["constant acc."] == 0.0
     e = {r["label"]: r for r in cmp.grid_edges(res)}
     assert e["AMVD"]["window"]["grid"] == (2, 8) and e["AMVD"]["shift"] is None
     assert e["AMVD"]["window"]["at_low"] == pytest.approx(2 / 3) and e["AMVD"]["window"][
