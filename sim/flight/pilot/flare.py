@@ -179,8 +179,8 @@ class Flare(Controller):
         ap.track_centreline(x, rx, ry, FLARE_MAX_BANK_DEG)
         if x[ix["wow"]] > 0.5:
             # the sink at the last step before contact (Pilot.contact_sink_mps), not this tick's: up to
-            # three steps after it the struts have already slowed the sink (a 12.2 ft/s touchdown was
-            # checked at 11.9 ft/s and landed)
+            # three steps after it the struts have already slowed the sink (a touchdown recorded at
+            # 12.20 ft/s was checked under 12 and landed)
             sink = p.contact_sink_mps()
             p.event("touchdown", f"sink {sink / FT_M * 60:.0f} fpm at {rx:.0f} m")
             tdz_m = ap.dest.rwy.touchdown_zone_end_m
