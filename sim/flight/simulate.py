@@ -339,19 +339,38 @@ def _si_groups(
     """SI arrays from the raw record: ``fast`` (steps, fast channels) and ``slow_cols`` (one array per
     slow channel, every step), in jsbsim.adapter's channel order; one (steps,) array per one-channel
     group, one (steps, k) array per group of k. Each value is scaled once, straight into its array:
-    a whole scaled copy of the record first was a second 100+ MB array to fill and read again."""
+    a whole scaled copy of the record first was a second 100+ MB array to fill and read again. The
+    fast channels are read a block of rows at a time (``ROWS``, a few hundred kB, held in the cache
+    while every group takes its columns): a column read whole strides the record 16 values apart, one
+    cache line per value: this function took 0.46 s of a 1.5 h flight's 666,000 steps that way, 0.18 s
+    by blocks. The same products, so the same bits (the flight's digest is unchanged)."""
     nf, scales = fast.shape[1], ac.scales
-    out = {}
+    n = fast.shape[0]
+    out: dict[str, np.ndarray] = {}
+    fast_parts = []  # (output array, its column or None, channel index) for every fast channel used
     for name, idx in groups.items():
         if len(idx) == 1:
             i = idx[0]
-            out[name] = fast[:, i] * scales[i] if i < nf else slow_cols[i - nf] * scales[i]
-        elif idx[-1] < nf and idx == list(range(idx[0], idx[0] + len(idx))):  # contiguous fast channels
-            out[name] = fast[:, idx[0] : idx[-1] + 1] * scales[idx[0] : idx[-1] + 1]
-        else:
-            out[name] = np.stack(
-                [fast[:, i] * scales[i] if i < nf else slow_cols[i - nf] * scales[i] for i in idx], axis=1
-            )
+            if i < nf:
+                out[name] = np.empty(n)
+                fast_parts.append((out[name], None, i))
+            else:
+                out[name] = slow_cols[i - nf] * scales[i]
+            continue
+        out[name] = np.empty((n, len(idx)))
+        for j, i in enumerate(idx):
+            if i < nf:
+                fast_parts.append((out[name], j, i))
+            else:
+                out[name][:, j] = slow_cols[i - nf] * scales[i]
+    rows = 16_384
+    for r0 in range(0, n, rows):
+        block = fast[r0 : r0 + rows]
+        for arr, j, i in fast_parts:
+            if j is None:
+                np.multiply(block[:, i], scales[i], out=arr[r0 : r0 + rows])
+            else:
+                np.multiply(block[:, i], scales[i], out=arr[r0 : r0 + rows, j])
     return out
 
 
