@@ -301,8 +301,8 @@ def test_the_errors_by_period_add_up_to_the_accuracy_and_show_what_each_input_ca
     (Ang.) cannot see the constant acceleration (no rotation: at least 90 % of its samples missed; the
     centred window's reach into the still periods either side marks a few), and never errs in a jump's
     flight; |a| |w| (Prod) reads near 0 in free fall, so it misses flight samples where Ang. sees them
-    all: 20 % of them in these four runs (0.1 % to 1.3 % of a record's samples, run to run), bounded at
-    half that."""
+    all: 39 % of them in these four runs on this grid (a fifth on the full grid; per run 0.1 % to 1.3 % of
+    a record's samples), bounded at 10 %, under a quarter of what it is."""
     from flightmode.detector.activity.synth import FIGURE2_SEQUENCE, PERIOD_KINDS, synthesize
     from flightmode.streams import as_streams
 
@@ -310,7 +310,11 @@ def test_the_errors_by_period_add_up_to_the_accuracy_and_show_what_each_input_ca
         alignment="centred",
         activities=FIGURE2_SEQUENCE,
         sequence=True,
-        grid=mc.Grid(detectors=("fsd",), signals=("gyr", "product")),
+        # FSD's best windows on this study are 2-8 samples at shift 1-2 (docs/seed001_tables_n500.txt):
+        # that corner of the grid, to keep the test short
+        grid=mc.Grid(
+            detectors=("fsd",), signals=("gyr", "product"), spectrum_windows=(2, 4, 8), spectrum_shifts=(1, 2)
+        ),
     )
     res = mc.run_montecarlo(4, seed=1, config=cfg)
     kinds = [f"err_{k}" for k in PERIOD_KINDS]
