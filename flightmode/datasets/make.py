@@ -393,16 +393,22 @@ def _check_folder(out: Path, fam, options: Options, resume: bool, n: int) -> Non
             )
 
 
-def _claim_folder(out: Path, fam, options: Options) -> None:
-    """Make the folder this family's: its family.toml and options; a killed run's half-written files go."""
-    out.mkdir(parents=True, exist_ok=True)
+def _sweep_temporaries(out: Path) -> None:
+    """Remove the half-written files and scratch folders (flightmode.atomic.TMP_GLOB) of a run that was
+    killed or stopped in the middle of a write."""
     import shutil
 
-    for tmp in out.rglob(TMP_GLOB):  # a killed run's half-written files and scratch folders
+    for tmp in out.rglob(TMP_GLOB):
         if tmp.is_dir():
             shutil.rmtree(tmp, ignore_errors=True)
         else:
             tmp.unlink(missing_ok=True)
+
+
+def _claim_folder(out: Path, fam, options: Options) -> None:
+    """Make the folder this family's: its family.toml and options; a killed run's half-written files go."""
+    out.mkdir(parents=True, exist_ok=True)
+    _sweep_temporaries(out)
     marker = out / "family.toml"
     if not marker.exists():
         atomic_text(fam.text, marker)
@@ -472,20 +478,34 @@ def make_dataset(
         rrd=rrd,
     )
     # the cluster before writing: a dead scheduler leaves nothing behind. A failed flight is retried
-    # once by _run itself: Dask must not re-run a task whose worker died (allowed_failures 0)
-    with contextlib.ExitStack() as stack:
+    # once by _run itself: Dask must not re-run a task whose worker died (allowed_failures 0). The
+    # folder's lock is taken once the cluster is up and released after it has closed: a run that ends
+    # early (Ctrl-C, an error) closes its LocalCluster, whose nannies stop their workers, perhaps in
+    # the middle of a write; that write's temporary is then swept while the folder is still this run's
+    with contextlib.ExitStack() as lock:
+        locked = False
         try:
-            client = stack.enter_context(open_client(workers, scheduler, allowed_failures=0))
-        except ClusterError as e:
-            raise DatasetError(str(e)) from None
-        with _folder_lock(out):
-            try:
-                _claim_folder(out, fam, options)
-                return _run(client, fam, n, out, options, on_start, on_flight)
-            except OSError as e:  # the manifest, the card or the log on a full disk (written atomically)
-                if _disk_full(e):
-                    raise _disk_full_error(out, e, "the manifest or the card") from None
-                raise
+            with contextlib.ExitStack() as stack:
+                try:
+                    client = stack.enter_context(open_client(workers, scheduler, allowed_failures=0))
+                except ClusterError as e:
+                    raise DatasetError(str(e)) from None
+                lock.enter_context(_folder_lock(out))
+                locked = True
+                try:
+                    _claim_folder(out, fam, options)
+                    return _run(client, fam, n, out, options, on_start, on_flight)
+                except OSError as e:  # the manifest, the card or the log on a full disk (written atomically)
+                    if _disk_full(e):
+                        raise _disk_full_error(out, e, "the manifest or the card") from None
+                    raise
+        except BaseException:
+            # never another run's folder (a held lock raises before this run owns it), and only when the
+            # workers were this run's own (a LocalCluster, closed above): the workers of a --scheduler
+            # may still be writing, and their leftovers wait for the sweep of the next --resume
+            if locked and scheduler is None:
+                _sweep_temporaries(out)
+            raise
 
 
 @contextlib.contextmanager

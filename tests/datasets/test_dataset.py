@@ -687,3 +687,28 @@ def test_sweep_refuses_what_is_not_a_dataset(tmp_path):
 
     r = CliRunner().invoke(app, ["sweep", str(tmp_path), "--k", "2:x"])
     assert r.exit_code == 2 and "--k '2:x': give values as 2,3,4 or a range start:stop:step" in r.output
+
+
+def test_an_interrupted_run_leaves_no_temporary_behind(tmp_path, family_file):
+    """Ctrl-C closes the run's LocalCluster, whose nannies stop their workers, perhaps in the middle of a
+    write (test_faults' Ctrl-C test once found a worker's `.part-000001.parquet.tmp-...` left in the
+    samples). The run sweeps such temporaries once its cluster has closed, before it lets the folder go.
+    Here one is planted where a stopped worker would leave it, and the interrupt raised as the run starts
+    (no flight is flown): it is gone, the folder is free for --resume, and the run's files are whole."""
+    from flightmode.atomic import TMP_GLOB, tmp_name
+
+    out = tmp_path / "ds"
+    planted = []
+
+    def interrupt(dashboard, to_do):
+        (out / "samples").mkdir(exist_ok=True)
+        p = tmp_name(out / "samples" / "part-000001.parquet")
+        p.write_bytes(b"half a parquet file")
+        planted.append(p)
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        make_dataset(str(family_file), 1, out, workers=1, on_start=interrupt)
+    assert planted and not planted[0].exists() and not list(out.rglob(TMP_GLOB))
+    assert (out / "family.toml").exists()  # the folder stays this family's: --resume completes it
+    check_request(str(family_file), 1, out, resume=True)
