@@ -445,9 +445,10 @@ def errors_by_kind(merit, threshold: float, truth, kind: np.ndarray, flight: np.
     """{"err_<kind>": share of all samples that the marker ``merit >= threshold`` (NaN: active) gets
     wrong in periods of each synth.PERIOD_KINDS kind, ..., "err_jumping_flight": the part of
     err_jumping where ``flight`` holds}. The shares sum to 1 - accuracy."""
-    m = np.asarray(merit, float)
+    from flightmode.detector.activity.common import decide
+
     y = np.asarray(truth).astype(bool)
-    wrong = ~(np.where(np.isnan(m), np.inf, m) < threshold) != y
+    wrong = decide(np.asarray(merit, float), threshold).astype(bool) != y
     counts = np.bincount(kind[wrong], minlength=len(PERIOD_KINDS)) / y.size
     out = {f"err_{k}": float(c) for k, c in zip(PERIOD_KINDS, counts)}
     out["err_jumping_flight"] = float((wrong & flight).sum() / y.size)
@@ -482,8 +483,10 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
     )
     bench = still_recording(streams.rng("bench"), config.bench_s, **sensor)
     truth = rec.marker.astype(bool)
+    from flightmode.detector.activity.common import norm3
+
     kind = period_index(rec.periods, truth.size)
-    flight = (kind == PERIOD_KINDS.index("jumping")) & (np.linalg.norm(rec.acc_g, axis=1) < JUMP_FLIGHT_G)
+    flight = (kind == PERIOD_KINDS.index("jumping")) & (norm3(rec.acc_g) < JUMP_FLIGHT_G)
     fpr_grid = np.linspace(0.0, 1.0, config.roc_points)
     sigma_acc_g = float(np.sqrt(np.mean(np.var(bench.acc_g, axis=0))))  # as _bench_figures has it
     rows, roc = [], {}

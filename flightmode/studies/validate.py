@@ -950,7 +950,6 @@ def _table3_checks(acc: np.ndarray, static: np.ndarray, n: int) -> list[Check]:
     windows over that of 1 s windows (``n`` samples), against ``TABLE3_RATIO_BOUNDS`` widened by 3
     standard errors of the ratio (each mean's sd / sqrt(windows x axes), combined as independent:
     conservative, the two means share their samples)."""
-
     one = window_mvs(acc, n, keep=static).ravel()  # the axes pooled (independent)
     if one.size < 100 or not one.mean() > 0:
         return []

@@ -84,7 +84,7 @@ def test_ctrl_c_leaves_a_resumable_dataset(tmp_path, family_file, request):
     cmd = _cmd(family_file, out, "--workers", "1")
     # a terminal's Ctrl-C: the command must not inherit an ignored SIGINT from this test's process (a
     # process started with SIGINT ignored keeps it ignored, and Python then installs no
-    # KeyboardInterrupt). Twice this stop, under the full tier's xdist, the command ran to its end
+    # KeyboardInterrupt). Twice in stop 58, under the full tier's xdist, the command ran to its end
     # and exited 0 after the interrupt; the child now starts with SIGINT's default action, and a
     # failure prints this process's own disposition
     proc = subprocess.Popen(
