@@ -2,7 +2,7 @@
 generators of damaged TOML documents and texts.
 
 The number of examples is FLIGHTMODE_FUZZ_EXAMPLES (default :data:`DEFAULT_EXAMPLES`, the fast tier's;
-CI's ``.ci/run`` sets 10,000). Every run is reproducible: ``derandomize`` draws the examples from a
+CI's ``.ci/run`` sets 200; docs/failures.md gives the 10,000-example command). Every run is reproducible: ``derandomize`` draws the examples from a
 seed fixed by the test's name, and nothing is written to a Hypothesis database (none in the repository).
 """
 

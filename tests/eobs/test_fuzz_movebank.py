@@ -3,7 +3,7 @@ a BOM alone), CSV of random structure under the real column names, and valid fil
 layout and Movebank's export, simulated bursts of any axes, rate and length) with bytes flipped,
 inserted, deleted or cut off. Whatever the input, the reader returns a file or raises InputDataError
 naming the source on one line; a file it returns writes back byte for byte. The number of examples:
-tests/fuzz.py (FLIGHTMODE_FUZZ_EXAMPLES; 10,000 in CI).
+tests/fuzz.py (FLIGHTMODE_FUZZ_EXAMPLES; 200 in CI).
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ infinities, huge and negative numbers, Unicode, and their texts edited character
 the input, the parser returns a scenario (or family) or raises a FlightmodeError subclass: nothing else.
 
 A scenario it accepts writes itself back as TOML and reads back equal; a family it accepts makes its
-first member. The number of examples: tests/fuzz.py (FLIGHTMODE_FUZZ_EXAMPLES; 10,000 in CI).
+first member. The number of examples: tests/fuzz.py (FLIGHTMODE_FUZZ_EXAMPLES; 200 in CI).
 """
 
 from __future__ import annotations
