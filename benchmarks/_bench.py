@@ -106,6 +106,31 @@ def bare_stepping_s(
     return min(bare() for _ in range(repeats))
 
 
+def recording_stepping_s(scenario, steps: int, repeats: int = 3) -> float:
+    """The least a flight's stepping can cost while it records its track: the scenario's edited model
+    parked (:func:`bare_aircraft`), each step reading the channels that sim/flight/simulate.py records at
+    every step (``JSBSimAircraft.n_every_step`` of them, through the same cached property nodes and
+    the same ``array.extend(map(get, nodes))``) and then ``fdm.run()``; no pilot, no gusts, no
+    roughness. JSBSim's Python binding reads one property per call (jsbsim 1.3: no bulk read, and the
+    wheel ships no C++ headers to read them from a compiled loop). Best of ``repeats``, seconds."""
+    from array import array
+
+    def recorded() -> float:
+        ac = bare_aircraft(scenario, "edited", "parked")
+        run = ac.fdm.run
+        get, nodes = ac.raw_getter()
+        fast = nodes[: ac.n_every_step]
+        data = array("d")
+        ext = data.extend
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            ext(map(get, fast))
+            run()
+        return time.perf_counter() - t0
+
+    return min(recorded() for _ in range(repeats))
+
+
 def step_cost_table(scenario, steps: int = 60_000, repeats: int = 3) -> dict[tuple[str, str], float]:
     """Bare JSBSim stepping in microseconds per step, (model, state) -> us, for the stock and the edited
     model, parked and in a steady climb (:func:`bare_aircraft`), ``steps`` steps each, best of
@@ -171,10 +196,12 @@ def in_flight_stepping(scenario) -> dict:
     (:func:`step_cost_table`: parked with the ground steps, climb with the airborne ones). The
     flight this measures is slower than an untimed one; what it sums is not.
 
-    Returns ``ground_s``, ``ground_steps``, ``air_s``, ``air_steps``, ``total_s``, ``steps`` and the
-    ``track``; a :class:`RuntimeError` if the steps timed are not the flight's own (its samples plus
+    Returns ``ground_s``, ``ground_steps``, ``air_s``, ``air_steps``, ``total_s``, ``steps``,
+    ``assembly_s`` (the track built from the record after the last step: ``simulate._to_track`` and
+    ``simulate.pressure_truth``, timed in the same flight) and the ``track``; a :class:`RuntimeError` if the steps timed are not the flight's own (its samples plus
     the gear's settling before t = 0), i.e. the wrapper did not sit inside this flight."""
     from flightmode.runs import pipeline
+    from flightmode.sim.flight import simulate
     from flightmode.sim.flight.jsbsim import adapter as jsbsim_adapter
     from flightmode.sim.flight.simulate import SETTLE_S
 
@@ -215,12 +242,29 @@ def in_flight_stepping(scenario) -> dict:
         self.fdm = TimedFDM(self.fdm)
         wrapped.append(self)
 
+    # the track's assembly after the last step (the record to SI arrays, and the pressure truth)
+    assembly = [0.0]
+
+    def timed_call(f):
+        def call(*args, **kwargs):
+            t0 = clock()
+            out = f(*args, **kwargs)
+            assembly[0] += clock() - t0
+            return out
+
+        return call
+
     overhead = timer_overhead_s()
+    parts = {name: getattr(simulate, name) for name in ("_to_track", "pressure_truth")}
     jsbsim_adapter.JSBSimAircraft.__init__ = timed_init
+    for name, f in parts.items():
+        setattr(simulate, name, timed_call(f))
     try:
         track = pipeline.fly(scenario, pipeline.streams_of(scenario.seed).child("flight"))
     finally:
         jsbsim_adapter.JSBSimAircraft.__init__ = init
+        for name, f in parts.items():
+            setattr(simulate, name, f)
     steps = sums[True][1] + sums[False][1]
     expected = track.n + int(SETTLE_S * scenario.plan.fdm_hz)
     if len(wrapped) != 1 or steps != expected:
@@ -236,5 +280,6 @@ def in_flight_stepping(scenario) -> dict:
         "total_s": ground_s + air_s - overhead * steps,
         "steps": steps,
         "timer_overhead_us": overhead * 1e6,
+        "assembly_s": assembly[0],
         "track": track,
     }

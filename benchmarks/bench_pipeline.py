@@ -16,7 +16,18 @@ baseline are timed in turn, three times each, and each keeps its least time. Goa
 
 One more, instrumented flight (``_bench.in_flight_stepping``) reports how much of the fly stage is
 JSBSim's own stepping, timed inside that flight step by step (the timer's cost taken off), on the
-ground and in the air, beside the bare table's parked and climb figures.
+ground and in the air, beside the bare table's parked and climb figures, and how long the track's
+assembly from the record takes after the last step.
+
+The floors: what the fly stage and the run cannot go under while the track records every FDM step
+through JSBSim's Python binding. The record's reads cost ``_bench.recording_stepping_s`` (the edited
+model parked, stepped while reading the every-step channels) less bare stepping; the fly stage's floor
+is JSBSim's in-flight stepping + those reads for every step + the assembly, with no pilot, gusts or
+roughness at all; the run's floor adds what the fastest run spent after its fly stage (sense, detect,
+path, and the writer's tail). The last line bounds ``bench_dataset.py rate``'s figure / limit for this
+flight from above: its in-window share x bare stepping at the dataset's limit (edited model, parked for
+the ground steps, climbing for the airborne ones) / (the fly floor + sense + detect), one process alone,
+nothing written.
 """
 
 from __future__ import annotations
@@ -25,7 +36,7 @@ import subprocess
 import sys
 import tempfile
 
-from _bench import bare_stepping_s, in_flight_stepping, report, step_cost_table, timed
+from _bench import bare_stepping_s, in_flight_stepping, recording_stepping_s, report, step_cost_table, timed
 
 
 def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
@@ -56,6 +67,15 @@ def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
     # flight), the rest being flightmode's work in the loop (pilot, gusts, roughness, recording)
     jsb = in_flight_stepping(sc)
     t_fly = best["fly"]
+    floor_steps = 60_000
+    reads_us = recording_stepping_s(sc, floor_steps) / floor_steps * 1e6 - table["edited", "parked"]
+    fly_floor_s = jsb["total_s"] + reads_us * 1e-6 * steps + jsb["assembly_s"]
+    after_fly_s = t_run - t_fly
+    bare_mix_s = (
+        jsb["ground_steps"] * table["edited", "parked"] + jsb["air_steps"] * table["edited", "climb"]
+    ) * 1e-6
+    in_window = float(jsb["track"].in_flight_window.mean())
+    dataset_bound = in_window * bare_mix_s / (fly_floor_s + best["sense"] + best["detect"])
     res = {
         "scenario": name,
         "steps": steps,
@@ -79,6 +99,16 @@ def main(name: str = "gva-lhr-a320", repeats: int = 3) -> dict:
         "in the flight: timer cost taken off, us/step": jsb["timer_overhead_us"],
         "in the flight: JSBSim share of the fly stage (fastest run)": jsb["total_s"] / t_fly,
         "fly stage us/step (fastest run)": t_fly / steps * 1e6,
+        "in the flight: track assembly after the last step s": jsb["assembly_s"],
+        "floor: the record's reads, us/step": reads_us,
+        "floor: fly stage s (stepping + reads + assembly; no pilot, gusts, roughness)": fly_floor_s,
+        "floor: fly stage ratio (target 1.3)": fly_floor_s / t_bare,
+        "fly stage above its floor s (pilot, gusts, roughness, loop)": t_fly - fly_floor_s,
+        "after the fly stage s (fastest run: sense, detect, path, writer's tail)": after_fly_s,
+        "floor: run ratio (fly floor + after the fly stage; target 1.8)": (fly_floor_s + after_fly_s)
+        / t_bare,
+        "in-window share of the steps": in_window,
+        "bound: bench_dataset figure / limit, this flight (target 0.6)": dataset_bound,
     }
     report(res)
     print("step cost, bare fdm.run(), us per step:")
