@@ -13,7 +13,7 @@ read it as it is)::
     DIR/truth/aircraft=<type>/part-<id>.parquet      the aircraft's state (--truth full | 10hz | none)
     DIR/rrd/aircraft=<type>/part-<id>.rrd            with --rrd: the Rerun recording, for offline replay
     DIR/README.md                                    the dataset card
-    DIR/timings.jsonl                                wall time and peak memory per flight (not data)
+    DIR/timings.jsonl                                wall time (whole, and per stage) and peak memory per flight (not data)
 
 Atomic and resumable: every file is written to a temporary name in its final folder and renamed; the
 manifest is rewritten whole (temporary name, rename) after each flight. A flight's files depend only
@@ -81,7 +81,8 @@ def flight_id(i: int) -> str:
 # ---------------------------------------------------------------------- one flight (on a worker)
 def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
     """Fly member ``i`` of the family and write its files under ``out_dir``; the manifest row (plus
-    ``wall_s`` and ``peak_rss_mb``). Raises what the flight raises (the client records it)."""
+    ``wall_s``, ``peak_rss_mb`` and ``stages_s``, the pipeline's wall time per stage). Raises what the
+    flight raises (the client records it)."""
     import resource
 
     import numpy as np
@@ -177,6 +178,7 @@ def fly_member(family_text: str, i: int, out_dir: str, options: dict) -> dict:
         "rrd_file": files.get("rrd"),
     }
     row["wall_s"] = time.perf_counter() - t0
+    row["stages_s"] = {k: float(v) for k, v in r.wall_s.items()}  # fly, sense, detect
     row["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     return row
 
@@ -249,7 +251,7 @@ def _error_text(e: BaseException) -> str:
 
 
 # ---------------------------------------------------------------------- the manifest
-TIMING_KEYS = ("wall_s", "peak_rss_mb")
+TIMING_KEYS = ("wall_s", "peak_rss_mb", "stages_s")
 
 
 def read_manifest(out: Path) -> dict[int, dict]:

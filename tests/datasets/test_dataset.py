@@ -203,6 +203,20 @@ def test_the_manifest_records_how_each_bag_lay_in_flight(reference):
         assert back["cabin_row"] == row["cabin_row"]
 
 
+@pytest.mark.slow  # the reference dataset
+def test_timings_give_each_flights_wall_time_by_stage(reference):
+    """timings.jsonl (not data): each flight's wall time, whole and by pipeline stage; the stages are
+    parts of the whole (the rest is writing its files), so they sum to less than it."""
+    import json
+
+    log = [json.loads(x) for x in (reference / "timings.jsonl").read_text().splitlines()]
+    assert sorted(e["flight_id"] for e in log) == ["000000", "000001"]
+    for e in log:
+        assert set(e["stages_s"]) == {"fly", "sense", "detect"}
+        assert all(v > 0.0 for v in e["stages_s"].values())
+        assert sum(e["stages_s"].values()) < e["wall_s"]
+
+
 @pytest.mark.slow
 def test_the_card_documents_the_dataset_and_its_four_loaders_read_it(tmp_path, reference, monkeypatch):
     monkeypatch.setenv("HF_DATASETS_CACHE", str(tmp_path / "hf"))
