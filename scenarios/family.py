@@ -264,6 +264,8 @@ class Family:
         if isinstance(pp, bool) or not isinstance(pp, (int, float)) or not 0.0 <= pp <= 1.0:
             raise ScenarioError(f"{source}: [turbulence].patch_probability = {pp!r}: must be within 0..1")
         carrier_keys = SPEC["carrier"]
+        placements = carrier_keys["placement"].choices
+        assert placements is not None  # a choice key (spec.SPEC)
         out = cls(
             name=str(fam["name"]),
             description=str(fam.get("description", "")),
@@ -290,7 +292,7 @@ class Family:
                 source,
                 "[carrier].placement",
                 car.get("placement", {"under_seat": 1}),
-                [p for p in carrier_keys["placement"].choices if p != "hold"],
+                [p for p in placements if p != "hold"],
             ),
             handled=_weighted(
                 source,

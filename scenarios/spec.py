@@ -359,7 +359,8 @@ def _check_value(source: str, path: str, key: Key, value: Any) -> Any:
         value = float(value)
     if want is int and isinstance(value, float) and value.is_integer():
         value = int(value)
-    if not isinstance(value, want) or isinstance(value, bool):
+    well_typed = isinstance(value, want) and not isinstance(value, bool)  # a flag: value stays Any
+    if not well_typed:
         name = want.__name__ if isinstance(want, type) else "/".join(t.__name__ for t in want)
         article = "an" if name[0] in "aeiou" else "a"
         raise _fail(source, path, value, f"must be {article} {name} ({key.doc})")
@@ -435,7 +436,9 @@ def validate_doc(doc: dict[str, Any], source: str = "<scenario>") -> dict[str, A
                 doc[side] = runway_keys(str(t["icao"]), str(t["runway"]), landing=side == "destination") | t
             except ScenarioError as e:
                 raise ScenarioError(f"{source}: [{side}]: {e}") from None
-    v = {sec: _section(source, sec, doc.get(sec, {})) for sec in SPEC if sec not in ARRAY_SECTIONS}
+    v: dict[str, Any] = {
+        sec: _section(source, sec, doc.get(sec, {})) for sec in SPEC if sec not in ARRAY_SECTIONS
+    }
 
     turb_tables = doc.get("turbulence", [])
     if not isinstance(turb_tables, list):

@@ -6,7 +6,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -114,7 +114,7 @@ def activity_synth_cmd(
     acts = ACTIVITIES if activities is None else tuple(a.strip() for a in activities.split(",") if a.strip())
     if mix == "figure2":
         acts = FIGURE2_SEQUENCE
-    dets = (
+    dets: dict[str, Any] = (
         {}
         if detectors is None
         else {"detectors": tuple(d.strip() for d in detectors.split(",") if d.strip())}

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.table import Table
@@ -66,7 +66,7 @@ def fly_cmd(
 
     pair = (origin, destination, aircraft)
     if any(v is not None for v in pair):
-        if None in pair:
+        if origin is None or destination is None or aircraft is None:
             raise ScenarioError(
                 "--from, --to and --aircraft go together: give all three "
                 "(e.g. --from LFPG --to LEMD --aircraft A320)"
@@ -212,7 +212,7 @@ def scenarios_cmd(
         return
     from flightmode.scenarios.scenario import Scenario, builtin_names
 
-    rows = []
+    rows: list[dict[str, Any]] = []
     for name in builtin_names():
         try:
             sc = Scenario.builtin(name)

@@ -628,7 +628,7 @@ def run(
             det = detect(rec, root.rng("detector/bench"))
             red = (
                 detect_redundant(rec, det, pressure_params(sc, rec.baro["odr_hz"]))
-                if rec.baro_pa is not None
+                if rec.baro is not None and rec.baro_pa is not None  # a barometer's stream and its fit
                 else None
             )
             wall["detect"] = time.perf_counter() - t0
@@ -638,6 +638,7 @@ def run(
         if "path" in stages:
             tell("path")
             t0 = time.perf_counter()
+            assert rec is not None  # path needs sense (checked above)
             path = estimate_path(track, rec)
             wall["path"] = time.perf_counter() - t0
         result = RunResult(sc, sc.seed, track, metrics, rec, det, path, red, {}, wall)

@@ -181,8 +181,8 @@ def loop_5_1_1(preset, window_s: float = 1.0) -> dict:
         slope = (logp[i + 1] - logp[i]) / (PFA_KS[i + 1] - PFA_KS[i])
         return min(1.0, 10 ** (logp[i] + slope * (k - PFA_KS[i])))
 
-    pfa_max = float(TABLE9["P_FA"].split()[-1])
-    pm_start = float(TABLE9["P_M"].split()[-1])
+    pfa_max = float(str(TABLE9["P_FA"]).split()[-1])
+    pm_start = float(str(TABLE9["P_M"]).split()[-1])
     d, phi = preset.noise_am_depth, preset.noise_am_phi
     return threshold_for_pfa(lambda pm: k_of_pm_am(pm, n, d, phi), pfa_of_k, pm_start, pfa_max) | {
         "pfa_max": pfa_max

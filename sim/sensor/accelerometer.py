@@ -356,7 +356,7 @@ class SensorChain:
         self._zi = None
         self._phase = 0  # index within the next chunk of the next internal sample to keep
         self._n_out = 0
-        self._am_zi = None  # lfilter state of the noise's modulation, (1, 3): phi g[last]
+        self._am_zi: np.ndarray | None = None  # lfilter state of the noise's modulation, (1, 3): phi g[last]
 
     def __call__(self, f_sensor_g: np.ndarray, t0_s: float, rng: np.random.Generator) -> Measurement:
         """Sense a chunk (N, 3); ``t0_s`` is the time of the first sample of the whole stream."""

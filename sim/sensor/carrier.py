@@ -240,8 +240,8 @@ def build_timeline(
         c0, c1 = cruise
         if c1 - c0 - spec.handling_s > 0:
             u_handling = rng.uniform(0.0, 1.0, spec.handled_in_cruise)
-    moves = []  # (t, placement after)
-    w0 = w1 = None
+    moves: list[tuple[float, str | None]] = []  # (t, placement after)
+    w0 = w1 = 0.0  # where in-cruise handlings start: read only with a cruise (u_handling is empty without)
     if cruise is not None:
         c0, c1 = cruise
         w0, w1 = c0, c1 - spec.handling_s  # where in-cruise handlings start

@@ -26,6 +26,7 @@ with the engines stopped (before engine start, after engines off), and not withi
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import cast
 
 import numpy as np
 from scipy.signal import sosfilt, sosfilt_zi
@@ -67,9 +68,9 @@ def _check_track(track: FlightTrack) -> None:
             f"FlightTrack time is not strictly increasing at sample {i} (t = {track.t_s[i]:.3f} s)"
         )
     for name in ("specific_force_body_mps2", "rates_radps", "ang_acc_radps2", "n1_pct", "tas_mps", "alt_m"):
-        if (i := first_nonfinite(getattr(track, name))) is not None:
+        if (bad := first_nonfinite(getattr(track, name))) is not None:
             raise SensorError(
-                f"FlightTrack.{name} has NaN or inf at sample {i} (t = {track.t_s[i]:.3f} s): "
+                f"FlightTrack.{name} has NaN or inf at sample {bad} (t = {track.t_s[bad]:.3f} s): "
                 "re-fly the scenario"
             )
 
@@ -182,7 +183,10 @@ def sense(
         if any(segs[k].on_board for k in ks):
             # the mounts the bag rests on in this chunk; one it leaves restarts in its steady state
             # when the bag is next set on it
-            resting = {segs[k].placement for k in ks if segs[k].on_board and segs[k].state != "handled"}
+            # on board and not handled: stowed, so placed (Segment.placement is None only off board)
+            resting = {
+                cast(str, segs[k].placement) for k in ks if segs[k].on_board and segs[k].state != "handled"
+            }
             fl, bag, vstate = _floor_and_bag(
                 track,
                 chans,
@@ -227,9 +231,10 @@ def sense(
     if preset.burst_interval_s is not None:
         # burst recording (e-obs, seed 003 sections 4 and 9): burst_samples per axis at the ODR,
         # one burst every burst_interval_s; nothing is stored in between
-        k = np.arange(t_out.shape[0])
         per = int(round(preset.burst_interval_s * preset.odr_hz))
-        keep = (k % per) < preset.burst_samples
+        in_burst = preset.burst_samples
+        assert in_burst is not None  # set with burst_interval_s (SensorPreset.__post_init__)
+        keep = (np.arange(t_out.shape[0]) % per) < in_burst
         t_out, counts, acc, clipped = t_out[keep], counts[keep], acc[keep], clipped[keep]
     gyro_dps = None if gyro is None else _gyro(t_out, segs, track, gyro, streams.rng("gyro"))
     labels = _labels(t_out, segs, track, events)
@@ -311,7 +316,10 @@ def bag_pressure_pa(t: np.ndarray, segs, track: FlightTrack) -> np.ndarray:
     held; a road leg's elevation change is not modelled)."""
     seg_t0 = np.array([s.t0_s for s in segs])
     si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
-    rows = np.vstack([track.ambient_pressure_pa, track.cabin_pressure_pa, track.hold_pressure_pa])
+    amb, cab, hold = track.ambient_pressure_pa, track.cabin_pressure_pa, track.hold_pressure_pa
+    if amb is None or cab is None or hold is None:
+        raise SensorError("the FlightTrack has no pressure truth (ambient, cabin, hold): fly it again")
+    rows = np.vstack([amb, cab, hold])
     amb, cab, hold = _track_rows_at(rows, track, t)
     where = np.array([2 if _in_hold(s) else 1 if s.on_board else 0 for s in segs], np.intp)[si]
     return np.choose(where, (amb, cab, hold))
