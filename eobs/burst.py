@@ -58,7 +58,9 @@ class AccBurst:
         if not isinstance(self.tag_id, str) or not self.tag_id:
             raise SensorError(f"burst tag id {self.tag_id!r}: must be a non-empty string")
         try:
-            t = np.datetime64(self.start_time, "ns")
+            # numpy's stubs reject np.datetime64(datetime64, unit), numpy's documented unit conversion
+            # (fixed in numpy/numpy#31883)
+            t = np.datetime64(self.start_time, "ns")  # type: ignore[call-overload]
         except (TypeError, ValueError) as e:
             raise SensorError(f"burst start time {self.start_time!r}: not a time ({e})") from None
         if np.isnat(t):

@@ -47,8 +47,10 @@ from __future__ import annotations
 import math
 import os
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
@@ -201,7 +203,8 @@ def to_g(
     if number is None and (calibration is None or frame == "right-handed"):
         number = tag_number_from_id(burst.tag_id)
     nominal = calibration is None
-    if nominal:
+    if calibration is None:
+        assert number is not None  # found above: no calibration needs the tag number
         calibration = nominal_calibration(number, sensitivity)
         warnings.warn(
             f"tag {number}: converting counts with the nominal constants (zero 2048, "
@@ -214,6 +217,7 @@ def to_g(
     slope = np.array(calibration.slope_g_per_count)[idx]
     acc = (burst.raw.astype(float) - zero) * slope
     if frame == "right-handed" and "Y" in burst.axes:
+        assert number is not None  # found above: the right-handed frame needs the tag number
         acc[:, burst.axes.index("Y")] *= y_sign(number)
     return AccelerationG(acc, burst.axes, frame, nominal)
 
@@ -264,7 +268,7 @@ def calibration_to_toml(cal: Calibration) -> str:
     return tomli_w.dumps(doc)
 
 
-def calibrate_movebank(files: dict[str, str | os.PathLike], tag_number: int | None = None) -> Calibration:
+def calibrate_movebank(files: Mapping[str, str | os.PathLike], tag_number: int | None = None) -> Calibration:
     """:func:`calibrate` on six Movebank e-obs files (``flightmode eobs calibrate``): ``files`` maps
     '+x', '-x', '+y', '-y', '+z', '-z' to a file whose bursts all hold the tag still in that
     orientation, each burst of all three axes (XYZ); an InputDataError names a file that is not."""
@@ -332,4 +336,7 @@ def calibration_from_dict(doc: dict, source: str = "<calibration>") -> Calibrati
             )
         zero.append(float(z))
         slope.append(float(c))
-    return Calibration(tuple(zero), tuple(slope), tag, doc["nominal"])
+    # one value per axis of AXES: three each
+    zero3 = cast("tuple[float, float, float]", tuple(zero))
+    slope3 = cast("tuple[float, float, float]", tuple(slope))
+    return Calibration(zero3, slope3, tag, doc["nominal"])

@@ -138,6 +138,7 @@ def tradeoff_on_track(
             track, scenario.carrier, preset, streams.child("sensor"), overrides=scenario.overrides
         )
         n = preset.burst_samples
+        assert n is not None  # eobs_preset sets the burst
         bench = bench_static(
             dataclasses.replace(preset, burst_interval_s=None, burst_samples=None),
             UnitDraw.from_dict(rec.unit),

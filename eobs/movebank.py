@@ -88,6 +88,7 @@ def find_columns(header: tuple[str, ...]) -> Columns:
         dup = next(h for i, h in enumerate(header) if h in header[:i])
         raise InputDataError(f"line 1: header names column {dup!r} twice")
     decoder = not any(h.startswith(EOBS_PREFIX) for h in header)  # the decoder's file has no prefixed column
+    names: tuple[str, ...]
     if decoder:
         names = DECODER_COLUMNS
     else:
@@ -101,8 +102,9 @@ def find_columns(header: tuple[str, ...]) -> Columns:
                 f"line 1: header has no column {name!r}{did_you_mean(name, header)}; an e-obs Movebank file "
                 f"needs {required}{extra} (seed 003 section 5.4)"
             )
-    i = [header.index(n) for n in names]
-    return Columns(*i, decoder_layout=decoder)
+    # names holds the six fields in Columns' order (mypy cannot tell a list's length: unpacked by name)
+    checksum, tag_id, start, rate, axes, raw = (header.index(n) for n in names)
+    return Columns(checksum, tag_id, start, rate, axes, raw, decoder)
 
 
 @dataclass(frozen=True, slots=True)
@@ -132,14 +134,17 @@ class TimestampStyle:
 
     def format(self, t: np.datetime64) -> str:
         """The text of ``t`` (UTC) in this style; InputDataError if the style cannot hold it exactly."""
-        local = np.datetime64(t, "ns") + self.offset
+        # numpy's stubs reject np.datetime64(datetime64, unit), numpy's documented unit conversion
+        # (fixed in numpy/numpy#31883)
+        t_ns = np.datetime64(t, "ns")  # type: ignore[call-overload]
+        local = t_ns + self.offset
         secs = local.astype("datetime64[s]")
         frac_ns = int((local - secs) // np.timedelta64(1, "ns"))
         text = str(secs).replace("T", self.sep)
         digits = f"{frac_ns:09d}"
         if digits[self.fraction_digits :].strip("0"):
             raise InputDataError(
-                f"start time {np.datetime_as_string(np.datetime64(t, 'ns'))} has more sub-second digits than "
+                f"start time {np.datetime_as_string(t_ns)} has more sub-second digits than "
                 f"the file's timestamps hold ({self.fraction_digits})"
             )
         if self.fraction_digits:
@@ -323,8 +328,8 @@ def _parse(data: bytes | str) -> MovebankFile:
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError as e:
-            line = data[: e.start].count(b"\n") + 1
-            raise InputDataError(f"line {line}: not UTF-8 text ({e.reason})") from None
+            bad = data[: e.start].count(b"\n") + 1
+            raise InputDataError(f"line {bad}: not UTF-8 text ({e.reason})") from None
     else:
         text = data
     bom = text.startswith("\ufeff")

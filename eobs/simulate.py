@@ -36,6 +36,7 @@ def unit_spread() -> tuple[float, float]:
     from flightmode.sim.sensor.accelerometer import PRESETS
 
     p = PRESETS["eobs"]
+    assert p.lsb_g is not None  # the eobs preset is quantised (0.0022 g/count)
     return p.offset_tol_g / p.lsb_g, p.sensitivity_tol
 
 

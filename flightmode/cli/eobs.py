@@ -4,7 +4,7 @@ trade-off on flights)."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, TypedDict
 
 import typer
 from rich.table import Table
@@ -20,6 +20,17 @@ eobs_app = sub_app(
 CALIBRATION_FILE = "calibration.toml"  # what `flightmode eobs calibrate --out DIR` writes into DIR
 TRADEOFF_FILE = "tradeoff.parquet"  # what `flightmode eobs tradeoff --out DIR` writes into DIR
 BURSTS_HELP = "Final static after this many quiet bursts in a row."
+
+
+class _DetectRow(TypedDict):
+    """One individual's line of `flightmode eobs detect` (its JSON and its table)."""
+
+    individual: str
+    axes: str
+    bursts: int
+    quiet: int
+    final_static: int
+    sigma2_g2: list[float]
 
 
 @eobs_app.command("detect", epilog="Example: flightmode eobs detect tag.csv --tag-number 2242")
@@ -57,7 +68,7 @@ def eobs_detect_cmd(
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", category=NominalCalibrationWarning)  # said once, below
         det = detect_movebank(source, k=k, m=bursts, calibration=cal, tag_number=tag_number)
-    rows = [
+    rows: list[_DetectRow] = [
         {
             "individual": ind.individual,
             "axes": ind.axes,
