@@ -272,3 +272,17 @@ def test_detect_cli_nmv_plus_baro_reads_the_run_folder(baro_run, tmp_path):
         assert bad.exit_code == 2 and words in bad.output and "Traceback" not in bad.output
     bad = cli.invoke(app, ["detect", str(run_dir), "--method", "nmv+gps"])
     assert bad.exit_code == 2 and "nmv+baro" in bad.output
+
+
+def test_a_track_missing_part_of_its_pressure_truth_is_a_typed_error(fly_cached):
+    """The barometer reads the bag's pressure from all three truths (ambient, cabin, hold): a track
+    with the cabin's but not the ambient's is refused with a SensorError naming what is missing (it
+    was a TypeError from NumPy)."""
+    import dataclasses
+
+    from flightmode.errors import SensorError
+
+    sc, tr = fly_cached("pattern")
+    sc = sc.replace(sensor={"baro": "bmp581"})
+    with pytest.raises(SensorError, match="no pressure truth"):
+        pipeline.run(sc, track=dataclasses.replace(tr, ambient_pressure_pa=None), stages=("fly", "sense"))
