@@ -30,6 +30,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -163,7 +164,7 @@ def pfa_table(
     for k in ks:
         # eq. 7 against k sigma_i^2 per axis, or eq. 12's common threshold (params.threshold)
         below_all = c.mv < axis_thresholds(dataclasses.replace(params, k_sigma=float(k)), sigma2)[None, :]
-        temp = below_all.all(axis=1)  # eq. 7
+        temp = cast(np.ndarray, below_all.all(axis=1))  # eq. 7 (an array: below_all is 2-D)
         below = below_all[in_w]
         pa = below.mean(axis=0) if n else np.full(3, math.nan)
         pt = float(np.prod(pa))  # the paper's P_FA^t: the axes taken as independent

@@ -158,7 +158,7 @@ class FlightModeDetector:
         self.sigma2 = sigma2
         self.thresholds = axis_thresholds(params, sigma2)  # eq. 7, 12: T_sigma = k sigma^2
         self._new_engine()
-        self._t_last = None
+        self._t_last: float | None = None
         self._n = 0  # samples seen (global index of the next one)
 
     def _new_engine(self) -> None:

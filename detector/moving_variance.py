@@ -75,7 +75,7 @@ class MovingVariance:
         # EMV state
         a = weight / window
         self._b, self._a = np.array([a]), np.array([1.0, -(1.0 - a)])
-        self._zm = None
+        self._zm: np.ndarray | None = None
         self._zv = np.atleast_1d(np.asarray(initial_variance, float)) * np.ones(n_axes) * (1.0 - a)
 
     def push(self, x: np.ndarray) -> np.ndarray:

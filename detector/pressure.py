@@ -76,12 +76,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from flightmode.detector.flight_mode import Checks, DetectorParams, FlightModeDetector
 from flightmode.errors import DetectorError, first_nonfinite
 from flightmode.units import FPM_MPS, FT_M, G0_MPS2
+
+if TYPE_CHECKING:  # imported where it is used, at run time
+    from flightmode.detector.evaluation import Evaluation
 
 # ---------------------------------------------------------------------------------------------
 # parameters and statistics
@@ -584,7 +588,7 @@ def evaluate_sources(
         "level": int((p & ~rate_bad & level_bad).sum()),
         "hold": int((p & ~rate_bad & ~level_bad).sum()),
     }
-    resume = {}
+    resume: dict[str, float | None] = {}
     for s, m in susp.items():
         if t_end_s is None:
             resume[s] = None
@@ -600,8 +604,8 @@ class RedundantEvaluation:
     (:func:`flightmode.detector.evaluation.score`: false statics in the in-flight window, missed
     static, response at the gate), with each source's states and who suspended / held / resumed."""
 
-    accel: object  # detector.evaluation.Evaluation: seed 000's detector alone
-    combined: object  # Evaluation of the same checks with final static = the rule's "allowed"
+    accel: Evaluation  # seed 000's detector alone
+    combined: Evaluation  # the same checks scored with final static = the rule's "allowed"
     pressure: PressureChecks
     checks: RedundantChecks
     sources: SourceEvaluation

@@ -59,8 +59,8 @@ class AccBurst:
             raise SensorError(f"burst tag id {self.tag_id!r}: must be a non-empty string")
         try:
             # numpy's stubs reject np.datetime64(datetime64, unit), numpy's documented unit conversion
-            # (fixed in numpy/numpy#31883)
-            t = np.datetime64(self.start_time, "ns")  # type: ignore[call-overload]
+            # (fixed in numpy/numpy#31883: unused-ignore keeps a numpy with the fix quiet)
+            t = np.datetime64(self.start_time, "ns")  # type: ignore[call-overload, unused-ignore]
         except (TypeError, ValueError) as e:
             raise SensorError(f"burst start time {self.start_time!r}: not a time ({e})") from None
         if np.isnat(t):

@@ -57,13 +57,13 @@ HEADER_AVERAGE_STD = (
 def day_number(t: np.datetime64) -> int:
     """Days since 4 March 2007 (footnote 4) of the UTC date of ``t``."""
     # numpy's stubs reject np.datetime64(datetime64, unit), numpy's documented unit conversion
-    # (fixed in numpy/numpy#31883); so below too
-    return int((np.datetime64(t, "D") - DAY_ZERO) // np.timedelta64(1, "D"))  # type: ignore[call-overload]
+    # (fixed in numpy/numpy#31883: unused-ignore keeps a numpy with the fix quiet); so below too
+    return int((np.datetime64(t, "D") - DAY_ZERO) // np.timedelta64(1, "D"))  # type: ignore[call-overload, unused-ignore]
 
 
 def time_fields(t: np.datetime64) -> list[str]:
     """[day number, d.m.yyyy, two-letter weekday, HH:MM:SS] of ``t`` (UTC, seconds truncated)."""
-    dt = np.datetime64(t, "s").astype(object)  # type: ignore[call-overload]  # a datetime.datetime
+    dt = np.datetime64(t, "s").astype(object)  # type: ignore[call-overload, unused-ignore]  # a datetime.datetime
     return [
         str(day_number(t)),
         f"{dt.day}.{dt.month}.{dt.year}",

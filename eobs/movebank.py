@@ -135,8 +135,8 @@ class TimestampStyle:
     def format(self, t: np.datetime64) -> str:
         """The text of ``t`` (UTC) in this style; InputDataError if the style cannot hold it exactly."""
         # numpy's stubs reject np.datetime64(datetime64, unit), numpy's documented unit conversion
-        # (fixed in numpy/numpy#31883)
-        t_ns = np.datetime64(t, "ns")  # type: ignore[call-overload]
+        # (fixed in numpy/numpy#31883: unused-ignore keeps a numpy with the fix quiet)
+        t_ns = np.datetime64(t, "ns")  # type: ignore[call-overload, unused-ignore]
         local = t_ns + self.offset
         secs = local.astype("datetime64[s]")
         frac_ns = int((local - secs) // np.timedelta64(1, "ns"))

@@ -148,12 +148,12 @@ def evaluate(track, recordings: dict, lever_arm_body_m, checks_of=None) -> list[
         v = vert[s]
         if np.isnan(v).any():
             continue
-        est = zupt_path(tt, v[:, None], tr_pos[:1, 2], static[s])[:, 0]
+        z = zupt_path(tt, v[:, None], tr_pos[:1, 2], static[s])[:, 0]
         rows.append(
             {
                 "source": f"{label}, tilt-only (vertical only)",
                 "method": "recurrence + ZUPT",
-                **errors(tt, est[:, None], tr_pos[:, 2:3]),
+                **errors(tt, z[:, None], tr_pos[:, 2:3]),
             }
         )
     return rows

@@ -131,6 +131,7 @@ def flexible_signal(signal: str, acc_g: np.ndarray, gyr_dps: np.ndarray | None) 
     """The seed's four inputs of the flexible detectors (section 3.1.2), one value per sample."""
     if signal == "acc":
         return norm3(acc_g)
+    assert gyr_dps is not None  # the callers refuse a stream without gyr_dps for the other signals
     w = norm3(gyr_dps)
     if signal == "gyr":
         return w

@@ -152,8 +152,10 @@ def rest_figures(p: ActivityParams, bench_acc_g: np.ndarray, bench_gyr_dps: np.n
         )
     x = flexible_signal(p.signal, acc, bench_gyr_dps) if d.signals else None
     if p.name == "mbcd":
+        assert x is not None  # mbcd and the dB detectors take a signal
         rest["bandwidth"] = 1.06 * float(np.std(x)) * p.detector_window**-0.2  # Silverman (1986) eq. 3.28
     if p.name in DB_DETECTORS:
+        assert x is not None
         rest["noise_spectrum"] = _rest_spectrum(x, p.window, max(1, p.window // 2))
     merit = d.detect(t, acc, bench_gyr_dps, threshold=0.0, **detector_kwargs(p, rest)).merit
     merit = merit[np.isfinite(merit)]

@@ -63,8 +63,10 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import asdict, dataclass, field
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from flightmode.detector.activity.synth import ACTIVITIES, DEFAULT_RANGES, PERIOD_KINDS, Ranges
 from flightmode.errors import DetectorError, did_you_mean
@@ -172,7 +174,7 @@ class Grid:
         """(detector, signal) in the seed's table order; signal None for the fixed-input detectors."""
         from flightmode.detector.activity import registry
 
-        out = []
+        out: list[tuple[str, str | None]] = []
         for d in sorted(self.detectors, key=lambda n: (TABLE_OF[n], registry.NAMES.index(n))):
             sigs = registry.get(d).signals
             out += [(d, s) for s in self.signals if s in sigs] if sigs else [(d, None)]
@@ -430,6 +432,8 @@ def grid_search(
         surface.append((window, shift, float(acc[k])))
         if best is None or acc[k] > best[0]:  # strictly better: ties keep the earlier grid point
             best = (float(acc[k]), float(corr[k]), float(s.thresholds[k]), window, shift, merit)
+    if best is None:
+        raise DetectorError(f"grid_search {name}: points is empty: give one or more (window, shift) pairs")
     return GridBest(best[0], best[1], corr_max, best[2], best[3], best[4], best[5], tuple(surface))
 
 
@@ -465,7 +469,7 @@ def evaluate_run(index: int, seed: int, config: MonteCarloConfig) -> dict:
     from flightmode.streams import as_streams
 
     streams = as_streams(_run_generator(seed, index))
-    sensor = {
+    sensor: dict[str, Any] = {
         "fs_hz": config.fs_hz,
         "gravity_axis": config.gravity_axis,
         "sigma_acc_g": config.sigma_acc_g,
@@ -907,7 +911,7 @@ def label(detector: str, signal: str | None) -> str:
     return detector.upper() if signal is None else f"{detector.upper()}-{SIGNAL_LABEL[signal]}"
 
 
-def _ms(v: np.ndarray) -> tuple[float, float]:
+def _ms(v: npt.ArrayLike) -> tuple[float, float]:
     v = np.asarray(v, float)
     if np.all(np.isnan(v)):
         return math.nan, math.nan
@@ -921,7 +925,7 @@ def summary(result: MonteCarloResult) -> list[dict]:
     rows = []
     for name, signal in result.config.grid.cases():
         mine = [r for r in result.rows if r["detector"] == name and r["signal"] == signal]
-        row = {
+        row: dict[str, Any] = {
             "table": TABLE_OF[name],
             "detector": name,
             "signal": signal,
@@ -1047,7 +1051,8 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
     }
     for name, table in tables.items():
         p = os.path.join(out, f"{name}.parquet")
-        write_with(p, lambda tmp, t=table: pq.write_table(t, tmp), mkdir=False)
+        # mypy cannot infer the type of a lambda with default arguments (python/mypy#12557)
+        write_with(p, lambda tmp, t=table: pq.write_table(t, tmp), mkdir=False)  # type: ignore[misc]
         paths[name] = p
     best8 = [(r["detector"], r["signal"]) for r in sorted(rows, key=lambda r: r["auc_rank"])[:8]]
     figures = {"roc_best8": (best8, "The eight best by mean AUC (cf. seed 001, Figure 9)")}
@@ -1058,7 +1063,8 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
         )
     for name, (cases, title) in figures.items():
         p = os.path.join(out, f"{name}.png")
-        write_with(p, lambda tmp, c=cases, ti=title: _roc_figure(results, c, ti, tmp), mkdir=False)
+        # mypy cannot infer the type of a lambda with default arguments (python/mypy#12557)
+        write_with(p, lambda tmp, c=cases, ti=title: _roc_figure(results, c, ti, tmp), mkdir=False)  # type: ignore[misc]
         paths[name] = p
     meta = {
         "seed": results.seed,
@@ -1071,12 +1077,12 @@ def write_results(results: MonteCarloResult, out_dir) -> dict:
     return paths
 
 
-def _write_text(path: str, text: str) -> None:
+def _write_text(path: str | os.PathLike, text: str) -> None:
     with open(path, "w") as f:
         f.write(text)
 
 
-def _roc_figure(results: MonteCarloResult, cases, title: str, path: str) -> None:
+def _roc_figure(results: MonteCarloResult, cases, title: str, path: str | os.PathLike) -> None:
     """Averaged ROC curves of ``cases``: complete (left) and zoomed to FPR <= 0.2, TPR >= 0.8 (right)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure

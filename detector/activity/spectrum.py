@@ -173,6 +173,7 @@ class SpectralStream:
         v = np.full(spec.shape[0], np.nan)
         ok = (frame_idx >= self.order) & (frame_idx >= self._noise_from)
         if ok.any():
+            assert self._noise is not None  # _learn_noise has learnt it by frame _noise_from
             v[ok] = spectral_merit(env[ok], self._noise)
         return v
 

@@ -425,8 +425,8 @@ def synthesize(
     np.clip(acc, -acc_range, acc_range, out=acc)  # saturation: the sensor outputs its rail
     np.clip(gyr, -gyr_range, gyr_range, out=gyr)
     t = np.arange(n_total) / fs
-    for a in (t, acc, gyr, marker):
-        a.flags.writeable = False
+    for arr in (t, acc, gyr, marker):
+        arr.flags.writeable = False
     return Synth(
         t,
         acc,

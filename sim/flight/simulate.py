@@ -347,7 +347,9 @@ def _si_groups(
     nf, scales = fast.shape[1], ac.scales
     n = fast.shape[0]
     out: dict[str, np.ndarray] = {}
-    fast_parts = []  # (output array, its column or None, channel index) for every fast channel used
+    # (output array, its column or None, channel index) for every fast channel used
+    fast_parts: list[tuple[np.ndarray, int | None, int]] = []
+    j: int | None  # a column of a group's array, None for a one-channel group's (steps,) array
     for name, idx in groups.items():
         if len(idx) == 1:
             i = idx[0]

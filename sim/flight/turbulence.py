@@ -51,6 +51,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -286,6 +287,9 @@ def sigma_high_mps(edr: float) -> float:
     return EDR_TO_SIGMA_W * edr
 
 
+Gusts = tuple[list[float], list[float], list[float]]  # a run of steps' gusts (ft/s): north, east, down
+
+
 class GustFeed:
     """Feeds a :class:`GustField` to a JSBSim aircraft: its ``atmosphere/gust-{north,east,down}-fps``
     properties are written before every FDM step while the air is turbulent (the pilot decides when
@@ -299,11 +303,11 @@ class GustFeed:
         self.nodes = [ac.node(p) for p in self.PROPS]
         self.set = type(self.nodes[0]).set_double_value
         self.field, self.atmosphere, self.ix = field, atmosphere, ix
-        self.buffer: tuple[list[float], list[float], list[float]] = ([], [], [])  # ft/s, north, east, down
+        self.buffer: Gusts = ([], [], [])  # ft/s, north, east, down
         self.pos = 0
         self.on = False
 
-    def take(self, n: int, x, sigma_high_mps: float) -> tuple[list[float], list[float], list[float]]:
+    def take(self, n: int, x, sigma_high_mps: float) -> Gusts:
         """The next ``n`` steps' gusts (ft/s): three lists, north, east and down, generating blocks from
         the state row ``x`` as needed."""
         ix = self.ix
@@ -316,10 +320,10 @@ class GustFeed:
                 )
                 for r, col in zip(rest, g):
                     r.extend(col)
-            self.buffer, pos = tuple(rest), 0
+            self.buffer, pos = cast(Gusts, tuple(rest)), 0
         self.pos = pos + n
         self.on = True
-        return tuple(b[pos : pos + n] for b in self.buffer)
+        return cast(Gusts, tuple(b[pos : pos + n] for b in self.buffer))
 
     def stop(self) -> None:
         if self.on:

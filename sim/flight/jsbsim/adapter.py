@@ -16,12 +16,21 @@ import shutil
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Protocol
 
 import numpy as np
 
 from flightmode.errors import AircraftError
 from flightmode.sim.flight.jsbsim.model_copy import private_model_copy
 from flightmode.units import FT_M, G0_MPS2, KT_MPS, LBF_N
+
+
+class PropertyNode(Protocol):
+    """What flightmode uses of a JSBSim property node (jsbsim's FGPropertyNode; jsbsim ships no stubs)."""
+
+    def get_double_value(self) -> float: ...
+
+    def set_double_value(self, value: float) -> None: ...
 
 
 @dataclass(frozen=True, slots=True)
@@ -104,7 +113,7 @@ def remove_stale_copies(root: Path) -> list[Path]:
     folder, whose id means nothing here, has long finished loading by then). Returns what it removed."""
     import time
 
-    removed = []
+    removed: list[Path] = []
     now = time.time()
     try:
         entries = list(os.scandir(root))
@@ -181,7 +190,7 @@ class JSBSimAircraft:
         self._pm = fdm.get_property_manager()
         self._read_nodes = [self.node(c.prop) for c in self.channels]
         self._scales = np.array([c.scale for c in self.channels])
-        self._nodes: dict[str, object] = {}
+        self._nodes: dict[str, PropertyNode] = {}
 
     def node(self, prop: str):
         """The property node of ``prop`` (JSBSim's name; an :class:`AircraftError` if the model has none)."""

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 from functools import lru_cache
+from typing import cast
 
 from flightmode.errors import AircraftError
 from flightmode.sim.flight.jsbsim.model_xml import LENGTH_UNITS_M
@@ -77,7 +78,8 @@ def peak_load_factor(
     def stop(t, y):  # the stroke turns back
         return y[1]
 
-    stop.terminal, stop.direction = True, -1
+    # solve_ivp reads these attributes of an event function; mypy knows no attributes of a function
+    stop.terminal, stop.direction = True, -1  # type: ignore[attr-defined]
     sol = solve_ivp(rhs, (0.0, 3.0), [0.0, sink_fps], events=stop, max_step=2e-3, rtol=1e-8, atol=1e-10)
     f_max = max(force(x, xd) for x, xd in zip(sol.y[0], sol.y[1]))
     return 1.0 + n_main * f_max / weight_lbf
@@ -127,7 +129,7 @@ def soften_main_gear(root: ET.Element, landing_mass_kg: float) -> tuple[float, f
     k, c2 = main_strut(landing_mass_kg, len(mains))
     for c in mains:
         _set_damper(c, c2)
-        spring = c.find("spring_coeff")
+        spring = cast(ET.Element, c.find("spring_coeff"))  # the profiles' models all have one
         spring.attrib = {"unit": "LBS/FT"}
         spring.text = f"{k:.3f}"
     return k, c2
@@ -155,17 +157,18 @@ def set_nose_strut(root: ET.Element, landing_mass_kg: float, static_deflection_m
     stroke). For a model whose stock nose spring is too stiff for its length (AircraftProfile
     ``nose_static_deflection_m``). Returns the spring (lbf/ft)."""
     nose = nose_gear(root)
-    spring = nose.find("spring_coeff")
+    # the profiles' models have these elements and numbers
+    spring = cast(ET.Element, nose.find("spring_coeff"))
     if spring.get("unit", "LBS/FT") != "LBS/FT":
         raise AircraftError(f"nose spring in {spring.get('unit')}, not LBS/FT: cannot resize it")
     load_lbf = landing_mass_kg * (1.0 - MAIN_SHARE) * G0_MPS2 / LBF_N
     k = load_lbf / (static_deflection_m / FT_M)
-    added_m = static_deflection_m - load_lbf / float(spring.text) * FT_M
-    z = nose.find("location/z")
-    unit = nose.find("location").get("unit", "IN")
+    added_m = static_deflection_m - load_lbf / float(cast(str, spring.text)) * FT_M
+    z = cast(ET.Element, nose.find("location/z"))
+    unit = cast(ET.Element, nose.find("location")).get("unit", "IN")
     if unit not in LENGTH_UNITS_M:
         raise AircraftError(f"nose gear location in '{unit}'; allowed: {', '.join(LENGTH_UNITS_M)}")
-    z.text = f"{float(z.text) - added_m / LENGTH_UNITS_M[unit]:.5f}"
+    z.text = f"{float(cast(str, z.text)) - added_m / LENGTH_UNITS_M[unit]:.5f}"
     spring.attrib = {"unit": "LBS/FT"}
     spring.text = f"{k:.3f}"
     return k
@@ -173,7 +176,7 @@ def set_nose_strut(root: ET.Element, landing_mass_kg: float, static_deflection_m
 
 def _set_damper(contact: ET.Element, c2: float) -> None:
     """Quadratic compression damping c2 on ``contact``; its rebound keeps the model's linear damping."""
-    damp = contact.find("damping_coeff")
+    damp = cast(ET.Element, contact.find("damping_coeff"))  # the profiles' models all have one
     if contact.find("damping_coeff_rebound") is None:
         reb = ET.SubElement(contact, "damping_coeff_rebound", unit=damp.get("unit", "LBS/FT/SEC"))
         reb.text = damp.text

@@ -53,6 +53,7 @@ from __future__ import annotations
 import functools
 import math
 import xml.etree.ElementTree as ET
+from typing import cast
 
 from flightmode.errors import AircraftError
 from flightmode.sim.flight.jsbsim.gear import nose_gear, set_nose_strut, soften_main_gear, soften_nose_gear
@@ -70,7 +71,7 @@ def extend_elevator_nose_up(root: ET.Element, nose_up_deg: float) -> None:
             continue
         for tag in ("range", "domain"):
             el = scale.find(f"{tag}/min")
-            if el is not None and float(el.text) < 0 and ("control" in name or tag == "domain"):
+            if el is not None and float(cast(str, el.text)) < 0 and ("control" in name or tag == "domain"):
                 el.text = f"{-nose_up_deg:g}"
                 changed += 1
     if changed == 0:
@@ -87,7 +88,11 @@ def spread_spoiler_lift_loss(root: ET.Element) -> None:
         data = table.find("tableData")
         if var is None or data is None or (var.text or "").strip() != "fcs/spoiler-pos-norm":
             continue
-        rows = [[float(v) for v in line.split()] for line in data.text.strip().splitlines() if line.strip()]
+        rows = [
+            [float(v) for v in line.split()]
+            for line in cast(str, data.text).strip().splitlines()
+            if line.strip()
+        ]
         last = rows[-1][0]
         if last <= 0.0 or any(len(r) != 2 for r in rows):
             raise AircraftError(f"unexpected spoiler lift table {rows}: expected (position, factor) rows")
@@ -131,7 +136,7 @@ def add_ground_spoilers(root: ET.Element) -> None:
         if aero is None
         else aero.find("axis[@name='LIFT']/function[@name='aero/coefficient/CLalpha']/product")
     )
-    if fcs is None or wing is None:
+    if fcs is None or aero is None or wing is None:  # (no aero means no wing)
         raise AircraftError(
             "no flight_control, or no LIFT axis with a CLalpha product, to add ground spoilers to"
         )
@@ -160,11 +165,11 @@ def place_wing_tip_contacts(root: ET.Element) -> None:
     span instead of half of it."""
     span = root.find("metrics/wingspan")
     unit = None if span is None else span.get("unit", "FT").upper()
-    if unit not in LENGTH_UNITS_M:
+    if span is None or unit not in LENGTH_UNITS_M:  # (no span means no unit)
         raise AircraftError(
             f"the model's metrics/wingspan is missing or in '{unit}'; allowed: {', '.join(LENGTH_UNITS_M)}"
         )
-    half_m = float(span.text) * LENGTH_UNITS_M[unit] / 2.0
+    half_m = float(cast(str, span.text)) * LENGTH_UNITS_M[unit] / 2.0
     for contact in root.iterfind("ground_reactions/contact[@type='STRUCTURE']"):
         loc = contact.find("location")
         y = None if loc is None else loc.find("y")
@@ -173,7 +178,7 @@ def place_wing_tip_contacts(root: ET.Element) -> None:
             raise AircraftError(
                 f"contact {contact.get('name')!r}: no location y in {', '.join(LENGTH_UNITS_M)}"
             )
-        y_m = float(y.text) * LENGTH_UNITS_M[loc_unit]
+        y_m = float(cast(str, y.text)) * LENGTH_UNITS_M[loc_unit]
         if abs(y_m) > 1.05 * half_m:
             y.text = f" {math.copysign(half_m, y_m) / LENGTH_UNITS_M[loc_unit]:.2f} "
 

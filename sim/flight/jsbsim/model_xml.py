@@ -46,8 +46,10 @@ def external_reactions(root: ET.Element) -> ET.Element:
 def xml_number(el: ET.Element | None, what: str) -> float:
     """The number in ``el``'s text (an :class:`AircraftError` naming ``what`` if there is none)."""
     try:
+        if el is None or el.text is None:
+            raise ValueError(what)
         return float(el.text)
-    except (AttributeError, TypeError, ValueError):
+    except ValueError:
         raise AircraftError(
             f"gear contact has no numeric {what}: cannot couple runway roughness to it"
         ) from None

@@ -82,27 +82,28 @@ def gear_groups(root: ET.Element) -> dict[str, dict]:
                 f"{', '.join(str(r[1].get('name')) for r in gear)})"
             )
         k = cl = cq = rl = rq = 0.0
-        loc = [0.0, 0.0, 0.0]
+        moment = [0.0, 0.0, 0.0]  # sum of k * location
         for _, c, xyz in rs:
-            if c.find("strut_force") is not None or c.find("spring_coeff") is None:
+            spring = c.find("spring_coeff")
+            if c.find("strut_force") is not None or spring is None:
                 raise AircraftError(
                     f"gear contact '{c.get('name')}' has no spring_coeff: cannot couple roughness"
                 )
-            ki = xml_converted(c.find("spring_coeff"), SPRING_UNITS, "LBS/FT", "spring")
+            ki = xml_converted(spring, SPRING_UNITS, "LBS/FT", "spring")
             dl, dq = damping(c.find("damping_coeff"))
             reb = c.find("damping_coeff_rebound")
             bl, bq = (dl, dq) if reb is None else damping(reb)
             k, cl, cq, rl, rq = k + ki, cl + dl, cq + dq, rl + bl, rq + bq
-            loc = [a + ki * b for a, b in zip(loc, xyz)]
+            moment = [a + ki * b for a, b in zip(moment, xyz)]
         out[g] = {
             "spring": k,
             "damp": cl,
             "damp2": cq,
             "rebound": rl,
             "rebound2": rq,
-            "x": loc[0] / k,
-            "y": loc[1] / k,
-            "z": loc[2] / k,
+            "x": moment[0] / k,
+            "y": moment[1] / k,
+            "z": moment[2] / k,
             "units": [r[0] for r in rs],
         }
     return out

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import cast
 
 from flightmode.sim.flight import geodesy
 from flightmode.sim.flight.aircraft.profile import AircraftProfile
@@ -73,7 +74,8 @@ class Autopilot:
         self.spd_pid = PID(p.spd_kp, p.spd_ki, 0.0, 0.0, 1.0)
         self.climb_spd_pid = PID(*tu.climb_speed_pid)
         self.gamma_pid = PID(*tu.path_pid)
-        self.ground_spd_pid = PID(*tu.ground_speed_pid, 0.0, p.taxi_throttle_max)
+        # (kp, ki, kd) and the limits; mypy gives a *args of unknown length all the remaining parameters
+        self.ground_spd_pid = PID(*tu.ground_speed_pid, 0.0, p.taxi_throttle_max)  # type: ignore[call-arg]
         self.tug_pid = PID(*tu.tug_pid)
         self.brake_pid = PID(*tu.brake_pid)
         # shared state
@@ -438,8 +440,9 @@ class Autopilot:
         speed is the taxi route's (:meth:`speed_on_ground`)."""
         ix = self.ix
         rx, ry = frame.to_xy(x[ix["lat_deg"]], x[ix["lon_deg"]])
-        s, cross = self.path.project(rx, ry)
-        target = self.path.point_at(s + lookahead_m)
+        path = cast(Path2D, self.path)  # the taxi route: Taxi.start_route set it
+        s, cross = path.project(rx, ry)
+        target = path.point_at(s + lookahead_m)
         hdg = frame.heading_in_frame(x[ix["psi_rad"]])
         _, alpha = pure_pursuit_steer_rad(rx, ry, hdg, target, self.prof.wheelbase_m)
         gs = self.gs(x)

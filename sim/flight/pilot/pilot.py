@@ -17,11 +17,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import cast
 
 from flightmode.errors import FlightDivergedError
 from flightmode.labels import AIRBORNE_PHASES, PHASE_CODE, SEVERITIES, SEVERITY_CODE
 from flightmode.sim.flight.aircraft.profile import AircraftProfile
 from flightmode.sim.flight.pilot.autopilot import Autopilot
+from flightmode.sim.flight.pilot.controller import Controller
 from flightmode.sim.flight.pilot.controllers import CONTROLLERS
 from flightmode.sim.flight.pilot.phases import START, TABLE
 from flightmode.sim.flight.plan import FlightPlan
@@ -79,7 +81,7 @@ class Pilot:
         self.ap = Autopilot(ac, plan, profile, draws, self.event)
         self.ap.dt = 3.0 / fdm_hz
         # one controller per phase; the four en-route phases share one (one set of loops)
-        shared: dict[type, object] = {}
+        shared: dict[type[Controller], Controller] = {}
         self.controllers = {ph: shared.setdefault(cls, cls(self)) for ph, cls in CONTROLLERS.items()}
         self.controller = self.controllers[START]
         self._t_last: float | None = None
@@ -295,7 +297,7 @@ class Pilot:
                 self.gust_sigma_mps = None
                 self.severity_code = 0
             return
-        since = self.t - self.t_liftoff
+        since = self.t - cast(float, self.t_liftoff)  # set: airborne
         atm = self.draws.atmosphere
         sev, edr = 0, background_edr(self._x[self.ix["alt_m"]], atm.edr_mid, atm.edr_upper)
         for seg, seg_edr in zip(self.plan.turbulence, atm.patch_edr):

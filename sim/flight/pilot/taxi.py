@@ -31,8 +31,10 @@ class Taxi(Controller):
         self.v_ref = v0_mps
         ap.ground_spd_pid.reset()
 
+    # Controller.holding is a class attribute that only the pilot reads (nothing sets it on a
+    # controller): a read-only property in its place is sound, though mypy cannot know it
     @property
-    def holding(self) -> bool:
+    def holding(self) -> bool:  # type: ignore[override]
         return self.hold_until is not None
 
     def taxi(self, x, frame) -> bool:

@@ -13,6 +13,7 @@ import pytest
 
 from flightmode.detector.activity import montecarlo as mc
 from flightmode.detector.activity.common import decide
+from flightmode.errors import DetectorError
 
 FS = 50.0
 
@@ -116,6 +117,12 @@ def test_grid_search_finds_the_known_best_window_and_accuracy():
         thresholds=[-1.0, b.threshold, 10.0],
     )
     assert (c.window, c.accuracy, c.threshold) == (8, b.accuracy, b.threshold)
+
+
+def test_grid_search_without_points_says_so():
+    t, acc, truth, _, _ = _known_case()
+    with pytest.raises(DetectorError, match="points is empty"):  # was a TypeError on None
+        mc.grid_search("amvd", None, t, acc, None, truth, [], fs_hz=FS)
 
 
 # ---------------------------------------------------------------- a tiny study
