@@ -41,7 +41,7 @@ Importing this module imports no NumPy and no detector.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, cast
 
 from flightmode.detector.interface import ACC_CHANNELS, GYRO_CHANNELS
 from flightmode.detector.recommended_point import POINT
@@ -152,7 +152,8 @@ class MovingVarianceDetector:
         self._engine = FlightModeDetector(params, sigma2)
         self.params, self.sigma2 = params, self._engine.sigma2
         self._parts = [self._engine.push(np.zeros(0), np.zeros((0, 3)))]
-        self._n, self._state, self._t_prev = 0, False, None
+        self._n, self._state = 0, False
+        self._t_prev: float | None = None
 
     def push(self, t_s, x):
         return self.push_checks(t_s, x)[0]
@@ -324,7 +325,8 @@ class ActivityDetector:
         w = self.params.window
         m = np.concatenate([*self._pending, res.marker])
         k = m.shape[0] // w
-        temp = ~m[: k * w].reshape(k, w).astype(bool).any(axis=1)  # every sample of the period inactive
+        # every sample of the period inactive (an array: the reshape is 2-D)
+        temp = cast(np.ndarray, ~m[: k * w].reshape(k, w).astype(bool).any(axis=1))
         self._pending = [m[k * w :]]
         index = (self._checks + np.arange(k)) * w + w - 1  # global sample closing each check
         after = np.zeros(k, bool)

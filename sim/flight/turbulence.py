@@ -49,7 +49,7 @@ rougher than a real A320's recorded one, and calm cruise is where a detector mus
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import cast
 
@@ -198,7 +198,11 @@ def low_to_high_sigma_w_ratio(w20_mps: float, w_star_mps: float, edr_background:
     return math.hypot(0.1 * w20_mps, conv_w) / (EDR_TO_SIGMA_W * edr_background)
 
 
-def _first_order_filter():
+# f(b0, a1, x, z0) -> y: :func:`_first_order_filter`'s filter
+FirstOrderFilter = Callable[[float, float, np.ndarray, float], np.ndarray]
+
+
+def _first_order_filter() -> FirstOrderFilter:
     """``f(b0, a1, x, z0)``: y[n] = b0 x[n] + a1 y[n-1], started from the state ``z0`` (the value that
     ``a1 y[-1]`` adds to the first output), as ``scipy.signal.lfilter([b0], [1, -a1], x, zi=[z0])[0]``.
 
@@ -229,7 +233,7 @@ class GustField:
         self.rng = rng
         self.n = block_steps
         self.state = np.zeros(3)  # x_u, x_v, x_w (m/s)
-        self._filter = None  # _first_order_filter(), made at the first block
+        self._filter: FirstOrderFilter | None = None  # _first_order_filter(), made at the first block
 
     def reset(self) -> None:
         self.state[:] = 0.0
