@@ -198,8 +198,9 @@ def in_flight_stepping(scenario) -> dict:
 
     Returns ``ground_s``, ``ground_steps``, ``air_s``, ``air_steps``, ``total_s``, ``steps``,
     ``assembly_s`` (the track built from the record after the last step: ``simulate._to_track`` and
-    ``simulate.pressure_truth``, timed in the same flight) and the ``track``; a :class:`RuntimeError` if the steps timed are not the flight's own (its samples plus
-    the gear's settling before t = 0), i.e. the wrapper did not sit inside this flight."""
+    ``simulate.pressure_truth``, timed in the same flight) and the ``track``; a :class:`RuntimeError`
+    if the steps timed are not the flight's own (its samples plus the gear's settling before t = 0),
+    i.e. the wrapper did not sit inside this flight."""
     from flightmode.runs import pipeline
     from flightmode.sim.flight import simulate
     from flightmode.sim.flight.jsbsim import adapter as jsbsim_adapter

@@ -21,8 +21,8 @@ And the bound: the figure these flights would reach if each cost no more than it
 the limit's cost per step), its track's reads (``_bench.recording_stepping_s`` less bare stepping, per
 type, times its steps), both at one process's cost, and its sensing and detection (as the dataset's
 workers timed them: timings.jsonl's ``stages_s``): no pilot, gusts, roughness, track assembly,
-writing, scheduling or start-up, and no two processes stepping slowing each other. No change to the loop around JSBSim that keeps its per-step record can
-take figure / limit above bound / limit.
+writing, scheduling or start-up, and no two processes stepping slowing each other. No change to the
+loop around JSBSim that keeps its per-step record can take figure / limit above bound / limit.
 
 Without ``rate``:
 

@@ -13,7 +13,7 @@ read it as it is)::
     DIR/truth/aircraft=<type>/part-<id>.parquet      the aircraft's state (--truth full | 10hz | none)
     DIR/rrd/aircraft=<type>/part-<id>.rrd            with --rrd: the Rerun recording, for offline replay
     DIR/README.md                                    the dataset card
-    DIR/timings.jsonl                                wall time (whole, and per stage) and peak memory per flight (not data)
+    DIR/timings.jsonl                                wall time (whole, by stage), peak memory per flight (not data)
 
 Atomic and resumable: every file is written to a temporary name in its final folder and renamed; the
 manifest is rewritten whole (temporary name, rename) after each flight. A flight's files depend only
