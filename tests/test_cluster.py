@@ -52,7 +52,8 @@ def test_a_local_cluster_of_two_processes_maps_in_order_and_raises_a_failure():
         assert cluster.map_flights(operator.add, [(1, 2), (3, 4)], scheduler=c.scheduler.address) == [3, 7]
 
 
-def test_a_scheduler_that_does_not_answer_is_a_cluster_error():
+def test_a_scheduler_that_does_not_answer_is_a_cluster_error(monkeypatch):
+    monkeypatch.setattr(cluster, "SCHEDULER_TIMEOUT", "1s")  # the same path as the 5 s default, sooner
     with pytest.raises(ClusterError, match="does not answer"):  # discard port 9: nothing listens
         with cluster.open_client(scheduler="tcp://127.0.0.1:9"):
             pass

@@ -250,7 +250,10 @@ def test_the_card_documents_the_dataset_and_its_four_loaders_read_it(tmp_path, r
     assert x.shape == (1000, 3) and y is False  # 100 Hz; the first 10 s: a walk in the terminal
 
 
-def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_file):
+def test_bad_requests_are_one_line_errors_and_write_nothing(tmp_path, family_file, monkeypatch):
+    from flightmode import cluster
+
+    monkeypatch.setattr(cluster, "SCHEDULER_TIMEOUT", "1s")  # the same path as the 5 s default, sooner
     out = tmp_path / "ds"
     with pytest.raises(DatasetError, match=r"--n 0: the number of flights must be a positive integer"):
         check_request(str(family_file), 0, out)
