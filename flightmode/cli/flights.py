@@ -97,12 +97,21 @@ def dataset_cmd(
     rrd: Annotated[
         bool, typer.Option("--rrd", help="Also write each flight's Rerun recording (OUT/rrd/).")
     ] = False,
+    verify: Annotated[
+        bool,
+        typer.Option(
+            "--verify",
+            help="With --resume: first check every recorded flight's files against the manifest's "
+            "SHA-256, and fly again those missing or damaged.",
+        ),
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help=JSON_HELP)] = False,
 ) -> None:
     """Make a labelled dataset of a family's first N flights on Dask.
 
     OUT holds hive-partitioned Parquet (samples/, truth/), the manifest flights.parquet and the card
-    README.md; a killed run resumes with --resume."""
+    README.md; a killed run resumes with --resume, and --resume --verify also flies again any flight
+    whose files were damaged or lost since."""
     from rich.progress import (
         BarColumn,
         MofNCompleteColumn,
@@ -124,7 +133,9 @@ def dataset_cmd(
         truth=truth,
         flight_timeout_s=flight_timeout_s,
         rrd=rrd,
+        verify=verify,
     )
+    damaged: dict[str, str] = {}
     with Progress(
         TextColumn("[progress.description]{task.description}"),
         BarColumn(),
@@ -150,6 +161,17 @@ def dataset_cmd(
             if row["status"] != "ok" and not as_json:
                 progress.console.print(f"flight {row['flight_id']} failed: {row['error']}", highlight=False)
 
+        def on_damaged(found: dict[str, str]) -> None:
+            damaged.update(found)
+            if as_json:
+                return
+            if not found:
+                progress.console.print(
+                    "verified: every recorded flight's files match the manifest", highlight=False
+                )
+            for fid, why in found.items():
+                progress.console.print(f"flight {fid} flown again: {why}", highlight=False)
+
         try:
             rows = make_dataset(
                 fam,
@@ -161,8 +183,10 @@ def dataset_cmd(
                 truth=truth,
                 flight_timeout_s=flight_timeout_s,
                 rrd=rrd,
+                verify=verify,
                 on_start=on_start,
                 on_flight=on_flight,
+                on_damaged=on_damaged,
             )
         except KeyboardInterrupt:  # Ctrl-C: every flight recorded so far is whole (atomic writes)
             progress.stop()
@@ -174,7 +198,10 @@ def dataset_cmd(
             raise typer.Exit(130) from None
     ok = sum(r["status"] == "ok" for r in rows.values() if r["index"] < n)
     if as_json:
-        emit_json({"dataset": str(out), "flights_ok": ok, "flights_failed": n - ok})
+        emit_json(
+            {"dataset": str(out), "flights_ok": ok, "flights_failed": n - ok}
+            | ({"flown_again": damaged} if verify else {})
+        )
         return
     console().print(
         Text.assemble(

@@ -63,10 +63,11 @@ def flight_info(row: dict) -> dict:
 def flight_stream(dataset: str | Path, flight: str | int) -> tuple[dict, dict]:
     """(columns, run.json) of one flight of a dataset: its samples as
     :func:`flightmode.runs.run_io.read_samples` gives a run's, and :func:`flight_info`."""
+    from flightmode.datasets.make import flight_file
     from flightmode.runs.run_io import read_samples
 
     row = manifest_row(dataset, flight)
-    cols, _ = read_samples(Path(dataset) / row["samples_file"])
+    cols, _ = read_samples(flight_file(dataset, row))
     return cols, flight_info(row)
 
 
@@ -78,9 +79,15 @@ def flight_track(dataset: str | Path, row: dict):
     metadata carries what run.json would: :data:`flightmode.runs.run_io.TRACK_INFO_KEY`)."""
     import pyarrow.parquet as pq
 
+    from flightmode.datasets.make import flight_file
     from flightmode.runs import run_io
 
-    t = pq.read_table(Path(dataset) / row["truth_file"])
+    if row.get("truth_file") is None:
+        raise InputDataError(
+            f"{dataset}: flight {row['flight_id']} has no truth file (made with --truth none); make the "
+            "dataset with `flightmode dataset ... --truth full`"
+        )
+    t = pq.read_table(flight_file(dataset, row, "truth"))
     if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
         raise InputDataError(
             f"{dataset}: flight {row['flight_id']}'s truth cannot rebuild its track (an older "

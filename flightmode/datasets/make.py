@@ -243,6 +243,39 @@ def _remove_flight_files(out: Path, i: int) -> None:
             p.unlink(missing_ok=True)
 
 
+def _part_damage(dataset: str | Path, row: dict, part: str) -> str | None:
+    """What is wrong with one file of a flown flight: None, or the file and the fault."""
+    path = Path(dataset) / row[f"{part}_file"]
+    if not path.is_file():
+        return f"{path}: missing"
+    if row.get(f"{part}_sha256") not in (None, _sha256(path)):
+        return f"{path}: not the file this dataset wrote (its SHA-256 is not the one flights.parquet holds)"
+    return None
+
+
+def damage(dataset: str | Path, row: dict) -> str | None:
+    """What is wrong with the files of a flight the manifest records as flown (``row``): None if its
+    samples and truth files are there with the SHA-256 the manifest holds (and its recording, which
+    has no recorded hash, is there), else one line naming the file and the fault."""
+    parts = [p for p in ("samples", "truth", "rrd") if row.get(f"{p}_file")]
+    return next((why for p in parts if (why := _part_damage(dataset, row, p)) is not None), None)
+
+
+def flight_file(dataset: str | Path, row: dict, part: str = "samples") -> Path:
+    """The ``part`` file ("samples" or "truth") of a dataset flight, checked against the manifest's
+    SHA-256 before anyone reads it: an :class:`InputDataError` naming the file if it is missing,
+    damaged, cut short or replaced, and how to fly it again."""
+    if row.get(f"{part}_file") is None:
+        raise InputDataError(f"{dataset}: flight {row['flight_id']} has no {part} file")
+    if (why := _part_damage(dataset, row, part)) is not None:
+        n = max(read_manifest(Path(dataset))) + 1  # the dataset's family is the copy it keeps
+        raise InputDataError(
+            f"{why}; fly it again: flightmode dataset {Path(dataset) / 'family.toml'} --n {n} "
+            f"--out {dataset} --resume --verify"
+        )
+    return Path(dataset) / row[f"{part}_file"]
+
+
 def _error_text(e: BaseException) -> str:
     """What the manifest records of a failure: flightmode's own message (it names the flight's problem
     and depends on nothing but the flight), else only the exception's type (a worker's death names
@@ -432,6 +465,7 @@ def check_request(
     truth: str = "10hz",
     flight_timeout_s: float | None = None,
     rrd: bool = False,
+    verify: bool = False,
 ) -> tuple[Family, Options, Path]:
     """(family, options, out folder) of a valid request; a :class:`DatasetError` (or ScenarioError for the
     family) naming what is wrong otherwise. Writes nothing."""
@@ -446,6 +480,8 @@ def check_request(
         raise DatasetError(f"--workers {workers!r}: must be a positive integer")
     if flight_timeout_s is not None and not flight_timeout_s > 0:
         raise DatasetError(f"--flight-timeout-s {flight_timeout_s!r}: must be positive")
+    if verify and not resume:
+        raise DatasetError("--verify checks the flights of a dataset being resumed: add --resume")
     options = Options(truth, flight_timeout_s, bool(rrd))
     out = Path(out)
     _check_folder(out, fam, options, resume, n)
@@ -463,12 +499,18 @@ def make_dataset(
     truth: str = "10hz",
     flight_timeout_s: float | None = None,
     rrd: bool = False,
+    verify: bool = False,
     on_start: Callable[[str | None, int], None] | None = None,
     on_flight: Callable[[dict], None] | None = None,
+    on_damaged: Callable[[dict[str, str]], None] | None = None,
 ) -> dict[int, dict]:
     """Make (or, with ``resume``, complete) the dataset of the family's members 0..n-1 in ``out``;
-    returns the manifest rows by index. ``on_start(dashboard_url, flights_to_do)`` and
-    ``on_flight(row)`` report progress (the CLI's progress bar)."""
+    returns the manifest rows by index. ``verify`` (with ``resume``): first check every recorded
+    flight's files against the manifest (:func:`damage`); a flight whose files are missing or damaged
+    is taken out of the manifest, its files removed, and flown again (the same bytes: a flight's files
+    depend only on the family, its index and the options). ``on_start(dashboard_url, flights_to_do)``,
+    ``on_flight(row)`` and ``on_damaged({flight_id: what is wrong})`` (called once, before any
+    flight, when ``verify`` is set) report progress (the CLI's progress bar)."""
     fam, options, out = check_request(
         family,
         n,
@@ -478,6 +520,7 @@ def make_dataset(
         truth=truth,
         flight_timeout_s=flight_timeout_s,
         rrd=rrd,
+        verify=verify,
     )
     # the cluster before writing: a dead scheduler leaves nothing behind. A failed flight is retried
     # once by _run itself: Dask must not re-run a task whose worker died (allowed_failures 0). The
@@ -496,6 +539,8 @@ def make_dataset(
                 locked = True
                 try:
                     _claim_folder(out, fam, options)
+                    if verify:
+                        _drop_damaged(out, on_damaged)
                     return _run(client, fam, n, out, options, on_start, on_flight)
                 except OSError as e:  # the manifest, the card or the log on a full disk (written atomically)
                     if _disk_full(e):
@@ -508,6 +553,20 @@ def make_dataset(
             if locked and scheduler is None:
                 _sweep_temporaries(out)
             raise
+
+
+def _drop_damaged(out: Path, on_damaged: Callable[[dict[str, str]], None] | None) -> None:
+    """Take the flights whose files are missing or damaged (:func:`damage`) out of the manifest and
+    remove their files, so that the run flies them again."""
+    rows = read_manifest(out)
+    bad = {i: why for i, r in rows.items() if r["status"] == "ok" and (why := damage(out, r)) is not None}
+    for i in bad:
+        _remove_flight_files(out, i)
+        del rows[i]
+    if bad:
+        _write_manifest(out, rows)
+    if on_damaged is not None:
+        on_damaged({flight_id(i): why for i, why in sorted(bad.items())})
 
 
 @contextlib.contextmanager
@@ -678,7 +737,7 @@ def _windows(path: Path, rows: dict, length_s: float, step_s: float, label: str)
         r = rows[i]
         if r["status"] != "ok":
             continue
-        t = pq.read_table(path / r["samples_file"], columns=["t_s", "acc_x_g", "acc_y_g", "acc_z_g", label])
+        t = pq.read_table(flight_file(path, r), columns=["t_s", "acc_x_g", "acc_y_g", "acc_z_g", label])
         ts = t["t_s"].to_numpy()
         if ts.shape[0] < 2:
             continue
@@ -698,6 +757,8 @@ __all__ = [
     "read_manifest",
     "open_dataset",
     "windows",
+    "damage",
+    "flight_file",
     "DatasetError",
     "FlightTimeoutError",
     "TRUTH_RATES",

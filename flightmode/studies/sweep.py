@@ -136,10 +136,11 @@ def flight_streams(dataset: str, row: dict, sensors: Sequence[str] | None):
     """(sensor preset, columns, scenario TOML) of each stream to sweep on one flight: the dataset's
     own samples, or the flight re-sensed from its full-rate truth with each preset of ``sensors``
     (the flight's own sensor streams, its carrier and floor: only the sensor differs)."""
+    from flightmode.datasets.make import flight_file
     from flightmode.runs.run_io import read_samples
 
     if not sensors:
-        cols, _ = read_samples(Path(dataset) / row["samples_file"])
+        cols, _ = read_samples(flight_file(dataset, row))
         yield row.get("sensor_preset"), cols, row["scenario_toml"]
         return
     from flightmode.datasets.flight import flight_track

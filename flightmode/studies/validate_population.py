@@ -84,7 +84,7 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
     """One dataset flight's checks: ``{"flight_id", "aircraft", "checks": [Check, ...]}``, or with
     ``"error"`` (the exception's type and message) instead of checks if it cannot be validated."""
     from flightmode.datasets.flight import flight_track
-    from flightmode.datasets.make import stowage_of_row
+    from flightmode.datasets.make import flight_file, stowage_of_row
     from flightmode.runs import pipeline
     from flightmode.runs.run_io import read_samples
     from flightmode.scenarios.scenario import Scenario
@@ -96,7 +96,7 @@ def validate_flight(dataset: str, row: dict, paper_flight: int = 1) -> dict:
         track = flight_track(dataset, row)
         sc = Scenario.from_toml_text(row["scenario_toml"], f"flight {row['flight_id']} (scenario_toml)")
         checks = track_checks(track, sc.plan)
-        columns, _ = read_samples(Path(dataset) / row["samples_file"])
+        columns, _ = read_samples(flight_file(dataset, row))
         preset = pipeline.sensor_preset(sc.sensor)
         checks += seed000_checks(
             columns,

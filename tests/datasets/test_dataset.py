@@ -729,3 +729,59 @@ def test_an_interrupted_run_leaves_no_temporary_behind(tmp_path, family_file):
     assert planted and not planted[0].exists() and not list(out.rglob(TMP_GLOB))
     assert (out / "family.toml").exists()  # the folder stays this family's: --resume completes it
     check_request(str(family_file), 1, out, resume=True)
+
+
+@pytest.mark.slow  # the reference dataset
+def test_damaged_or_lost_flight_files_are_refused_on_read_and_flown_again_with_verify(tmp_path, reference):
+    """Every reader of a dataset flight's files checks them against the manifest's SHA-256 first, and
+    names the file and the command that flies it again; ``--resume --verify`` takes such flights out of
+    the manifest and removes their files, so that the run flies them again (not flown here: the
+    interrupt comes as the run starts; the resumed files' bytes are the sigkill test's)."""
+    import shutil
+
+    from flightmode.datasets.flight import flight_stream
+    from flightmode.datasets.make import damage
+    from flightmode.errors import InputDataError
+
+    ds = tmp_path / "ds"
+    shutil.copytree(reference, ds)
+    rows = read_manifest(ds)
+    assert [damage(ds, r) for r in rows.values()] == [None, None]  # the copy is whole
+    samples0 = ds / rows[0]["samples_file"]
+    data = bytearray(samples0.read_bytes())
+    data[len(data) // 3] ^= 0x01  # one flipped bit
+    samples0.write_bytes(bytes(data))
+    (ds / rows[1]["truth_file"]).unlink()
+    with pytest.raises(InputDataError, match=r"part-000000\.parquet: not the file this dataset wrote") as e:
+        flight_stream(ds, 0)
+    assert f"flightmode dataset {ds / 'family.toml'} --n 2 --out {ds} --resume --verify" in str(e.value)
+    cols, _ = flight_stream(ds, 1)  # its samples are whole: read
+    assert cols["acc_g"].shape[1] == 3
+
+    found: dict[str, str] = {}
+
+    def interrupt(dashboard, to_do):
+        assert to_do == 2  # both to fly again
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        make_dataset(
+            str(ds / "family.toml"),
+            2,
+            ds,
+            workers=1,
+            resume=True,
+            verify=True,
+            on_damaged=found.update,
+            on_start=interrupt,
+        )
+    assert found == {
+        "000000": f"{samples0}: not the file this dataset wrote (its SHA-256 is not the one flights.parquet holds)",
+        "000001": f"{ds / rows[1]['truth_file']}: missing",
+    }
+    assert read_manifest(ds) == {}  # both out of the manifest, their files gone: nothing stale to read
+    assert not list(ds.rglob("part-*.parquet"))
+    with pytest.raises(
+        DatasetError, match="--verify checks the flights of a dataset being resumed: add --resume"
+    ):
+        make_dataset(str(ds / "family.toml"), 2, ds, workers=1, verify=True)
