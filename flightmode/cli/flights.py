@@ -172,6 +172,10 @@ def dataset_cmd(
             for fid, why in found.items():
                 progress.console.print(f"flight {fid} flown again: {why}", highlight=False)
 
+        if verify and not as_json:  # reading every file takes about 1 s per GB
+            progress.console.print(
+                "checking the recorded flights' files against the manifest", highlight=False
+            )
         try:
             rows = make_dataset(
                 fam,
