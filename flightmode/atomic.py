@@ -9,6 +9,10 @@ writer sweeps them before resuming).
     write_with(path, fn)     fn(tmp_path) writes the file (pyarrow, matplotlib, rerun, ...)
     write_text / write_bytes / write_json / write_parquet     the common cases
     staged_folder(path)      a context manager yielding a folder renamed onto ``path`` on success
+    read_parquet(path)       read back what write_parquet wrote, its page checksums checked
+
+Parquet is written with a CRC-32 of every page (``write_page_checksum``), which :func:`read_parquet`
+checks: a flipped bit is an error naming the file, not a wrong number read as data.
 
 No existing writer calls ``fsync``, and none here does: the rename guarantees that a reader sees
 the old or the new file whole; durability across a power cut is not asked for.
@@ -80,11 +84,29 @@ def write_json(
 
 def write_parquet(table, path: str | os.PathLike, **options) -> Path:
     """Write a pyarrow Table to ``path`` as Parquet atomically; ``options`` go to
-    ``pyarrow.parquet.write_table`` (default ``compression="zstd"``)."""
+    ``pyarrow.parquet.write_table`` (default ``compression="zstd"``, with page checksums)."""
     import pyarrow.parquet as pq
 
     options.setdefault("compression", "zstd")
+    options.setdefault("write_page_checksum", True)
     return write_with(path, lambda tmp: pq.write_table(table, tmp, **options))
+
+
+def read_parquet(path: str | os.PathLike, what: str, **options):
+    """The pyarrow Table in the Parquet file ``path``, its page checksums checked (``options`` go to
+    ``pyarrow.parquet.read_table``); an :class:`~flightmode.errors.InputDataError` naming the file and
+    ``what`` it was to hold if it is missing, not Parquet, cut short or damaged."""
+    import pyarrow.parquet as pq
+
+    from flightmode.errors import InputDataError
+
+    path = Path(path)
+    if not path.is_file():
+        raise InputDataError(f"{path}: missing (the {what})")
+    try:
+        return pq.read_table(path, page_checksum_verification=True, **options)
+    except Exception as e:  # pyarrow raises several types for a damaged file
+        raise InputDataError(f"{path}: not a readable Parquet file, the {what} damaged ({e})") from None
 
 
 @contextmanager
@@ -118,5 +140,6 @@ __all__ = [
     "write_bytes",
     "write_json",
     "write_parquet",
+    "read_parquet",
     "staged_folder",
 ]

@@ -40,6 +40,31 @@ def test_parquet_reads_back_the_same_table(tmp_path):
     assert pq.ParquetFile(tmp_path / "t.parquet").metadata.row_group(0).column(0).compression == "ZSTD"
 
 
+def test_parquet_pages_carry_checksums_and_a_flipped_bit_is_refused(tmp_path):
+    """write_parquet writes a CRC-32 per page and read_parquet checks it. Uncompressed here, so that
+    the flipped bit lands in a float the file would otherwise hand back changed (checked below): with
+    zstd the decoder might fail on its own and prove nothing."""
+    import numpy as np
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from flightmode.errors import InputDataError
+
+    x = np.arange(20_000, dtype=np.float64)
+    p = atomic.write_parquet(pa.table({"x": x}), tmp_path / "t.parquet", compression="none")
+    assert atomic.read_parquet(p, "test table")["x"].to_numpy().tolist() == x.tolist()
+    data = bytearray(p.read_bytes())
+    data[len(data) // 2] ^= 0x10  # inside the only column's data page (160 kB of the file's ~160 kB)
+    p.write_bytes(bytes(data))
+    assert not np.array_equal(pq.read_table(p)["x"].to_numpy(), x)  # unchecked: wrong numbers, no error
+    with pytest.raises(
+        InputDataError, match=r"t\.parquet: not a readable Parquet file, the test table damaged"
+    ):
+        atomic.read_parquet(p, "test table")
+    with pytest.raises(InputDataError, match=r"nothing\.parquet: missing \(the test table\)"):
+        atomic.read_parquet(tmp_path / "nothing.parquet", "test table")
+
+
 def test_a_write_that_fails_midway_leaves_no_file_and_no_temporary(tmp_path):
     target = tmp_path / "out.bin"
 

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from flightmode.atomic import TMP_GLOB
+from flightmode.atomic import TMP_GLOB, read_parquet
 from flightmode.atomic import write_parquet as atomic_parquet  # the names the CLI and tests use
 from flightmode.atomic import write_text as atomic_text
 from flightmode.cluster import open_client
@@ -288,12 +288,10 @@ TIMING_KEYS = ("wall_s", "peak_rss_mb", "stages_s")
 
 
 def read_manifest(out: Path) -> dict[int, dict]:
-    import pyarrow.parquet as pq
-
     p = Path(out) / MANIFEST
     if not p.exists():
         return {}
-    return {int(r["index"]): r for r in pq.read_table(p).to_pylist()}
+    return {int(r["index"]): r for r in read_parquet(p, "dataset's manifest").to_pylist()}
 
 
 def is_dataset(path: str | Path) -> bool:

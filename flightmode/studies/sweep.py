@@ -654,8 +654,8 @@ def write_sweep(result: SweepResult, out: str | Path) -> None:
 
 
 def read_sweep(path: str | Path) -> SweepResult:
-    """A sweep folder written by :func:`sweep` (InputDataError if it is missing or incomplete)."""
-    import pyarrow.parquet as pq
+    """A sweep folder written by :func:`sweep` (InputDataError if it is missing, incomplete or damaged)."""
+    from flightmode.atomic import read_parquet
 
     path = Path(path)
     if not (path / "sweep.json").exists():
@@ -668,7 +668,10 @@ def read_sweep(path: str | Path) -> SweepResult:
             f"{path}: a sweep of an older flightmode (format {meta.get('format', 1)}); "
             f"sweep again (`flightmode sweep DATASET --out {path}`)"
         )
-    tables = {part: pq.read_table(path / f"{part}.parquet") for part in ("points", "phases", "static")}
+    tables = {
+        part: read_parquet(path / f"{part}.parquet", "sweep's table")
+        for part in ("points", "phases", "static")
+    }
     failed = [dict(r) for r in meta.pop("failed_flights", [])]
     return SweepResult(tables["points"], tables["phases"], tables["static"], failed, meta)
 

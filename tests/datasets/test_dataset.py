@@ -785,3 +785,37 @@ def test_damaged_or_lost_flight_files_are_refused_on_read_and_flown_again_with_v
         DatasetError, match="--verify checks the flights of a dataset being resumed: add --resume"
     ):
         make_dataset(str(ds / "family.toml"), 2, ds, workers=1, verify=True)
+
+
+def test_a_damaged_manifest_or_sweep_table_is_one_line_naming_it(tmp_path):
+    """The dataset's manifest and a sweep's tables are read with their page checksums checked
+    (flightmode.atomic.read_parquet): a flipped bit is an InputDataError naming the file (it was a
+    pyarrow traceback, or wrong rows read as the dataset's)."""
+    import pyarrow as pa
+
+    from flightmode.atomic import write_json, write_parquet
+    from flightmode.errors import InputDataError
+    from flightmode.studies.sweep import SWEEP_FORMAT, read_sweep
+
+    def flip(p):
+        data = bytearray(p.read_bytes())
+        data[len(data) // 2] ^= 0x10
+        p.write_bytes(bytes(data))
+
+    rows = pa.table({"index": list(range(5000)), "flight_id": [f"{i:06d}" for i in range(5000)]})
+    ds = tmp_path / "ds"
+    flip(write_parquet(rows, ds / "flights.parquet", compression="none"))
+    with pytest.raises(
+        InputDataError, match=r"flights\.parquet: not a readable Parquet file, the dataset's manifest"
+    ):
+        read_manifest(ds)
+    sw = tmp_path / "sweep"
+    write_json({"format": SWEEP_FORMAT}, sw / "sweep.json")
+    for part in ("points", "phases", "static"):
+        write_parquet(rows, sw / f"{part}.parquet", compression="none")
+    assert read_sweep(sw).points.num_rows == 5000
+    flip(sw / "phases.parquet")
+    with pytest.raises(
+        InputDataError, match=r"phases\.parquet: not a readable Parquet file, the sweep's table"
+    ):
+        read_sweep(sw)
