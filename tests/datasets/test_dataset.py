@@ -819,3 +819,14 @@ def test_a_damaged_manifest_or_sweep_table_is_one_line_naming_it(tmp_path):
         InputDataError, match=r"phases\.parquet: not a readable Parquet file, the sweep's table"
     ):
         read_sweep(sw)
+
+
+def test_a_flight_without_truth_cannot_rebuild_its_track_and_says_so(tmp_path):
+    """A dataset made with --truth none keeps no truth part: rebuilding a flight's track (sweep
+    --sensor, validate, the e-obs trade-off) names it and the option that keeps one (it was a
+    TypeError on the missing file name)."""
+    from flightmode.datasets.flight import flight_track
+    from flightmode.errors import InputDataError
+
+    with pytest.raises(InputDataError, match=r"flight 000003 has no truth file \(made with --truth none\)"):
+        flight_track(tmp_path, {"flight_id": "000003", "truth_file": None})
