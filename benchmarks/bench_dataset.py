@@ -172,11 +172,11 @@ def rate(n: int = 6, family: str = "airline-mix", workers: int = 2) -> dict:
         air_steps = r["airborne_s"] * hz
         ground_steps = (r["gate_to_gate_s"] - r["airborne_s"]) * hz
         c, ct = costs[ac], costs_together[ac]
-        cost_s += (ground_steps * c["edited", "parked"] + air_steps * c["edited", "climb"]) * 1e-6
+        bare_s = (ground_steps * c["edited", "parked"] + air_steps * c["edited", "climb"]) * 1e-6
+        cost_s += bare_s
         cost_together_s += (ground_steps * ct["edited", "parked"] + air_steps * ct["edited", "climb"]) * 1e-6
         st = stages[r["flight_id"]]
-        floor_s += (ground_steps * c["edited", "parked"] + air_steps * c["edited", "climb"]) * 1e-6
-        floor_s += (ground_steps + air_steps) * reads_us[ac] * 1e-6 + st["sense"] + st["detect"]
+        floor_s += bare_s + (ground_steps + air_steps) * reads_us[ac] * 1e-6 + st["sense"] + st["detect"]
         steps += air_steps + ground_steps
         ground += ground_steps
         air += air_steps

@@ -82,11 +82,6 @@ def flight_track(dataset: str | Path, row: dict):
     from flightmode.datasets.make import flight_file
     from flightmode.runs import run_io
 
-    if row.get("truth_file") is None:
-        raise InputDataError(
-            f"{dataset}: flight {row['flight_id']} has no truth file (made with --truth none); make the "
-            "dataset with `flightmode dataset ... --truth full`"
-        )
     t = pq.read_table(flight_file(dataset, row, "truth"))
     if not t.schema.metadata or run_io.TRACK_INFO_KEY not in t.schema.metadata:
         raise InputDataError(

@@ -265,8 +265,11 @@ def flight_file(dataset: str | Path, row: dict, part: str = "samples") -> Path:
     """The ``part`` file ("samples" or "truth") of a dataset flight, checked against the manifest's
     SHA-256 before anyone reads it: an :class:`InputDataError` naming the file if it is missing,
     damaged, cut short or replaced, and how to fly it again."""
-    if row.get(f"{part}_file") is None:
-        raise InputDataError(f"{dataset}: flight {row['flight_id']} has no {part} file")
+    if row.get(f"{part}_file") is None:  # only a truth part may be absent: --truth none
+        raise InputDataError(
+            f"{dataset}: flight {row['flight_id']} has no {part} file (made with --truth none); make the "
+            "dataset with `flightmode dataset ... --truth full`"
+        )
     if (why := _part_damage(dataset, row, part)) is not None:
         n = max(read_manifest(Path(dataset))) + 1  # the dataset's family is the copy it keeps
         raise InputDataError(

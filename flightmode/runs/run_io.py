@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flightmode.atomic import staged_folder
+from flightmode.atomic import read_parquet, staged_folder
 from flightmode.labels import PHASES, SEVERITIES
 from flightmode.sim.flight.track import FlightTrack
 
@@ -153,18 +153,13 @@ def read_samples(path: Path) -> tuple[dict, dict | None]:
 
     ``columns`` holds ``t_s`` (M,), ``acc_g`` (M, 3), ``counts`` (M, 3) and the labels as arrays
     (``phase`` as strings); ``run_info`` is the run.json beside it, or None if there is none."""
-    import pyarrow.parquet as pq
-
     from flightmode.errors import InputDataError
 
     path = Path(path)
     file = path / "samples.parquet" if path.is_dir() else path
     if not file.is_file():
         raise InputDataError(f"{path}: no samples.parquet (make a run folder with `flightmode fly`)")
-    try:
-        t = pq.read_table(file, page_checksum_verification=True)  # a flipped byte fails its page CRC
-    except Exception as e:  # pyarrow raises several types for a file that is not Parquet
-        raise InputDataError(f"{file}: not a readable Parquet file ({e})") from None
+    t = read_parquet(file, "run's samples")  # a flipped byte fails its page CRC
     need = {"t_s", "acc_x_g", "acc_y_g", "acc_z_g"}
     if not need <= set(t.column_names):
         raise InputDataError(f"{file}: not a flightmode samples file (columns {sorted(need)} missing)")
@@ -217,8 +212,6 @@ def run_scenario(info: dict, source: str):
 
 def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
     """Rebuild the FlightTrack of a run folder from truth.parquet and run.json."""
-    import pyarrow.parquet as pq
-
     from flightmode.errors import InputDataError
 
     run_dir = Path(run_dir)
@@ -228,10 +221,7 @@ def read_track(run_dir: Path) -> tuple[FlightTrack, dict]:
             "make one with `flightmode fly`)"
         )
     info = _read_json(run_dir / "run.json")
-    try:
-        t = pq.read_table(run_dir / "truth.parquet", page_checksum_verification=True)
-    except Exception as e:  # pyarrow raises several types for a file that is not Parquet
-        raise InputDataError(f"{run_dir / 'truth.parquet'}: not a readable Parquet file ({e})") from None
+    t = read_parquet(run_dir / "truth.parquet", "run's truth")
     need = {
         "t_s",
         "lat_deg",

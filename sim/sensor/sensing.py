@@ -241,11 +241,6 @@ def sense(
     ground = {k: d.as_dict() for k, d in (("lap", lap), ("tug", tug_draw)) if d is not None}
     pressure, baro_cols = None, {}
     if baro is not None:  # the pressure at the bag is the barometer's truth: computed only for one
-        if track.cabin_pressure_pa is None:
-            raise SensorError(
-                "a barometer needs the track's pressure truth: this track has none "
-                "(read from an older file); fly the scenario again"
-            )
         pressure = bag_pressure_pa(t_out, segs, track)
         baro_cols = read_barometer(t_out, segs, track, baro, streams)
     return Recording(
@@ -318,7 +313,10 @@ def bag_pressure_pa(t: np.ndarray, segs, track: FlightTrack) -> np.ndarray:
     si = np.clip(np.searchsorted(seg_t0, t, side="right") - 1, 0, len(segs) - 1)
     amb, cab, hold = track.ambient_pressure_pa, track.cabin_pressure_pa, track.hold_pressure_pa
     if amb is None or cab is None or hold is None:
-        raise SensorError("the FlightTrack has no pressure truth (ambient, cabin, hold): fly it again")
+        raise SensorError(
+            "a barometer needs the track's pressure truth (ambient, cabin, hold): this track has no pressure "
+            "truth (read from an older file); fly the scenario again"
+        )
     rows = np.vstack([amb, cab, hold])
     amb, cab, hold = _track_rows_at(rows, track, t)
     where = np.array([2 if _in_hold(s) else 1 if s.on_board else 0 for s in segs], np.intp)[si]
